@@ -1,0 +1,13 @@
+# Warnings for project code only (dependencies come in as SYSTEM includes through their targets).
+# Precise floating point on purpose: no -ffast-math anywhere, because a reference must not depend
+# on the compiler's reassociation.
+add_library(shadowref_warnings INTERFACE)
+target_compile_options(shadowref_warnings INTERFACE
+  -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion -Wnon-virtual-dtor
+  -Wold-style-cast -Wcast-align -Woverloaded-virtual -Wnull-dereference -Wdouble-promotion)
+add_library(shadowref::warnings ALIAS shadowref_warnings)
+
+if(SHADOWREF_SANITIZE)
+  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+  add_link_options(-fsanitize=address,undefined)
+endif()

@@ -1,0 +1,35 @@
+// command.hpp — what every `shadowref` subcommand shares: the exit codes scripts rely on, the
+// exception that carries a one-line bad-input message, and the registration signature.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace shadowref::cli {
+
+// DESIGN.md: 0 pass, 1 warnings, 2 failures, 3 size mismatch, 4 bad input or file error.
+enum ExitCode : int {
+  kExitPass = 0,
+  kExitWarnings = 1,
+  kExitFailures = 2,
+  kExitSizeMismatch = 3,
+  kExitBadInput = 4,
+};
+
+// Thrown for anything wrong with the input (an argument, a file, a JSON path). main() prints
+// "shadowref <subcommand>: <what>" as one line on stderr and exits with kExitBadInput.
+class BadInput : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Adds one subcommand to `app`. Its callback stores the exit code in `exit_code`.
+using RegisterCommand = void (*)(CLI::App& app, int& exit_code);
+
+void register_math_command(CLI::App& app, int& exit_code);
+
+}  // namespace shadowref::cli

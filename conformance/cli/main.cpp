@@ -1,0 +1,67 @@
+// main.cpp — the `shadowref` command: dispatches to the subcommands in kCommands.
+//
+// Every error the user can cause ends here as one line on stderr and exit code 4 (DESIGN.md);
+// `--help` works on every level and exits 0.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <string>
+
+#include "command.hpp"
+
+namespace {
+
+using shadowref::cli::RegisterCommand;
+
+// The subcommands, in the order `shadowref --help` lists them.
+constexpr RegisterCommand kCommands[] = {
+    shadowref::cli::register_math_command,
+};
+
+// The deepest subcommand the user named, for the prefix of error messages.
+std::string command_path(const CLI::App& app) {
+  std::string path = "shadowref";
+  const CLI::App* cur = &app;
+  while (cur) {
+    const auto subs = cur->get_subcommands();
+    if (subs.empty()) break;
+    cur = subs.front();
+    path += " " + cur->get_name();
+  }
+  return path;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "shadowref — reference math, ground truth and conformance suite for real-time shadows.\n"
+      "Exit codes: 0 pass, 1 warnings, 2 failures, 3 size mismatch, 4 bad input or file error."};
+  app.name("shadowref");
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "shadowref 0.1.0");
+  int exit_code = shadowref::cli::kExitPass;
+  for (RegisterCommand add : kCommands) add(app, exit_code);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << command_path(app) << ": " << e.what() << " (see --help)\n";
+    return shadowref::cli::kExitBadInput;
+  } catch (const shadowref::cli::BadInput& e) {
+    std::cerr << command_path(app) << ": " << e.what() << "\n";
+    return shadowref::cli::kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << command_path(app) << ": error: " << e.what() << "\n";
+    return shadowref::cli::kExitBadInput;
+  }
+  return exit_code;
+}
