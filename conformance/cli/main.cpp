@@ -8,6 +8,7 @@
 #include <exception>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "command.hpp"
 
@@ -20,14 +21,19 @@ constexpr RegisterCommand kCommands[] = {
     shadowref::cli::register_math_command,
 };
 
-// The deepest subcommand the user named, for the prefix of error messages.
+// The deepest subcommand the user named.
+const CLI::App* deepest(const CLI::App& app) {
+  const CLI::App* cur = &app;
+  while (!cur->get_subcommands().empty()) cur = cur->get_subcommands().front();
+  return cur;
+}
+
+// "shadowref math perspective": the prefix of error messages.
 std::string command_path(const CLI::App& app) {
   std::string path = "shadowref";
   const CLI::App* cur = &app;
-  while (cur) {
-    const auto subs = cur->get_subcommands();
-    if (subs.empty()) break;
-    cur = subs.front();
+  while (!cur->get_subcommands().empty()) {
+    cur = cur->get_subcommands().front();
     path += " " + cur->get_name();
   }
   return path;
@@ -54,7 +60,13 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << command_path(app) << ": " << e.what() << " (see --help)\n";
+    // A misspelt subcommand reaches us as "a subcommand is required" plus a leftover argument:
+    // name the leftover, which is what the user needs to see.
+    const std::vector<std::string> left = deepest(app)->remaining();
+    if (!left.empty() && left.front().rfind("-", 0) != 0)
+      std::cerr << command_path(app) << ": unknown subcommand '" << left.front() << "' (see --help)\n";
+    else
+      std::cerr << command_path(app) << ": " << e.what() << " (see --help)\n";
     return shadowref::cli::kExitBadInput;
   } catch (const shadowref::cli::BadInput& e) {
     std::cerr << command_path(app) << ": " << e.what() << "\n";

@@ -65,8 +65,12 @@ Result<Plane<T>> plane_from_points(const Vec3<T>& p0, const Vec3<T>& p1, const V
 template <class T>
 Result<Plane<T>> normalize(const Plane<T>& p) {
   if (!p.abcd.allFinite()) return Error::NonFinite;
-  const T len = p.normal().norm();  // Eigen's norm() does not overflow for large finite values
-  if (!(len > T(0))) return Error::ZeroNormal;
+  const Vec3<T> n = p.normal();
+  if ((n.array() == T(0)).all()) return Error::ZeroNormal;
+  // The plain sqrt(a²+b²+c²) is what D3DX computes; only when its square overflows or underflows
+  // do we pay for Eigen's scaled stableNorm().
+  T len = n.norm();
+  if (!(len > T(0)) || !std::isfinite(len)) len = n.stableNorm();
   Plane<T> q{p.abcd / len};
   if (!q.abcd.allFinite()) return Error::NonFinite;
   return q;
