@@ -31,5 +31,9 @@ class BadInput : public std::runtime_error {
 using RegisterCommand = void (*)(CLI::App& app, int& exit_code);
 
 void register_math_command(CLI::App& app, int& exit_code);
+// `math mesh-report` and `math silhouette`, added to the `math` subcommand (math_mesh_command.cpp).
+void register_math_mesh_commands(CLI::App& math, int& exit_code);
+void register_render_command(CLI::App& app, int& exit_code);
+void register_reference_command(CLI::App& app, int& exit_code);
 
 }  // namespace shadowref::cli

@@ -19,6 +19,8 @@ using shadowref::cli::RegisterCommand;
 // The subcommands, in the order `shadowref --help` lists them.
 constexpr RegisterCommand kCommands[] = {
     shadowref::cli::register_math_command,
+    shadowref::cli::register_render_command,
+    shadowref::cli::register_reference_command,
 };
 
 // The deepest subcommand the user named.

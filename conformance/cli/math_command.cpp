@@ -253,9 +253,8 @@ void add_enum_option(CLI::App* cmd, const std::string& name, Value& value, const
 }  // namespace
 
 void register_math_command(CLI::App& app, int& exit_code) {
-  CLI::App* math = app.add_subcommand("math", "The matrix calculator: shadow matrices, projections, planes (canonical or D3DX layout).");
+  CLI::App* math = app.add_subcommand("math", "The matrix calculator: shadow matrices, projections, planes (canonical or D3DX layout); mesh reports and silhouettes.");
   math->require_subcommand(1);
-  (void)exit_code;  // math either succeeds (0) or throws BadInput (4)
 
   {
     auto args = std::make_shared<ShadowMatrixArgs>();
@@ -301,6 +300,7 @@ void register_math_command(CLI::App& app, int& exit_code) {
     cmd->add_flag("--json", args->json, "print one JSON object");
     cmd->callback([args] { run_plane(*args); });
   }
+  register_math_mesh_commands(*math, exit_code);
 }
 
 }  // namespace shadowref::cli

@@ -27,6 +27,14 @@ enum class Error {
   ReversedNeedsZeroToOne,  // reversed-Z is defined with the 0..1 depth range only
   EyeAtTarget,          // look_at with eye == target
   UpParallelToView,     // look_at with up parallel to the viewing direction
+  EmptyMesh,            // a mesh without triangles
+  IndexOutOfRange,      // a triangle names a vertex that does not exist
+  MeshTooLarge,         // more vertices or triangles than the 32-bit index buffers can address
+  NegativeLightW,       // a homogeneous light with w < 0 (facing would be reversed)
+  LightOnCaster,        // the light coincides with a caster vertex: no extrusion direction there
+  DistanceNotPositive,  // a finite extrusion distance <= 0
+  SingularMatrix,       // a matrix that must be inverted is singular
+  InvalidShape,         // a procedural shape's size or tessellation is out of range
 };
 
 constexpr const char* describe(Error e) {
@@ -45,6 +53,14 @@ constexpr const char* describe(Error e) {
     case Error::ReversedNeedsZeroToOne: return "reversed-Z needs the zero-to-one depth range";
     case Error::EyeAtTarget: return "eye and target coincide";
     case Error::UpParallelToView: return "up is parallel to the viewing direction";
+    case Error::EmptyMesh: return "the mesh has no triangles";
+    case Error::IndexOutOfRange: return "a triangle index is out of range (no such vertex)";
+    case Error::MeshTooLarge: return "the mesh is too large for 32-bit indices";
+    case Error::NegativeLightW: return "the light's w must be >= 0 (w = 1 point light, w = 0 directional)";
+    case Error::LightOnCaster: return "the light coincides with a caster vertex: the volume has no extrusion direction there";
+    case Error::DistanceNotPositive: return "the extrusion distance must be > 0";
+    case Error::SingularMatrix: return "the matrix is singular";
+    case Error::InvalidShape: return "the shape's size or tessellation is out of range";
   }
   return "unknown error";
 }

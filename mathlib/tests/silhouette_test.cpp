@@ -1,0 +1,165 @@
+// Unit tests of shadowref/silhouette.hpp: facing with its tie rule, the hand cases (cube lit from
+// above, open box, fin, mis-wound), orientation, multiplicity, and invalid lights.
+#include "shadowref/silhouette.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <limits>
+#include <map>
+
+#include "scalar_types.hpp"
+#include "shadowref/primitives.hpp"
+#include "test_meshes.hpp"
+
+namespace shadowref {
+namespace {
+
+template <class T>
+class SilhouetteTest : public ::testing::Test {};
+TYPED_TEST_SUITE(SilhouetteTest, test::FloatAndDouble);
+
+using Edges = std::vector<SilhouetteEdge>;
+
+Edges sorted(Edges e) {
+  std::sort(e.begin(), e.end(), [](auto a, auto b) { return std::pair(a.from, a.to) < std::pair(b.from, b.to); });
+  return e;
+}
+
+template <class T>
+Silhouette<T> silhouette_of(const TriangleMesh<T>& m, const Vec4<T>& light) {
+  const auto caster = make_shadow_caster(m);
+  EXPECT_TRUE(caster.ok());
+  Silhouette<T> s;
+  const auto n = find_silhouette(*caster, light, s);
+  EXPECT_TRUE(n.ok()) << n.message();
+  return s;
+}
+
+TYPED_TEST(SilhouetteTest, CubeLitFromAboveHasTheTopSquareOrientedOutward) {
+  using T = TypeParam;
+  const auto s = silhouette_of(test::cube<T>(), Vec4<T>(T(0.2), 10, T(0.1), 1));
+  EXPECT_EQ(s.lit_count, 2u);  // the two top triangles
+  // The top face walks 2 -> 6 -> 7 -> 3 (counter-clockwise from above); its silhouette edges are
+  // walked the other way, so that the side quads (from, to, to', from') face out.
+  EXPECT_EQ(sorted(s.edges), sorted(Edges{{6, 2}, {7, 6}, {3, 7}, {2, 3}}));
+  // The same light scaled homogeneously (w = 2) is the same point: same answer.
+  EXPECT_EQ(sorted(silhouette_of(test::cube<T>(), Vec4<T>(T(0.4), 20, T(0.2), 2)).edges), sorted(s.edges));
+}
+
+TYPED_TEST(SilhouetteTest, SideQuadOfATopEdgeFacesOut) {
+  using T = TypeParam;
+  // Edge (6, 2) lies on x = -1; its quad (6, 2, 2', 6') must face -x. With the light straight
+  // above x = 0, 2' = 2 + t (2 - L): the normal (2 - 6) x (2' - 6) has a negative x.
+  const auto m = test::cube<T>();
+  const Vec3<T> l(0, 10, 0);
+  const Vec3<T> far2 = m.positions[2] + T(100) * (m.positions[2] - l);
+  const Vec3<T> n = (m.positions[2] - m.positions[6]).cross(far2 - m.positions[6]);
+  EXPECT_LT(n.x(), T(0));
+}
+
+TYPED_TEST(SilhouetteTest, DirectionalFromStraightAboveUsesTheTieRule) {
+  using T = TypeParam;
+  // The side faces contain the light direction (plane . L = 0): lit by the tie rule, so the lit
+  // region is top + sides and the silhouette is the BOTTOM square, walked as the bottom face
+  // (0 -> 1 -> 5 -> 4) walks it. The volume is the same solid either way.
+  const auto s = silhouette_of(test::cube<T>(), Vec4<T>(0, 1, 0, 0));
+  EXPECT_EQ(s.lit_count, 10u);
+  EXPECT_EQ(sorted(s.edges), sorted(Edges{{0, 1}, {1, 5}, {5, 4}, {4, 0}}));
+}
+
+TYPED_TEST(SilhouetteTest, OpenEdgeOfALitFaceIsASilhouette) {
+  using T = TypeParam;
+  const Vec4<T> light(10, 10, T(0.3), 1);  // lights +x and +y of the closed cube
+  const auto closed = silhouette_of(test::cube<T>(), light);
+  EXPECT_EQ(closed.lit_count, 4u);
+  EXPECT_EQ(closed.edges.size(), 6u);
+  EXPECT_EQ(std::count(closed.edges.begin(), closed.edges.end(), SilhouetteEdge{7, 3}), 0);
+  // Without the top face, +x is the only lit face and its open top edge 3 -> 7 is a silhouette.
+  const auto open = silhouette_of(test::open_box<T>(), light);
+  EXPECT_EQ(open.lit_count, 2u);
+  EXPECT_EQ(sorted(open.edges), sorted(Edges{{7, 3}, {5, 7}, {1, 5}, {3, 1}}));
+}
+
+TYPED_TEST(SilhouetteTest, FinContributesItsOpenEdgesAndCancelsOnTheSharedEdge) {
+  using T = TypeParam;
+  // The fin faces (0, -1, 1); this light lights it and the cube's front (+z) face. On edge 6-7 the
+  // fin walks 6 -> 7 and the front face 7 -> 6: net 0, no quad. The fin's open edges and the front
+  // face's three other edges remain.
+  const auto s = silhouette_of(test::cube_with_fin<T>(), Vec4<T>(T(0.3), T(0.2), 10, 1));
+  EXPECT_EQ(s.lit_count, 4u);
+  EXPECT_EQ(sorted(s.edges), sorted(Edges{{9, 7}, {8, 9}, {6, 8}, {5, 4}, {7, 5}, {4, 6}}));
+}
+
+TYPED_TEST(SilhouetteTest, MiswoundEdgeWithTwoLitFacesCountsTwice) {
+  using T = TypeParam;
+  // Triangle 0 walked backwards, (0, 6, 4), faces +x as wound; this light lights it and the +z
+  // face, which both walk 6 -> 4: the edge has multiplicity 2 (two prisms share that side).
+  const auto s = silhouette_of(test::miswound_cube<T>(), Vec4<T>(T(0.5), T(0.3), 10, 1));
+  EXPECT_EQ(std::count(s.edges.begin(), s.edges.end(), SilhouetteEdge{4, 6}), 2);
+}
+
+// On a closed, consistently wound mesh the silhouette is a set of closed loops: at every welded
+// vertex as many edges leave as arrive, and every edge has one lit and one unlit face.
+TYPED_TEST(SilhouetteTest, ClosedMeshesGiveClosedLoopsBetweenLitAndUnlitFaces) {
+  using T = TypeParam;
+  const std::vector<TriangleMesh<T>> meshes{make_uv_sphere(T(1), 32, 17).value(), make_torus(T(2), T(0.6), 40, 16).value(),
+                                            test::split_cube<T>()};
+  const std::vector<Vec4<T>> lights{Vec4<T>(3, 4, 5, 1), Vec4<T>(T(0.3), T(0.9), T(1.5), 1), Vec4<T>(1, 2, -3, 0),
+                                    Vec4<T>(0, 5, T(0.01), 1)};
+  for (const auto& m : meshes) {
+    const auto caster = make_shadow_caster(m).value();
+    Silhouette<T> s;
+    for (const auto& l : lights) {
+      ASSERT_TRUE(find_silhouette(caster, l, s).ok());
+      EXPECT_FALSE(s.edges.empty());
+      std::map<std::uint32_t, int> balance;
+      for (const auto& e : s.edges) {
+        ++balance[caster.adjacency.weld[e.from]];
+        --balance[caster.adjacency.weld[e.to]];
+      }
+      for (const auto& [v, b] : balance) EXPECT_EQ(b, 0) << "vertex " << v;
+    }
+  }
+}
+
+TYPED_TEST(SilhouetteTest, EveryFaceUnlitOrLitGivesNoSilhouette) {
+  using T = TypeParam;
+  // A light inside the closed cube sees every face's back: nothing lit, nothing cast.
+  const auto s = silhouette_of(test::cube<T>(), Vec4<T>(T(0.1), T(0.2), T(0.3), 1));
+  EXPECT_EQ(s.lit_count, 0u);
+  EXPECT_TRUE(s.edges.empty());
+}
+
+TYPED_TEST(SilhouetteTest, DegenerateFacesAreNeverLit) {
+  using T = TypeParam;
+  auto m = test::cube<T>();
+  m.triangles.push_back({0, 1, 1});
+  const auto s = silhouette_of(m, Vec4<T>(1, 0, 0, 0));  // plane . L = 0 for a zero plane
+  EXPECT_EQ(s.lit[12], 0);
+}
+
+TYPED_TEST(SilhouetteTest, InvalidLightsAreRefused) {
+  using T = TypeParam;
+  const auto caster = make_shadow_caster(test::cube<T>()).value();
+  Silhouette<T> s;
+  EXPECT_EQ(find_silhouette(caster, Vec4<T>(0, 0, 0, 0), s).error(), Error::ZeroLight);
+  EXPECT_EQ(find_silhouette(caster, Vec4<T>(0, 5, 0, -1), s).error(), Error::NegativeLightW);
+  EXPECT_EQ(find_silhouette(caster, Vec4<T>(0, std::numeric_limits<T>::quiet_NaN(), 0, 1), s).error(), Error::NonFinite);
+}
+
+TYPED_TEST(SilhouetteTest, BuffersAreReusedAcrossLights) {
+  using T = TypeParam;
+  const auto caster = make_shadow_caster(make_uv_sphere(T(1), 32, 17).value()).value();
+  Silhouette<T> s;
+  ASSERT_TRUE(find_silhouette(caster, Vec4<T>(3, 4, 5, 1), s).ok());
+  s.edges.reserve(4 * s.edges.size());
+  const auto* lit = s.lit.data();
+  const auto* edges = s.edges.data();
+  ASSERT_TRUE(find_silhouette(caster, Vec4<T>(-3, 1, 2, 1), s).ok());
+  EXPECT_EQ(s.lit.data(), lit);  // no reallocation for the second light
+  EXPECT_EQ(s.edges.data(), edges);
+}
+
+}  // namespace
+}  // namespace shadowref

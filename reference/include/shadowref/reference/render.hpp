@@ -1,0 +1,72 @@
+// shadowref/reference/render.hpp — the ray-traced ground truth of a scene (DESIGN.md "Outputs").
+//
+// For each pixel: one primary ray through the pixel centre and samples_per_axis² through the
+// centres of a regular sub-pixel grid, each traced with rtcIntersect1M from the near plane (and
+// to the far plane when the camera has one), unprojected through inverse(P · V) with P and V
+// from scene/camera.hpp — the matrices the OpenGL renderer uses. At each hit, the visibility rule
+// of shadow_ray.hpp for every light, traced with rtcOccluded1M streams.
+//
+//   mask      the pixel-centre answer toward the light's homogeneous point (scene::homogeneous:
+//             the centre of a rect light): 255 lit, 0 shadowed, 128 no surface.
+//   visibility the lit fraction over the sub-pixel samples that hit a surface and the light's
+//             samples; −1 where no sub-pixel sample hits a surface.
+//   decided   255 when the pixel's answer cannot honestly go the other way: every sub-pixel
+//             sample gives the centre's answer (same surface-or-not, and for a rect light a
+//             fraction of exactly 0 or 1, i.e. no penumbra), the centre's answer is the same with
+//             the shadow ray's start nudged from 1 to 4 epsilons, and the centre does not face
+//             the light at a grazing angle (|facing| >= kGrazingCosine). 0 otherwise.
+//   shaded    flat-shaded Lambert (face normals), ambient 0.1, the spot cone as a hard cut-off,
+//             averaged over the sub-pixel samples, sRGB-encoded, RGB8.
+// With several lights, each light gets its own mask, visibility and decided image; the
+// aggregate visibility is the mean over lights and the aggregate decided the AND.
+//
+// Determinism: every pixel is computed from its own rays in a fixed order, so the images do not
+// depend on the thread count or the tile schedule (tested bit for bit).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "shadowref/scene/scene.hpp"
+
+namespace shadowref::reference {
+
+// Below this facing cosine a surface is lit or shadowed by a hair: the OpenGL renderer computes
+// n · l in float from interpolated data (relative errors around 1e-6), so its sign can differ
+// from ours; 1e-4 gives that a 100-fold margin, about 0.006 degrees of grazing angle.
+inline constexpr double kGrazingCosine = 1e-4;
+
+struct Options {
+  int samples_per_axis = 4;  // sub-pixel grid: samples_per_axis², in [1, 16]
+  int threads = 0;           // 0: all cores
+};
+
+struct LightImages {
+  std::vector<std::uint8_t> mask;      // width · height, row 0 at the top
+  std::vector<float> visibility;       // width · height
+  std::vector<std::uint8_t> decided;   // width · height
+};
+
+struct Images {
+  int width = 0;
+  int height = 0;
+  std::vector<LightImages> lights;     // one per scene light, in scene order
+  std::vector<float> visibility;       // the mean over lights (equal to lights[0] for one light)
+  std::vector<std::uint8_t> decided;   // the AND over lights
+  std::vector<std::uint8_t> shaded;    // width · height · 3, RGB
+};
+
+struct Stats {
+  std::uint64_t primary_rays = 0;
+  std::uint64_t shadow_rays = 0;
+  double seconds_build = 0;            // BVH build
+  double seconds_render = 0;           // everything after the build
+  double seconds_shadow_calls = 0;     // summed over threads: inside rtcOccluded1M only
+  double seconds_shadow_phase = 0;     // summed over threads: building, tracing and reading shadow rays
+};
+
+// Renders the reference of `scene`. Throws std::invalid_argument for options out of range and
+// std::runtime_error when Embree fails.
+Images render(const scene::Scene& scene, const Options& options = {}, Stats* stats = nullptr);
+
+}  // namespace shadowref::reference

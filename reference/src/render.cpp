@@ -1,0 +1,356 @@
+// render.cpp — the reference renderer (render.hpp), shaped like the Embree tutorials: scene
+// setup, a per-tile function (primary stream, shadow stream, gather), a parallel loop over tiles.
+#include "shadowref/reference/render.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <xmmintrin.h>
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "shadowref/reference/embree_scene.hpp"
+#include "shadowref/reference/shadow_ray.hpp"
+#include "shadowref/scene/camera.hpp"
+
+namespace shadowref::reference {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr int kTile = 16;                  // 16 × 16 pixels: coherent streams, enough tiles to balance
+constexpr std::size_t kStreamChunk = 4096; // rays per rtcOccluded1M call: big enough to amortise, small enough for L2
+constexpr int kNudge = 4;                  // the decided test's second start offset, in epsilons
+constexpr double kAmbient = 0.1;
+constexpr std::int32_t kSlotShadowed = -1; // attached shadow: no ray
+constexpr std::int32_t kSlotLit = -2;      // light touching the surface: no ray
+const Vec3<double> kBackground(0.05, 0.06, 0.09);
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Embree asks for flush-to-zero and denormals-are-zero on the threads that trace (PITFALLS.md);
+// the mode is per thread and changes other float results there, so it is set for one tile and
+// restored after, leaving TBB's worker threads as we found them.
+class FlushDenormalsGuard {
+ public:
+  FlushDenormalsGuard() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | 0x8040u); }  // FTZ (bit 15) | DAZ (bit 6)
+  ~FlushDenormalsGuard() { _mm_setcsr(saved_); }
+  FlushDenormalsGuard(const FlushDenormalsGuard&) = delete;
+  FlushDenormalsGuard& operator=(const FlushDenormalsGuard&) = delete;
+
+ private:
+  unsigned saved_;
+};
+
+struct Surface {
+  bool hit = false;
+  Vec3<double> p = Vec3<double>::Zero();
+  Vec3<double> n = Vec3<double>::Zero();  // unit face normal, toward the viewer
+  Vec3<float> albedo = Vec3<float>::Zero();
+};
+
+struct LightSetup {
+  const scene::Light* light = nullptr;
+  Vec4<double> centre;                    // homogeneous(): what the mask is about
+  std::vector<Vec4<double>> samples;      // light_samples()
+};
+
+struct TileBuffers {
+  std::vector<RTCRayHit> primary;
+  std::vector<Surface> surfaces;
+  std::vector<std::int32_t> slots;
+  std::vector<RTCRay> shadow;
+  std::vector<double> lit_sum;        // gather's per-light scratch, reused from pixel to pixel
+  std::vector<std::uint8_t> agree;
+  Stats stats;
+};
+
+class Renderer {
+ public:
+  Renderer(const scene::Scene& scene, const Options& options, const EmbreeScene& embree, Images& out)
+      : scene_(scene), embree_(embree), out_(out), n_(options.samples_per_axis) {
+    const Mat4<double> view = scene::view_matrix<double>(scene.camera).value();
+    const Mat4<double> proj = scene::projection_matrix<double>(scene.camera, scene.width, scene.height).value();
+    inverse_view_proj_ = (proj * view).inverse();
+    for (const auto& l : scene.lights) lights_.push_back({&l, scene::homogeneous(l), light_samples(l)});
+    sub_slots_ = 0;
+    for (const auto& l : lights_) sub_slots_ += l.samples.size();
+    centre_slots_ = 2 * lights_.size();
+    samples_per_pixel_ = 1 + static_cast<std::size_t>(n_ * n_);
+    eps_ = embree.epsilon();
+  }
+
+  void tile(int x0, int y0, TileBuffers& buf) const {
+    const int x1 = std::min(x0 + kTile, scene_.width), y1 = std::min(y0 + kTile, scene_.height);
+    const std::size_t pixels = static_cast<std::size_t>((x1 - x0) * (y1 - y0));
+    const std::size_t samples = pixels * samples_per_pixel_;
+    FlushDenormalsGuard ftz;
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+
+    // 1. Primary rays, pixel by pixel, centre first, then the sub-pixel grid row by row.
+    buf.primary.resize(samples);
+    std::size_t k = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x)
+        for (std::size_t s = 0; s < samples_per_pixel_; ++s) buf.primary[k++] = primary_ray(x, y, s);
+    rtcIntersect1M(embree_.handle(), &ctx, buf.primary.data(), static_cast<unsigned>(samples), sizeof(RTCRayHit));
+    buf.stats.primary_rays += samples;
+
+    // 2. Surfaces, in double, from the barycentrics (so p lies on the triangle to double precision).
+    buf.surfaces.resize(samples);
+    for (std::size_t i = 0; i < samples; ++i) buf.surfaces[i] = surface(buf.primary[i]);
+
+    // 3. Shadow rays: per sample, per light, its slots (centre: 1 and kNudge epsilons toward the
+    //    light's centre; sub-pixel samples: every light sample).
+    const auto phase0 = Clock::now();
+    const std::size_t slots_per_pixel = centre_slots_ + (samples_per_pixel_ - 1) * sub_slots_;
+    buf.slots.assign(pixels * slots_per_pixel, kSlotShadowed);
+    buf.shadow.clear();
+    std::size_t slot = 0;
+    for (std::size_t i = 0; i < samples; ++i) {
+      const Surface& s = buf.surfaces[i];
+      const bool centre = i % samples_per_pixel_ == 0;
+      for (const auto& l : lights_) {
+        if (centre) {
+          for (const double offset : {eps_, kNudge * eps_}) buf.slots[slot++] = add_ray(s, l.centre, offset, buf.shadow);
+        } else {
+          for (const auto& L : l.samples) buf.slots[slot++] = add_ray(s, L, eps_, buf.shadow);
+        }
+      }
+    }
+    const auto calls0 = Clock::now();
+    for (std::size_t first = 0; first < buf.shadow.size(); first += kStreamChunk) {
+      const std::size_t count = std::min(kStreamChunk, buf.shadow.size() - first);
+      rtcOccluded1M(embree_.handle(), &ctx, buf.shadow.data() + first, static_cast<unsigned>(count), sizeof(RTCRay));
+    }
+    buf.stats.seconds_shadow_calls += seconds_since(calls0);
+    buf.stats.shadow_rays += buf.shadow.size();
+
+    // 4. Gather, pixel by pixel.
+    std::size_t pixel = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x, ++pixel) gather(x, y, pixel, buf);
+    buf.stats.seconds_shadow_phase += seconds_since(phase0);
+  }
+
+ private:
+  RTCRayHit primary_ray(int x, int y, std::size_t s) const {
+    double sx = 0.5, sy = 0.5;
+    if (s > 0) {
+      const int i = static_cast<int>(s - 1) % n_, j = static_cast<int>(s - 1) / n_;
+      sx = (i + 0.5) / n_;
+      sy = (j + 0.5) / n_;
+    }
+    const Vec2<double> ndc = scene::pixel_to_ndc<double>(x, y, sx, sy, scene_.width, scene_.height);
+    auto unproject = [&](double z) {
+      const Vec4<double> h = inverse_view_proj_ * Vec4<double>(ndc.x(), ndc.y(), z, 1.0);
+      return Vec3<double>(h.head<3>() / h[3]);
+    };
+    // From the near plane (what a rasteriser clips at); z = 0 is finite even with an infinite far.
+    const Vec3<double> o = unproject(-1.0);
+    const Vec3<double> d = (unproject(0.0) - o).normalized();
+    const double tfar = scene_.camera.far ? (unproject(1.0) - o).norm() : std::numeric_limits<double>::infinity();
+    RTCRayHit rh{};
+    rh.ray.org_x = static_cast<float>(o.x());
+    rh.ray.org_y = static_cast<float>(o.y());
+    rh.ray.org_z = static_cast<float>(o.z());
+    rh.ray.dir_x = static_cast<float>(d.x());
+    rh.ray.dir_y = static_cast<float>(d.y());
+    rh.ray.dir_z = static_cast<float>(d.z());
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = static_cast<float>(tfar);
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    return rh;
+  }
+
+  Surface surface(const RTCRayHit& rh) const {
+    Surface s;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return s;
+    const auto& obj = scene_.objects[rh.hit.geomID];
+    const auto& tri = obj.mesh.triangles[rh.hit.primID];
+    const Vec3<double> v0 = obj.mesh.positions[tri[0]].cast<double>();
+    const Vec3<double> v1 = obj.mesh.positions[tri[1]].cast<double>();
+    const Vec3<double> v2 = obj.mesh.positions[tri[2]].cast<double>();
+    const double u = rh.hit.u, v = rh.hit.v;
+    s.hit = true;
+    s.p = v0 + u * (v1 - v0) + v * (v2 - v0);
+    const Vec3<double> dir(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
+    Vec3<double> n = (v1 - v0).cross(v2 - v0);
+    n = n.norm() > 0 ? Vec3<double>(n.normalized()) : Vec3<double>(-dir.normalized());
+    s.n = n.dot(dir) > 0 ? Vec3<double>(-n) : n;  // two-sided: the side the camera sees
+    s.albedo = obj.color;
+    return s;
+  }
+
+  static std::int32_t add_ray(const Surface& s, const Vec4<double>& L, double offset, std::vector<RTCRay>& rays) {
+    if (!s.hit) return kSlotShadowed;  // never read
+    const ShadowRay r = make_shadow_ray(s.p, s.n, L, offset);
+    if (r.kind == ShadowRayKind::Attached) return kSlotShadowed;
+    if (r.kind == ShadowRayKind::Touching) return kSlotLit;
+    rays.push_back(r.ray);
+    return static_cast<std::int32_t>(rays.size() - 1);
+  }
+
+  static bool slot_lit(std::int32_t slot, const std::vector<RTCRay>& rays) {
+    if (slot == kSlotShadowed) return false;
+    if (slot == kSlotLit) return true;
+    return !(rays[static_cast<std::size_t>(slot)].tfar < 0);  // Embree sets tfar to −inf on a hit
+  }
+
+  // The spot cone as a hard cut-off (1 inside, 0 outside); 1 for every other light type.
+  static double cone(const scene::Light& l, const Vec3<double>& p) {
+    if (l.type != scene::LightType::Spot) return 1.0;
+    const Vec3<double> d = p - l.position;
+    const double len = d.norm();
+    if (!(len > 0)) return 1.0;
+    return l.direction.dot(d) / len >= std::cos(l.cone_deg * std::numbers::pi / 180.0) ? 1.0 : 0.0;
+  }
+
+  void gather(int x, int y, std::size_t pixel, TileBuffers& buf) const {
+    const std::size_t W = static_cast<std::size_t>(scene_.width);
+    const std::size_t out = static_cast<std::size_t>(y) * W + static_cast<std::size_t>(x);
+    const std::size_t first_sample = pixel * samples_per_pixel_;
+    const std::size_t slots_per_pixel = centre_slots_ + (samples_per_pixel_ - 1) * sub_slots_;
+    const std::int32_t* slots = buf.slots.data() + pixel * slots_per_pixel;
+    const Surface& c = buf.surfaces[first_sample];
+    const double light_weight = 0.9 / static_cast<double>(lights_.size());
+
+    Vec3<double> colour = Vec3<double>::Zero();
+    std::vector<double>& lit_sum = buf.lit_sum;  // no allocation per pixel
+    std::vector<std::uint8_t>& agree = buf.agree;
+    lit_sum.assign(lights_.size(), 0.0);
+    agree.assign(lights_.size(), 1);
+    int hits = 0;
+    // Sub-pixel samples: their slots follow the centre's.
+    const std::int32_t* sub = slots + centre_slots_;
+    for (std::size_t s = 1; s < samples_per_pixel_; ++s) {
+      const Surface& h = buf.surfaces[first_sample + s];
+      if (h.hit != c.hit) std::fill(agree.begin(), agree.end(), std::uint8_t{0});
+      if (!h.hit) {
+        colour += kBackground;
+        sub += sub_slots_;
+        continue;
+      }
+      ++hits;
+      double radiance = kAmbient;
+      for (std::size_t li = 0; li < lights_.size(); ++li) {
+        const LightSetup& l = lights_[li];
+        int lit_count = 0;
+        double direct = 0;
+        for (const auto& L : l.samples) {
+          if (slot_lit(*sub++, buf.shadow)) {
+            ++lit_count;
+            direct += std::max(0.0, facing(h.p, h.n, L)) * cone(*l.light, h.p);
+          }
+        }
+        const double fraction = static_cast<double>(lit_count) / static_cast<double>(l.samples.size());
+        lit_sum[li] += fraction;
+        radiance += light_weight * direct / static_cast<double>(l.samples.size());
+        const bool centre_lit = c.hit && slot_lit(slots[2 * li], buf.shadow);
+        if (fraction != (centre_lit ? 1.0 : 0.0)) agree[li] = 0;
+      }
+      colour += radiance * h.albedo.cast<double>();
+    }
+
+    const double samples = static_cast<double>(samples_per_pixel_ - 1);
+    bool all_decided = true;
+    float vis_sum = 0;
+    for (std::size_t li = 0; li < lights_.size(); ++li) {
+      LightImages& img = out_.lights[li];
+      bool decided = agree[li] != 0;
+      if (c.hit) {
+        const bool lit1 = slot_lit(slots[2 * li], buf.shadow);
+        const bool lit4 = slot_lit(slots[2 * li + 1], buf.shadow);
+        img.mask[out] = lit1 ? 255 : 0;
+        decided = decided && lit1 == lit4 && std::abs(facing(c.p, c.n, lights_[li].centre)) >= kGrazingCosine;
+      } else {
+        img.mask[out] = 128;
+      }
+      img.visibility[out] = hits > 0 ? static_cast<float>(lit_sum[li] / hits) : -1.0f;
+      img.decided[out] = decided ? 255 : 0;
+      all_decided = all_decided && decided;
+      vis_sum += img.visibility[out];
+    }
+    out_.visibility[out] = hits > 0 ? vis_sum / static_cast<float>(lights_.size()) : -1.0f;
+    out_.decided[out] = all_decided ? 255 : 0;
+    colour /= samples;
+    for (int ch = 0; ch < 3; ++ch) {
+      const double linear = std::clamp(colour[ch], 0.0, 1.0);
+      const double srgb = linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1 / 2.4) - 0.055;
+      out_.shaded[3 * out + static_cast<std::size_t>(ch)] = static_cast<std::uint8_t>(std::lround(srgb * 255));
+    }
+  }
+
+  const scene::Scene& scene_;
+  const EmbreeScene& embree_;
+  Images& out_;
+  int n_;
+  Mat4<double> inverse_view_proj_;
+  std::vector<LightSetup> lights_;
+  std::size_t sub_slots_ = 0;
+  std::size_t centre_slots_ = 0;
+  std::size_t samples_per_pixel_ = 1;
+  double eps_ = 0;
+};
+
+}  // namespace
+
+Images render(const scene::Scene& scene, const Options& options, Stats* stats) {
+  if (options.samples_per_axis < 1 || options.samples_per_axis > 16) throw std::invalid_argument("samples per axis must be in [1, 16]");
+  if (options.threads < 0) throw std::invalid_argument("threads must be >= 0 (0: all cores)");
+  Images img;
+  img.width = scene.width;
+  img.height = scene.height;
+  const std::size_t n = static_cast<std::size_t>(scene.width) * static_cast<std::size_t>(scene.height);
+  img.lights.resize(scene.lights.size());
+  for (auto& l : img.lights) {
+    l.mask.assign(n, 128);
+    l.visibility.assign(n, -1.0f);
+    l.decided.assign(n, 0);
+  }
+  img.visibility.assign(n, -1.0f);
+  img.decided.assign(n, 0);
+  img.shaded.assign(3 * n, 0);
+
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  Stats total;
+  arena.execute([&] {
+    const auto t0 = Clock::now();
+    std::optional<EmbreeScene> embree;
+    {
+      FlushDenormalsGuard ftz;  // the build runs on this thread too
+      embree.emplace(scene);
+    }
+    total.seconds_build = seconds_since(t0);
+    const auto t1 = Clock::now();
+    const Renderer renderer(scene, options, *embree, img);
+    const int tiles_x = (scene.width + kTile - 1) / kTile, tiles_y = (scene.height + kTile - 1) / kTile;
+    tbb::enumerable_thread_specific<TileBuffers> buffers;
+    tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y, 1), [&](const tbb::blocked_range<int>& r) {
+      TileBuffers& buf = buffers.local();
+      for (int t = r.begin(); t < r.end(); ++t) renderer.tile((t % tiles_x) * kTile, (t / tiles_x) * kTile, buf);
+    });
+    total.seconds_render = seconds_since(t1);
+    for (const auto& b : buffers) {
+      total.primary_rays += b.stats.primary_rays;
+      total.shadow_rays += b.stats.shadow_rays;
+      total.seconds_shadow_calls += b.stats.seconds_shadow_calls;
+      total.seconds_shadow_phase += b.stats.seconds_shadow_phase;
+    }
+  });
+  if (stats) *stats = total;
+  return img;
+}
+
+}  // namespace shadowref::reference

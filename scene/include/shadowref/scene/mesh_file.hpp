@@ -1,0 +1,29 @@
+// shadowref/scene/mesh_file.hpp — triangle meshes from Wavefront OBJ (tinyobjloader) and glTF 2.0
+// (tinygltf: .gltf with embedded or external buffers, and binary .glb).
+#pragma once
+
+#include <filesystem>
+#include <stdexcept>
+
+#include "shadowref/mesh.hpp"
+
+namespace shadowref::scene {
+
+// Why a mesh file could not be used; what() is one line without the file name (the caller knows
+// which file and which JSON path asked for it).
+class MeshFileError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// All triangles of the file as one mesh, in the file's own coordinates.
+//   OBJ: every shape and group merged; polygons fan-triangulated (convex polygons assumed, as
+//        the OBJ format does); normals, texture coordinates and materials ignored.
+//   glTF: every TRIANGLES primitive reachable from the default scene (or from every root node
+//        when there is none), node transforms applied.
+// Throws MeshFileError for: a missing or unreadable file, an unknown extension, a parse error,
+// an index out of range (checked before any vertex is touched), NaN or infinite coordinates,
+// glTF primitives in another mode than TRIANGLES, and a file with no triangle at all.
+TriangleMesh<double> load_mesh_file(const std::filesystem::path& path);
+
+}  // namespace shadowref::scene

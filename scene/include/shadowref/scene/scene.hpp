@@ -1,0 +1,107 @@
+// shadowref/scene/scene.hpp — a loaded scene: camera, lights, world-space meshes, expectations.
+//
+// This is the in-memory form of one scene file (DESIGN.md "Scene files"); load_scene.hpp fills it
+// and validates everything, so every field here is finite and within its documented range.
+// Units are whatever the scene file uses (metres for most of the catalogue, millimetres for the
+// Cornell box); nothing in shadowref assumes a unit, epsilons scale with the scene's extent.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "shadowref/conventions.hpp"
+#include "shadowref/mesh.hpp"
+#include "shadowref/plane.hpp"
+
+namespace shadowref::scene {
+
+// The perspective camera. Aspect = width / height of the scene's resolution.
+struct Camera {
+  Vec3<double> position = Vec3<double>::Zero();
+  Vec3<double> target = Vec3<double>(0, 0, -1);
+  Vec3<double> up = Vec3<double>(0, 1, 0);
+  double fovy_deg = 45;               // vertical field of view, in (0, 180)
+  double near = 0.1;                  // > 0
+  std::optional<double> far;          // > near; absent: the far plane is at infinity
+};
+
+enum class LightType { Point, Directional, Spot, Rect };
+
+const char* to_string(LightType type);
+
+// One light. Which fields matter depends on `type`:
+//   point:       position
+//   directional: direction (unit, from the scene TOWARD the light, like mathlib's w = 0 light)
+//   spot:        position, direction (unit, the axis the spot shines along, from the light into
+//                the scene), cone_deg (half-angle of the cone, in (0, 90])
+//   rect:        corner, edge_u, edge_v (a parallelogram; it emits on both sides), samples (an
+//                samples × samples stratified grid over it for the soft-shadow ground truth)
+// The spot's cone is an illumination term: it shapes shaded.png, never the shadow mask.
+struct Light {
+  LightType type = LightType::Point;
+  Vec3<double> position = Vec3<double>::Zero();
+  Vec3<double> direction = Vec3<double>(0, 1, 0);
+  double cone_deg = 45;
+  Vec3<double> corner = Vec3<double>::Zero();
+  Vec3<double> edge_u = Vec3<double>(1, 0, 0);
+  Vec3<double> edge_v = Vec3<double>(0, 0, 1);
+  int samples = 4;
+};
+
+// The light as mathlib's homogeneous point L = (x, y, z, w): w = 1 at the position for point and
+// spot lights, w = 0 with xyz toward the light for directional lights, and w = 1 at the centre of
+// the parallelogram for rect lights (what a hard-shadow technique approximates an area light by).
+Vec4<double> homogeneous(const Light& light);
+
+// One object: its mesh already in world space (the transform is applied at load time, and the
+// winding flipped when the transform mirrors, so counter-clockwise still means outside).
+struct Object {
+  std::string name;
+  std::string shape;                  // "plane", "box", "sphere", "torus", "stairs", "mesh"
+  TriangleMesh<float> mesh;
+  bool receiver = false;              // the plane planar shadows project onto
+  Vec3<float> color = Vec3<float>(0.8f, 0.8f, 0.8f);  // albedo for shaded.png, in [0, 1]
+};
+
+// A technique's expected verdict on this scene: pass, or fail with the reason (the known
+// limitation the catalogue wants to see detected).
+struct Expectation {
+  bool pass = true;
+  std::string why;                    // non-empty when pass == false
+};
+
+// The technique names a scene's `expect` may use (the closed list: a typo is an error).
+inline constexpr std::array<const char*, 9> kTechniques{
+    "planar",        "volume-zpass", "volume-zfail",  "volume-zfail-clamp", "volume-robust",
+    "volume-finite", "shadowmap",    "shadowmap-pcf", "shadowmap-rgba8"};
+
+struct Scene {
+  std::filesystem::path file;         // the scene file it was loaded from
+  std::string name;
+  std::string description;
+  int width = 256;                    // resolution, each in [1, 16384]
+  int height = 256;
+  Camera camera;
+  std::vector<Light> lights;          // at least one
+  std::vector<Object> objects;        // at least one, each with a non-empty mesh
+  std::map<std::string, Expectation> expect;  // technique name -> expectation
+  std::vector<std::string> tags;      // e.g. "large": the default conformance run skips it
+
+  bool has_tag(const std::string& tag) const;
+  // The index of the object marked `receiver`, if any (the loader allows at most one).
+  std::optional<std::size_t> receiver_index() const;
+};
+
+// The receiver's plane (normal along its first triangle's face normal, normalised), if the scene
+// has a receiver. The loader has checked that every receiver vertex lies on it.
+std::optional<Plane<double>> receiver_plane(const Scene& scene);
+
+// The axis-aligned bounds of every object's vertices: {min, max}. An empty scene gives zeros.
+std::array<Vec3<double>, 2> bounds(const Scene& scene);
+
+}  // namespace shadowref::scene

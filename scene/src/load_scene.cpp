@@ -1,0 +1,297 @@
+// load_scene.cpp — scene files → Scene (load_scene.hpp). Parsing and validation in one pass:
+// each part of the document is read through a JsonNode that knows its path, so every error
+// names the file and the JSON path.
+#include "shadowref/scene/load_scene.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+#include "json_node.hpp"
+#include "shadowref/scene/camera.hpp"
+#include "shadowref/scene/mesh_file.hpp"
+#include "shadowref/primitives.hpp"
+#include "shadowref/scene/shapes.hpp"
+
+namespace shadowref::scene {
+namespace {
+
+using detail::JsonNode;
+
+// Resolutions above this are refused before anything is allocated (DESIGN allows any resolution,
+// but 16384² is already a gigabyte of float visibility: anything larger is a typo).
+constexpr long long kMaxResolution = 16384;
+// Tessellation limits: a sphere at 4096 × 4096 is 33 M triangles, beyond any sensible scene
+// (and below primitives.hpp's own limit of 2^14, so its .value() never throws for a loaded value).
+constexpr long long kMaxSegments = 4096;
+
+void read_camera(const JsonNode& n, Scene& scene) {
+  n.expect_object({"position", "target", "up", "fovy_deg", "near", "far"});
+  Camera& c = scene.camera;
+  c.position = n.required("position").vec3();
+  c.target = n.required("target").vec3();
+  if (auto up = n.optional("up")) c.up = up->vec3();
+  if (auto f = n.optional("fovy_deg")) {
+    c.fovy_deg = f->number();
+    if (!(c.fovy_deg > 0 && c.fovy_deg < 180)) f->fail("must be in (0, 180) degrees");
+  }
+  if (n.has("near")) c.near = n.positive("near");
+  if (auto f = n.optional("far")) {
+    c.far = f->number();
+    if (!(*c.far > c.near)) f->fail("must be > near (" + std::to_string(c.near) + ")");
+  }
+  // The matrices both renderers will build, checked here once, in both precisions they use.
+  for (const auto& err : {view_matrix<double>(c).ok() ? std::optional<Error>() : view_matrix<double>(c).error(),
+                          view_matrix<float>(c).ok() ? std::optional<Error>() : view_matrix<float>(c).error()}) {
+    if (!err) continue;
+    if (*err == Error::EyeAtTarget) n.fail_at("target", "must differ from position");
+    if (*err == Error::UpParallelToView) n.fail_at("up", "must not be parallel to the viewing direction (target - position)");
+    n.fail(describe(*err));
+  }
+  const auto pd = projection_matrix<double>(c, scene.width, scene.height);
+  const auto pf = projection_matrix<float>(c, scene.width, scene.height);
+  if (!pd.ok()) n.fail(pd.message());
+  if (!pf.ok()) n.fail(std::string(pf.message()) + " (in float)");
+}
+
+Vec3<double> nonzero_direction(const JsonNode& n) {
+  const Vec3<double> d = n.vec3();
+  if (!(d.norm() > 0)) n.fail("must not be the zero vector");
+  return d.normalized();
+}
+
+Light read_light(const JsonNode& n) {
+  Light l;
+  const std::string type = n.required("type").string();
+  if (type == "point") {
+    n.expect_object({"type", "position"});
+    l.type = LightType::Point;
+    l.position = n.required("position").vec3();
+  } else if (type == "directional") {
+    n.expect_object({"type", "direction"});
+    l.type = LightType::Directional;
+    l.direction = nonzero_direction(n.required("direction"));
+  } else if (type == "spot") {
+    n.expect_object({"type", "position", "direction", "cone_deg"});
+    l.type = LightType::Spot;
+    l.position = n.required("position").vec3();
+    l.direction = nonzero_direction(n.required("direction"));
+    const JsonNode cone = n.required("cone_deg");
+    l.cone_deg = cone.number();
+    if (!(l.cone_deg > 0 && l.cone_deg <= 90)) cone.fail("must be in (0, 90] degrees (the half-angle of the cone)");
+  } else if (type == "rect") {
+    n.expect_object({"type", "corner", "edge_u", "edge_v", "samples"});
+    l.type = LightType::Rect;
+    l.corner = n.required("corner").vec3();
+    l.edge_u = n.required("edge_u").vec3();
+    l.edge_v = n.required("edge_v").vec3();
+    if (!(l.edge_u.cross(l.edge_v).norm() > 0)) n.fail_at("edge_v", "must not be zero or parallel to edge_u");
+    l.samples = static_cast<int>(n.integer_in("samples", 1, 64, 4));
+  } else {
+    n.fail_at("type", "unknown light type '" + type + "' (expected point, directional, spot or rect)");
+  }
+  return l;
+}
+
+int segments_in(const JsonNode& n, const char* key, long long lo, long long fallback) {
+  return static_cast<int>(n.integer_in(key, lo, kMaxSegments, fallback));
+}
+
+Vec3<double> positive_vec3(const JsonNode& n) {
+  const Vec3<double> v = n.vec3();
+  if (!(v.minCoeff() > 0)) n.fail("every component must be > 0");
+  return v;
+}
+
+TriangleMesh<double> read_shape(const JsonNode& n, const std::filesystem::path& scene_dir, std::string& type) {
+  type = n.required("type").string();
+  if (type == "plane") {
+    n.expect_object({"type", "size"});
+    const JsonNode s = n.required("size");
+    const Vec2<double> size = s.vec2();
+    if (!(size.minCoeff() > 0)) s.fail("every component must be > 0");
+    return make_plane<double>(size.x() / 2, size.y() / 2).value();
+  }
+  if (type == "box") {
+    n.expect_object({"type", "size"});
+    const Vec3<double> half = positive_vec3(n.required("size")) / 2;
+    return make_box<double>(-half, half).value();
+  }
+  if (type == "sphere") {
+    n.expect_object({"type", "radius", "segments", "rings"});
+    const double r = n.positive("radius");
+    const int segments = segments_in(n, "segments", 3, 32);
+    const int rings = segments_in(n, "rings", 2, std::max(2, segments / 2));
+    return make_uv_sphere<double>(r, static_cast<std::uint32_t>(segments), static_cast<std::uint32_t>(rings)).value();
+  }
+  if (type == "torus") {
+    n.expect_object({"type", "major_radius", "minor_radius", "segments", "sides"});
+    const double major = n.positive("major_radius");
+    const double minor = n.positive("minor_radius");
+    if (!(minor < major)) n.fail_at("minor_radius", "must be < major_radius (a self-intersecting torus is not a closed surface)");
+    const auto segments = static_cast<std::uint32_t>(segments_in(n, "segments", 3, 48));
+    const auto sides = static_cast<std::uint32_t>(segments_in(n, "sides", 3, 24));
+    return make_torus<double>(major, minor, segments, sides).value();
+  }
+  if (type == "stairs") {
+    n.expect_object({"type", "steps", "size"});
+    const int steps = static_cast<int>(n.integer_in("steps", 1, 1000, 5));
+    return make_stairs(steps, positive_vec3(n.required("size")));
+  }
+  if (type == "mesh") {
+    n.expect_object({"type", "file"});
+    const JsonNode f = n.required("file");
+    const std::filesystem::path rel = f.string();
+    if (rel.empty()) f.fail("must not be empty");
+    const std::filesystem::path path = rel.is_absolute() ? rel : scene_dir / rel;
+    try {
+      return load_mesh_file(path);
+    } catch (const MeshFileError& e) {
+      f.fail(path.string() + ": " + e.what());
+    }
+  }
+  n.fail_at("type", "unknown shape type '" + type + "' (expected plane, box, sphere, torus, stairs or mesh)");
+}
+
+// M = T R S from the transform object (absent: identity).
+Eigen::Matrix4d read_transform(const JsonNode& n) {
+  n.expect_object({"scale", "rotate", "translate"});
+  Eigen::Affine3d m = Eigen::Affine3d::Identity();
+  if (auto t = n.optional("translate")) m.translate(t->vec3());
+  if (auto r = n.optional("rotate")) {
+    r->expect_object({"axis", "degrees"});
+    const JsonNode axis_node = r->required("axis");
+    const Vec3<double> axis = nonzero_direction(axis_node);
+    const double deg = r->required("degrees").number();
+    m.rotate(Eigen::AngleAxisd(deg * std::numbers::pi / 180.0, axis));
+  }
+  if (auto s = n.optional("scale")) {
+    Vec3<double> scale;
+    if (s->value().is_array()) scale = s->vec3();
+    else scale = Vec3<double>::Constant(s->number());
+    if (!((scale.array() != 0).all())) s->fail("must be non-zero (a zero scale flattens the object)");
+    m.scale(scale);
+  }
+  return m.matrix();
+}
+
+void read_object(const JsonNode& n, std::size_t index, const std::filesystem::path& scene_dir, Scene& scene) {
+  n.expect_object({"name", "shape", "transform", "receiver", "color"});
+  Object obj;
+  obj.name = n.has("name") ? n.child("name").string() : "objects[" + std::to_string(index) + "]";
+  const JsonNode shape_node = n.required("shape");
+  const TriangleMesh<double> local = read_shape(shape_node, scene_dir, obj.shape);
+  const Eigen::Matrix4d xf = n.has("transform") ? read_transform(n.child("transform")) : Eigen::Matrix4d::Identity();
+  const bool mirror = xf.topLeftCorner<3, 3>().determinant() < 0;
+  obj.mesh.positions.reserve(local.positions.size());
+  for (const auto& p : local.positions) {
+    const Vec3<double> w = (xf * p.homogeneous()).head<3>();
+    const Vec3<float> f = w.cast<float>();
+    if (!f.allFinite()) n.fail_at("transform", "moves a vertex to a non-finite position (overflow in float)");
+    obj.mesh.positions.push_back(f);
+  }
+  obj.mesh.triangles = local.triangles;
+  if (mirror)
+    for (auto& t : obj.mesh.triangles) std::swap(t[1], t[2]);
+  if (obj.mesh.triangles.empty()) shape_node.fail("the mesh has no triangles");
+  if (auto c = n.optional("color")) {
+    const Vec3<double> color = c->vec3();
+    if (!(color.minCoeff() >= 0 && color.maxCoeff() <= 1)) c->fail("every component must be in [0, 1]");
+    obj.color = color.cast<float>();
+  }
+  if (auto r = n.optional("receiver")) {
+    obj.receiver = r->boolean();
+    if (obj.receiver) {
+      if (auto prev = scene.receiver_index()) r->fail("only one object may be the receiver (objects[" + std::to_string(*prev) + "] already is)");
+    }
+  }
+  scene.objects.push_back(std::move(obj));
+  if (scene.objects.back().receiver) {
+    // Planar shadows need a plane: every vertex within rounding of the first triangle's plane.
+    const auto plane = receiver_plane(scene);
+    const auto b = bounds(scene);
+    const double tolerance = 1e-5 * std::max(1.0, (b[1] - b[0]).norm());  // float positions: ~1e-7 relative, with margin
+    bool planar = plane.has_value();
+    if (planar)
+      for (const auto& p : scene.objects.back().mesh.positions)
+        planar = planar && std::abs(signed_distance(*plane, Vec3<double>(p.cast<double>()))) <= tolerance;
+    if (!planar) n.fail_at("receiver", "the receiver must be planar (all its vertices on one plane)");
+  }
+}
+
+void read_expect(const JsonNode& n, Scene& scene) {
+  if (!n.value().is_object()) n.fail("must be an object");
+  for (const auto& item : n.value().items()) {
+    bool known = false;
+    for (const char* t : kTechniques) known = known || item.key() == t;
+    const JsonNode e = n.child(item.key().c_str());
+    if (!known) {
+      std::string list;
+      for (const char* t : kTechniques) list += (list.empty() ? "" : ", ") + std::string(t);
+      e.fail("unknown technique (known: " + list + ")");
+    }
+    e.expect_object({"result", "why"});
+    Expectation x;
+    const JsonNode result = e.required("result");
+    const std::string r = result.string();
+    if (r != "pass" && r != "fail") result.fail("must be \"pass\" or \"fail\"");
+    x.pass = r == "pass";
+    if (e.has("why")) x.why = e.child("why").string();
+    if (!x.pass && x.why.empty()) e.fail_at("why", "is required (and non-empty) for an expected failure");
+    scene.expect[item.key()] = x;
+  }
+}
+
+}  // namespace
+
+Scene parse_scene(std::string_view json_text, const std::filesystem::path& file) {
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(json_text.begin(), json_text.end());
+  } catch (const nlohmann::json::exception& e) {  // syntax errors, and numbers beyond double (1e999)
+    throw SceneError(file.string() + ": invalid JSON: " + e.what());
+  }
+  const JsonNode root(doc, "", file);
+  root.expect_object({"name", "description", "resolution", "camera", "lights", "objects", "expect", "tags"});
+  Scene scene;
+  scene.file = file;
+  scene.name = root.required("name").string();
+  if (scene.name.empty()) root.fail_at("name", "must not be empty");
+  if (auto d = root.optional("description")) scene.description = d->string();
+  if (auto r = root.optional("resolution")) {
+    if (r->array_size() != 2) r->fail("must be [width, height]");
+    for (std::size_t i = 0; i < 2; ++i) {
+      const long long v = r->element(i).integer();
+      if (v < 1 || v > kMaxResolution) r->element(i).fail("must be in [1, " + std::to_string(kMaxResolution) + "]");
+      (i == 0 ? scene.width : scene.height) = static_cast<int>(v);
+    }
+  }
+  if (auto t = root.optional("tags")) {
+    for (std::size_t i = 0; i < t->array_size(); ++i) scene.tags.push_back(t->element(i).string());
+  }
+  read_camera(root.required("camera"), scene);
+  const JsonNode lights = root.required("lights");
+  if (lights.array_size() == 0) lights.fail("must hold at least one light");
+  for (std::size_t i = 0; i < lights.array_size(); ++i) scene.lights.push_back(read_light(lights.element(i)));
+  const JsonNode objects = root.required("objects");
+  if (objects.array_size() == 0) objects.fail("must hold at least one object");
+  const std::filesystem::path dir = file.parent_path();
+  for (std::size_t i = 0; i < objects.array_size(); ++i) read_object(objects.element(i), i, dir, scene);
+  if (auto e = root.optional("expect")) read_expect(*e, scene);
+  return scene;
+}
+
+Scene load_scene(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw SceneError(file.string() + ": cannot open the scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw SceneError(file.string() + ": cannot read the scene file");
+  return parse_scene(text.str(), file);
+}
+
+}  // namespace shadowref::scene

@@ -1,0 +1,140 @@
+// load_errors_test.cpp — every refusal of the scene loader, table-driven: one change to a valid
+// scene, and the exact "<file>: <json path>: <what>" line it must produce.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "shadowref/scene/load_scene.hpp"
+#include "test_scene_json.hpp"
+
+namespace shadowref::scene {
+namespace {
+
+using nlohmann::json;
+
+struct ErrorCase {
+  const char* name;
+  const char* pointer;   // JSON pointer of the value to set ("" = nothing), or to remove
+  const char* value;     // JSON text to put there; nullptr = remove the key
+  const char* expected;  // the message after "test.json: "
+};
+
+// Each case: what it proves is in its name; the expected text pins both the path and the reason.
+const ErrorCase kCases[] = {
+    {"UnknownTopLevelKey", "/colour", "1", "colour: unknown key (allowed here: name, description, resolution, camera, lights, objects, expect, tags)"},
+    {"MissingName", "/name", nullptr, "name: is required"},
+    {"NameNotString", "/name", "3", "name: must be a string, not number"},
+    {"ResolutionZero", "/resolution", "[0, 48]", "resolution[0]: must be in [1, 16384]"},
+    {"ResolutionAbsurd", "/resolution", "[64, 100000]", "resolution[1]: must be in [1, 16384]"},
+    {"ResolutionFraction", "/resolution", "[64.5, 48]", "resolution[0]: must be a whole number"},
+    {"ResolutionOneNumber", "/resolution", "[64]", "resolution: must be [width, height]"},
+    {"CameraMissing", "/camera", nullptr, "camera: is required"},
+    {"CameraEyeAtTarget", "/camera/target", "[0, 4, 8]", "camera.target: must differ from position"},
+    {"CameraUpParallel", "/camera/up", "[0, -4, -8]", "camera.up: must not be parallel to the viewing direction (target - position)"},
+    {"CameraFov", "/camera/fovy_deg", "180", "camera.fovy_deg: must be in (0, 180) degrees"},
+    {"CameraNear", "/camera/near", "0", "camera.near: must be > 0"},
+    {"CameraFar", "/camera/far", "0.05", "camera.far: must be > near (0.100000)"},
+    {"CameraUnknownKey", "/camera/fov", "45", "camera.fov: unknown key (allowed here: position, target, up, fovy_deg, near, far)"},
+    {"NoLights", "/lights", "[]", "lights: must hold at least one light"},
+    {"LightsNotArray", "/lights", "{}", "lights: must be an array, not object"},
+    {"LightUnknownType", "/lights/0/type", "\"laser\"", "lights[0].type: unknown light type 'laser' (expected point, directional, spot or rect)"},
+    {"LightPositionShort", "/lights/0/position", "[1, 2]", "lights[0].position: must be an array of 3 numbers"},
+    {"LightKeyOfOtherType", "/lights/0/direction", "[0, 1, 0]", "lights[0].direction: unknown key (allowed here: type, position)"},
+    {"DirectionalZero", "/lights/0", R"({"type": "directional", "direction": [0, 0, 0]})", "lights[0].direction: must not be the zero vector"},
+    {"SpotCone", "/lights/0", R"({"type": "spot", "position": [0, 5, 0], "direction": [0, -1, 0], "cone_deg": 120})", "lights[0].cone_deg: must be in (0, 90] degrees (the half-angle of the cone)"},
+    {"RectParallelEdges", "/lights/0", R"({"type": "rect", "corner": [0, 5, 0], "edge_u": [1, 0, 0], "edge_v": [2, 0, 0]})", "lights[0].edge_v: must not be zero or parallel to edge_u"},
+    {"RectSamples", "/lights/0", R"({"type": "rect", "corner": [0, 5, 0], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "samples": 0})", "lights[0].samples: must be in [1, 64]"},
+    {"NoObjects", "/objects", "[]", "objects: must hold at least one object"},
+    {"ObjectUnknownKey", "/objects/1/material", "1", "objects[1].material: unknown key (allowed here: name, shape, transform, receiver, color)"},
+    {"ShapeMissing", "/objects/1/shape", nullptr, "objects[1].shape: is required"},
+    {"ShapeUnknownType", "/objects/1/shape/type", "\"cone\"", "objects[1].shape.type: unknown shape type 'cone' (expected plane, box, sphere, torus, stairs or mesh)"},
+    {"SphereRadiusZero", "/objects/1/shape/radius", "0", "objects[1].shape.radius: must be > 0"},
+    {"SphereRadiusNegative", "/objects/1/shape/radius", "-1", "objects[1].shape.radius: must be > 0"},
+    {"SphereRadiusString", "/objects/1/shape/radius", "\"1\"", "objects[1].shape.radius: must be a number, not string"},
+    {"SphereSegments", "/objects/1/shape/segments", "2", "objects[1].shape.segments: must be in [3, 4096]"},
+    {"SphereSegmentsHuge", "/objects/1/shape/segments", "100000", "objects[1].shape.segments: must be in [3, 4096]"},
+    {"SphereUnknownKey", "/objects/1/shape/size", "[1, 1, 1]", "objects[1].shape.size: unknown key (allowed here: type, radius, segments, rings)"},
+    {"PlaneSizeNegative", "/objects/0/shape/size", "[20, -1]", "objects[0].shape.size: every component must be > 0"},
+    {"BoxSizeZero", "/objects/1/shape", R"({"type": "box", "size": [1, 0, 1]})", "objects[1].shape.size: every component must be > 0"},
+    {"TorusInverted", "/objects/1/shape", R"({"type": "torus", "major_radius": 1, "minor_radius": 2})", "objects[1].shape.minor_radius: must be < major_radius (a self-intersecting torus is not a closed surface)"},
+    {"StairsSteps", "/objects/1/shape", R"({"type": "stairs", "steps": 0, "size": [1, 1, 1]})", "objects[1].shape.steps: must be in [1, 1000]"},
+    {"MeshFileMissing", "/objects/1/shape", R"({"type": "mesh", "file": "no_such.obj"})", "objects[1].shape.file: " SHADOWREF_SCENE_TEST_DATA "/no_such.obj: no such file"},
+    {"MeshFileBadIndex", "/objects/1/shape", R"({"type": "mesh", "file": "bad_index.obj"})", "objects[1].shape.file: " SHADOWREF_SCENE_TEST_DATA "/bad_index.obj: face 1 of shape '' uses vertex 7 but the file has 3 vertices"},
+    {"MeshFileEmpty", "/objects/1/shape", R"({"type": "mesh", "file": "empty.obj"})", "objects[1].shape.file: " SHADOWREF_SCENE_TEST_DATA "/empty.obj: the mesh has no triangles"},
+    {"MeshFileFormat", "/objects/1/shape", R"({"type": "mesh", "file": "not_a_mesh.ply"})", "objects[1].shape.file: " SHADOWREF_SCENE_TEST_DATA "/not_a_mesh.ply: unknown mesh format '.ply' (expected .obj, .gltf or .glb)"},
+    {"MeshGltfLines", "/objects/1/shape", R"({"type": "mesh", "file": "lines.gltf"})", "objects[1].shape.file: " SHADOWREF_SCENE_TEST_DATA "/lines.gltf: a primitive has mode 1, only TRIANGLES (4) is supported"},
+    {"TransformScaleZero", "/objects/1/transform/scale", "0", "objects[1].transform.scale: must be non-zero (a zero scale flattens the object)"},
+    {"TransformRotateAxisZero", "/objects/1/transform/rotate", R"({"axis": [0, 0, 0], "degrees": 30})", "objects[1].transform.rotate.axis: must not be the zero vector"},
+    {"TransformRotateNoDegrees", "/objects/1/transform/rotate", R"({"axis": [0, 1, 0]})", "objects[1].transform.rotate.degrees: is required"},
+    {"TransformUnknownKey", "/objects/1/transform/shear", "1", "objects[1].transform.shear: unknown key (allowed here: scale, rotate, translate)"},
+    {"TransformOverflow", "/objects/1/transform/scale", "1e39", "objects[1].transform: moves a vertex to a non-finite position (overflow in float)"},
+    {"ColorOutOfRange", "/objects/1/color", "[1, 0.5, 2]", "objects[1].color: every component must be in [0, 1]"},
+    {"ReceiverNotBool", "/objects/0/receiver", "1", "objects[0].receiver: must be true or false, not number"},
+    {"TwoReceivers", "/objects/1/receiver", "true", "objects[1].receiver: only one object may be the receiver (objects[0] already is)"},
+    {"ReceiverNotPlanar", "/objects/0/shape", R"({"type": "box", "size": [1, 1, 1]})", "objects[0].receiver: the receiver must be planar (all its vertices on one plane)"},
+    {"ExpectUnknownTechnique", "/expect/planer", R"({"result": "pass"})", "expect.planer: unknown technique (known: planar, volume-zpass, volume-zfail, volume-zfail-clamp, volume-robust, volume-finite, shadowmap, shadowmap-pcf, shadowmap-rgba8)"},
+    {"ExpectBadResult", "/expect/planar/result", "\"xfail\"", "expect.planar.result: must be \"pass\" or \"fail\""},
+    {"ExpectFailWithoutWhy", "/expect/planar/result", "\"fail\"", "expect.planar.why: is required (and non-empty) for an expected failure"},
+    {"TagsNotStrings", "/tags", "[1]", "tags[0]: must be a string, not number"},
+};
+
+class LoadErrors : public ::testing::TestWithParam<ErrorCase> {};
+
+TEST_P(LoadErrors, NamesFileAndJsonPath) {
+  const ErrorCase& c = GetParam();
+  json doc = test::minimal_scene();
+  const json::json_pointer ptr(c.pointer);
+  if (c.value) doc[ptr] = json::parse(c.value);
+  else doc[ptr.parent_pointer()].erase(ptr.back());
+  const std::filesystem::path file = std::filesystem::path(SHADOWREF_SCENE_TEST_DATA) / "test.json";
+  try {
+    (void)parse_scene(doc.dump(), file);
+    FAIL() << "accepted: " << doc.dump();
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()), file.string() + ": " + c.expected);
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "the message must be one line";
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scene, LoadErrors, ::testing::ValuesIn(kCases),
+                         [](const ::testing::TestParamInfo<ErrorCase>& p) { return std::string(p.param.name); });
+
+TEST(LoadErrors, MinimalSceneIsValid) {
+  // The base of every case above must load, or the cases would prove nothing.
+  EXPECT_NO_THROW((void)parse_scene(test::minimal_scene().dump(), std::filesystem::path(SHADOWREF_SCENE_TEST_DATA) / "test.json"));
+}
+
+TEST(LoadErrors, InvalidJsonNamesFile) {
+  try {
+    (void)parse_scene("{ \"name\": ", "broken.json");
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("broken.json: invalid JSON: ", 0), 0u) << e.what();
+  }
+}
+
+TEST(LoadErrors, OverflowingNumberIsOneLine) {
+  // JSON has no NaN or infinity; a literal too large for a double is refused by the parser itself
+  // (nlohmann reports no position for it), still as a one-line SceneError naming the file.
+  std::string text = test::minimal_scene().dump();
+  text.replace(text.find("\"near\":0.1"), 10, "\"near\":1e999");
+  try {
+    (void)parse_scene(text, "big.json");
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("big.json: invalid JSON: ", 0), 0u) << e.what();
+    EXPECT_NE(std::string(e.what()).find("1e999"), std::string::npos) << e.what();
+  }
+}
+
+TEST(LoadErrors, MissingSceneFile) {
+  try {
+    (void)load_scene("/nonexistent/scene.json");
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_STREQ(e.what(), "/nonexistent/scene.json: cannot open the scene file");
+  }
+}
+
+}  // namespace
+}  // namespace shadowref::scene
