@@ -35,5 +35,10 @@ void register_math_command(CLI::App& app, int& exit_code);
 void register_math_mesh_commands(CLI::App& math, int& exit_code);
 void register_render_command(CLI::App& app, int& exit_code);
 void register_reference_command(CLI::App& app, int& exit_code);
+// Conformance (issue 7): compare_command.cpp, conform_command.cpp.
+void register_compare_command(CLI::App& app, int& exit_code);
+void register_conform_command(CLI::App& app, int& exit_code);
+void register_export_command(CLI::App& app, int& exit_code);
+void register_goldens_command(CLI::App& app, int& exit_code);
 
 }  // namespace shadowref::cli

@@ -21,6 +21,10 @@ constexpr RegisterCommand kCommands[] = {
     shadowref::cli::register_math_command,
     shadowref::cli::register_render_command,
     shadowref::cli::register_reference_command,
+    shadowref::cli::register_compare_command,
+    shadowref::cli::register_conform_command,
+    shadowref::cli::register_export_command,
+    shadowref::cli::register_goldens_command,
 };
 
 // The deepest subcommand the user named.

@@ -15,6 +15,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "command.hpp"
@@ -167,6 +168,15 @@ template <class T>
 void run_perspective(const PerspectiveArgs& a) {
   if (a.far && a.infinite) throw BadInput("--far and --infinite exclude each other");
   if (a.far && a.epsilon) throw BadInput("--epsilon applies to the infinite far plane only (drop --far)");
+  // Name the option that is not finite (1e999, nan, or beyond float with --precision float):
+  // mathlib's answer alone ("an input is NaN or infinite") does not say which.
+  const std::pair<const char*, std::optional<double>> scalars[] = {
+      {"--fovy-deg", a.fovy_deg}, {"--aspect", a.aspect}, {"--near", a.near}, {"--far", a.far}, {"--epsilon", a.epsilon}};
+  for (const auto& [option, value] : scalars) {
+    if (!value) continue;
+    if (!std::isfinite(*value)) throw BadInput(std::string(option) + ": must be a finite number");
+    if (!std::isfinite(T(*value))) throw BadInput(std::string(option) + ": must be a finite number in " + precision_name<T>());
+  }
   const ClipConvention conv{a.hand, a.depth, a.reversed ? DepthOrder::Reversed : DepthOrder::Standard};
   const T fovy = T(a.fovy_deg * std::numbers::pi / 180.0);
   const T eps = T(a.epsilon.value_or(0.0));

@@ -9,11 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include <cmath>
-#include <cstdlib>
-#include <fstream>
 #include <iostream>
-#include <sstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -29,34 +25,7 @@ namespace {
 
 using nlohmann::json;
 
-// tinyobjloader reads a coordinate "nan" as 0 (scene/tests/mesh_file_test.cpp notes it), which
-// would silently move a vertex: refuse any OBJ "v" line whose x, y or z is not a finite number
-// before the loader sees the file. (Belongs in load_mesh_file; here until it is there.)
-void check_obj_coordinates(const std::string& path) {
-  if (path.size() < 4 || (path.compare(path.size() - 4, 4, ".obj") != 0 && path.compare(path.size() - 4, 4, ".OBJ") != 0))
-    return;
-  std::ifstream in(path);
-  std::string line;
-  std::size_t vertex = 0;
-  while (std::getline(in, line)) {
-    std::istringstream fields(line);
-    std::string tag;
-    if (!(fields >> tag) || tag != "v") continue;
-    ++vertex;
-    for (int k = 0; k < 3; ++k) {
-      std::string text;
-      fields >> text;
-      char* end = nullptr;
-      const double v = std::strtod(text.c_str(), &end);
-      if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v))
-        throw BadInput("--mesh '" + path + "': vertex " + std::to_string(vertex) + " has a coordinate '" + text +
-                       "' that is not a finite number");
-    }
-  }
-}
-
 TriangleMesh<double> load_mesh(const std::string& path) {
-  check_obj_coordinates(path);
   try {
     return scene::load_mesh_file(path);
   } catch (const scene::MeshFileError& e) {

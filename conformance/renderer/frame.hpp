@@ -19,7 +19,7 @@ struct Program {
   GLuint id = 0;
   GLint clip_from_world = -1, shadow_from_world = -1, colour = -1, mode = -1, shadow = -1, albedo = -1,
         ambient = -1, light = -1, light_intensity = -1, spot = -1, shadow_map = -1, packed_map = -1,
-        texel = -1, offset_factor = -1, offset_units = -1;
+        texel = -1, offset_factor = -1, offset_units = -1, cube = -1, cube_from_world = -1;
 };
 
 struct Programs {

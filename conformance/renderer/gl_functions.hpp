@@ -76,12 +76,14 @@ namespace shadowref::renderer {
   X(PFNGLBINDTEXTUREPROC, BindTexture)                                    \
   X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                                \
   X(PFNGLTEXIMAGE2DPROC, TexImage2D)                                      \
+  X(PFNGLTEXIMAGE3DPROC, TexImage3D)                                      \
   X(PFNGLTEXPARAMETERIPROC, TexParameteri)                                \
   X(PFNGLTEXPARAMETERFVPROC, TexParameterfv)                              \
   X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                            \
   X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)                      \
   X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                            \
   X(PFNGLFRAMEBUFFERTEXTURE2DPROC, FramebufferTexture2D)                  \
+  X(PFNGLFRAMEBUFFERTEXTURELAYERPROC, FramebufferTextureLayer)            \
   X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, FramebufferRenderbuffer)            \
   X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)              \
   X(PFNGLGENRENDERBUFFERSPROC, GenRenderbuffers)                          \

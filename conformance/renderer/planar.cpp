@@ -10,9 +10,13 @@
 // Left as a GPU shows them, the technique's limits: no shadow on any other object (the caster's
 // self-shadowing included), false shadows from geometry below the plane (S flattens it too), and
 // geometry beyond the light projects with w < 0 and is clipped, or appears as an anti-shadow.
-// The mask of light i: stencil 2 (a shadow fragment landed on the receiver) → shadowed, every
-// other surface → lit. Several lights: each darkens the lit picture once more by kShadowAlpha.
+// The mask of light i: stencil 2 (a shadow fragment landed on the receiver) → shadowed; a surface
+// that faces away from the light (n · l ≤ 0: its attached shadow, which the lit picture shows dark
+// and every other technique and the reference call shadowed) → shadowed; every other surface → lit.
+// Several lights: each darkens the lit picture once more by kShadowAlpha.
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "frame.hpp"
 #include "shadowref/shadow_matrix.hpp"
@@ -34,6 +38,26 @@ void render_planar(Frame& frame) {
   const std::optional<std::size_t> receiver = frame.scene.receiver_index();
   const std::optional<Plane<double>> plane = scene::receiver_plane(frame.scene);
   if (!receiver || !plane) frame.result.notes.push_back("the scene has no receiver: planar shadows cast nothing");
+
+  // Attached shadows, one facing mask per light (before the picture: these passes clear it).
+  std::vector<Image8> facing;
+  const Program& surface = frame.programs.surface;
+  for (std::size_t i = 0; i < frame.scene.lights.size(); ++i) {
+    frame.bind_target(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, static_cast<float>(kMaskNoSurface) / 255.0f);
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_LESS);
+    gl.Disable(GL_BLEND);
+    gl.Disable(GL_STENCIL_TEST);
+    gl.UseProgram(surface.id);
+    set_matrix(gl, surface.clip_from_world, clip);
+    set_matrix(gl, surface.shadow_from_world, Mat4<float>::Identity());
+    gl.Uniform1i(surface.mode, 2);
+    gl.Uniform1i(surface.shadow, 0);
+    const Vec4<float> l = frame.light(i).cast<float>();
+    gl.Uniform4f(surface.light, l.x(), l.y(), l.z(), l.w());
+    for (const GpuMesh& m : frame.objects) m.draw();
+    facing.push_back(frame.read_grey());
+  }
 
   // The picture without shadows: ambient, then every light.
   frame.ambient_pass(clip);
@@ -78,7 +102,10 @@ void render_planar(Frame& frame) {
         gl.DepthMask(GL_TRUE);
       }
     }
-    frame.result.masks.push_back(frame.read_stencil_mask(kShadowMark, /*value_is_lit=*/false));
+    Image8 mask = frame.read_stencil_mask(kShadowMark, /*value_is_lit=*/false);
+    for (std::size_t p = 0; p < mask.pixels.size(); ++p)
+      if (mask.pixels[p] == kMaskLit && facing[i].pixels[p] == kMaskShadowed) mask.pixels[p] = kMaskShadowed;
+    frame.result.masks.push_back(std::move(mask));
   }
   frame.result.shaded = frame.read_rgb();
 }

@@ -80,30 +80,47 @@ uniform float u_ambient;
 uniform vec4 u_light;                // homogeneous: w = 1 point / spot, w = 0 directional
 uniform float u_light_intensity;
 uniform vec4 u_spot;                 // xyz: the spot's axis (into the scene), w: cos(cone); w <= -1: no cone
-uniform sampler2DShadow u_shadow_map;  // unit 0
-uniform sampler2D u_packed_map;        // unit 1
+uniform sampler2DArrayShadow u_shadow_map;  // unit 0: one layer, or a cube's six faces
+uniform sampler2DArray u_packed_map;        // unit 1 (RGBA8 variant), the same layers
 uniform vec2 u_texel;                // 1 / shadow-map size
+uniform int u_cube;                  // 0: one map through v_shadow; 1: six faces picked per fragment
+uniform mat4 u_cube_from_world[6];   // B · P_face · V_face for the faces +x, -x, +y, -y, +z, -z
 out vec4 o_colour;
 
 // Light visibility from the shadow map: 1 lit, 0 shadowed (fractions with PCF).
 float shadow_visibility() {
   if (u_shadow == 0) return 1.0;
-  // Behind the light's centre of projection: outside the map, which knows of no occluder there.
-  if (v_shadow.w <= 0.0) return 1.0;
-  vec3 p = v_shadow.xyz / v_shadow.w;  // = textureProj's divide
+  vec4 s = v_shadow;
+  float layer = 0.0;
+  if (u_cube == 1) {
+    // The face whose axis is the largest component of the direction from the light (that of a
+    // cube-map lookup); each face's map reaches a few texels beyond 90 degrees, so the PCF taps
+    // of a fragment on a face's edge stay in that face.
+    vec3 d = v_world - u_light.xyz;
+    vec3 a = abs(d);
+    int face = (a.x >= a.y && a.x >= a.z) ? (d.x >= 0.0 ? 0 : 1)
+             : (a.y >= a.z)               ? (d.y >= 0.0 ? 2 : 3)
+                                          : (d.z >= 0.0 ? 4 : 5);
+    s = u_cube_from_world[face] * vec4(v_world, 1.0);
+    layer = float(face);
+  }
+  // Behind the light's centre of projection: outside the map, which knows of no occluder there
+  // (only a spot's or directional light's single map has such points; a cube has none).
+  if (s.w <= 0.0) return 1.0;
+  vec3 p = s.xyz / s.w;                // = textureProj's divide
   if (any(lessThan(p.xy, vec2(0.0))) || any(greaterThan(p.xy, vec2(1.0)))) return 1.0;
   p.z = min(p.z, 1.0);                 // beyond the light's far plane: compare against "nothing"
-  if (u_shadow == 1) return texture(u_shadow_map, p);
+  if (u_shadow == 1) return texture(u_shadow_map, vec4(p.xy, layer, p.z));
   if (u_shadow == 2) {
     // PCF: a 3x3 box of depth compares one texel apart, equal weights (GL_NEAREST taps).
     float sum = 0.0;
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx)
-        sum += texture(u_shadow_map, vec3(p.xy + vec2(dx, dy) * u_texel, p.z));
+        sum += texture(u_shadow_map, vec4(p.xy + vec2(dx, dy) * u_texel, layer, p.z));
     return sum / 9.0;
   }
   // RGBA8: unpack the stored 24-bit depth and compare integers (exact, like a depth compare).
-  uint stored = unpack_depth_rgba8(texture(u_packed_map, p.xy));
+  uint stored = unpack_depth_rgba8(texture(u_packed_map, vec3(p.xy, layer)));
   return quantize_depth(p.z) <= stored ? 1.0 : 0.0;
 }
 
@@ -119,8 +136,9 @@ void main() {
   }
   float visibility = shadow_visibility();
   // A shadow map tests occlusion only; a surface that faces away from the light is in its own
-  // shadow (what a stencil volume gives it, and the reference's ray finds).
-  if (u_shadow != 0 && n_dot_l <= 0.0) visibility = 0.0;
+  // shadow (what a stencil volume gives it, and the reference's ray finds). The mask mode without
+  // a map (u_shadow 0) is that facing test alone: planar shadows' attached-shadow mask.
+  if ((u_shadow != 0 || u_mode == 2) && n_dot_l <= 0.0) visibility = 0.0;
   if (u_mode == 2) {
     float lit = visibility >= 0.5 ? 1.0 : 0.0;  // PCF: lit when at least half the taps are
     o_colour = vec4(lit, lit, lit, 1.0);

@@ -148,6 +148,55 @@ TYPED_TEST(SilhouetteTest, InvalidLightsAreRefused) {
   EXPECT_EQ(find_silhouette(caster, Vec4<T>(0, std::numeric_limits<T>::quiet_NaN(), 0, 1), s).error(), Error::NonFinite);
 }
 
+// The flat edge pass (regular edges by their two faces, irregular ones by their uses) gives the
+// edges, in order, that walking every edge by its uses gives.
+TYPED_TEST(SilhouetteTest, FlatEdgePassEqualsTheWalkOverAllEdges) {
+  using T = TypeParam;
+  auto fin_and_crack = test::cube_with_fin<T>();
+  fin_and_crack.triangles.erase(fin_and_crack.triangles.begin() + 2);  // an open −x edge too
+  const std::vector<TriangleMesh<T>> meshes{test::open_box<T>(), test::cube_with_fin<T>(), test::miswound_cube<T>(),
+                                            test::split_cube<T>(), fin_and_crack, make_uv_sphere(T(1), 40, 21).value()};
+  const std::vector<Vec4<T>> lights{Vec4<T>(3, 4, 5, 1), Vec4<T>(T(0.3), T(0.2), 10, 1), Vec4<T>(1, 2, -3, 0),
+                                    Vec4<T>(-10, T(0.5), -1, 1)};
+  for (const auto& m : meshes) {
+    const auto caster = make_shadow_caster(m).value();
+    Silhouette<T> s;
+    for (const auto& l : lights) {
+      ASSERT_TRUE(find_silhouette(caster, l, s).ok());
+      Edges walked;
+      for (std::size_t e = 0; e < caster.adjacency.edge_count(); ++e)
+        silhouette_detail::emit_edge(caster, s.lit.data(), e, walked);
+      EXPECT_EQ(s.edges, walked) << "light " << l.transpose();
+    }
+  }
+}
+
+// The SoA facing loop sums plane · L in Eigen's order: the same sign as face_planes[t].dot(L),
+// bit for bit, also for products that nearly cancel.
+TYPED_TEST(SilhouetteTest, FacingMatchesTheVec4Dot) {
+  using T = TypeParam;
+  TriangleMesh<T> m;
+  std::uint32_t seed = 12345;
+  const auto next = [&] {
+    seed = seed * 1664525u + 1013904223u;
+    return T(static_cast<std::int32_t>(seed >> 8) - (1 << 23)) / T(1 << 20);  // [-8, 8)
+  };
+  for (std::uint32_t t = 0; t < 3000; ++t) {
+    for (int k = 0; k < 3; ++k) m.positions.emplace_back(next(), next(), next());
+    m.triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
+  }
+  const auto caster = make_shadow_caster(m).value();
+  Silhouette<T> s;
+  for (int i = 0; i < 20; ++i) {
+    // Lights on (or next to) the planes of some faces: the dot is a cancellation there.
+    const Vec3<T>& p = m.positions[static_cast<std::size_t>(97 * i)];
+    const Vec4<T> l = i % 2 ? Vec4<T>(p.x(), p.y(), p.z(), 1) : Vec4<T>(next(), next(), next(), i % 4 ? T(1) : T(0));
+    ASSERT_TRUE(find_silhouette(caster, l, s).ok());
+    for (std::size_t t = 0; t < m.triangles.size(); ++t)
+      ASSERT_EQ(s.lit[t], caster.face_planes[t].dot(l) >= T(0) ? 1 : 0) << "face " << t << " light " << i;
+  }
+}
+
 TYPED_TEST(SilhouetteTest, BuffersAreReusedAcrossLights) {
   using T = TypeParam;
   const auto caster = make_shadow_caster(make_uv_sphere(T(1), 32, 17).value()).value();

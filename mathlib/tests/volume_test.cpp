@@ -1,11 +1,13 @@
-// Unit tests of shadowref/volume.hpp: buffer layout, extrusion formulas, caps and their winding,
+// Unit tests of shadowref/volume.hpp: buffer layout (only the used vertices), extrusion formulas, caps and their winding,
 // closedness, the directional single apex, finite extrusion and degenerate input.
 #include "shadowref/volume.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 #include <map>
+#include <set>
 
 #include "scalar_types.hpp"
 #include "shadowref/primitives.hpp"
@@ -67,16 +69,31 @@ TYPED_TEST(VolumeTest, ExtrusionFormulas) {
   EXPECT_EQ(extrude_finite(Vec3<T>(1, 1, 1), Vec4<T>(1, 1, 1, 1), T(5)), Vec4<T>(1, 1, 1, 1));
 }
 
+// The mesh vertices the index buffer uses, each once (a set).
+template <class T>
+std::set<std::uint32_t> used_mesh_vertices(const ShadowVolume<T>& vol) {
+  std::set<std::uint32_t> used;
+  const bool apex = vol.vertices.size() == vol.source.size() + 1;
+  for (std::uint32_t i : vol.indices)
+    if (apex ? i < vol.source.size() : true) used.insert(vol.source[apex ? i : i / 2]);
+  return used;
+}
+
 TYPED_TEST(VolumeTest, PointLightInfiniteLayout) {
   using T = TypeParam;
   const auto m = test::cube<T>();
   const Vec4<T> light(T(0.2), 10, T(0.1), 1);
   const auto b = build(m, light);
-  const auto n = static_cast<std::uint32_t>(m.positions.size());
-  ASSERT_EQ(b.vol.vertices.size(), 2u * n);
-  for (std::uint32_t i = 0; i < n; ++i) {
-    EXPECT_EQ(b.vol.vertices[i], Vec4<T>(m.positions[i].x(), m.positions[i].y(), m.positions[i].z(), 1));
-    EXPECT_EQ(b.vol.vertices[n + i], extrude_to_infinity(b.vol.vertices[i], light));
+  // Only the used vertices, each once: the two top triangles' 4 corners; 2j mesh, 2j + 1 extruded.
+  const auto k = static_cast<std::uint32_t>(b.vol.source.size());
+  EXPECT_EQ(k, 4u);
+  ASSERT_EQ(b.vol.vertices.size(), 2u * k);
+  EXPECT_EQ(std::set<std::uint32_t>(b.vol.source.begin(), b.vol.source.end()), used_mesh_vertices(b.vol));
+  EXPECT_EQ(used_mesh_vertices(b.vol).size(), std::size_t{k});
+  for (std::uint32_t j = 0; j < k; ++j) {
+    const Vec3<T>& p = m.positions[b.vol.source[j]];
+    EXPECT_EQ(b.vol.vertices[2 * j], Vec4<T>(p.x(), p.y(), p.z(), 1));
+    EXPECT_EQ(b.vol.vertices[2 * j + 1], extrude_to_infinity(b.vol.vertices[2 * j], light));
   }
   const VolumeRanges& r = b.vol.ranges;
   EXPECT_EQ(r.side_first, 0u);
@@ -86,17 +103,20 @@ TYPED_TEST(VolumeTest, PointLightInfiniteLayout) {
   EXPECT_EQ(r.dark_cap_first, r.light_cap_first + r.light_cap_count);
   EXPECT_EQ(r.dark_cap_count, 2u * 3u);
   EXPECT_EQ(b.vol.indices.size(), std::size_t{r.side_count + r.light_cap_count + r.dark_cap_count});
-  // Side quad of silhouette edge (from, to): (from, to, to'), (from, to', from').
+  // Side quad of silhouette edge (from, to): (from, to, to'), (from, to', from'); the first edge
+  // names the first two vertices.
   const SilhouetteEdge e = b.sil.edges[0];
+  EXPECT_EQ(b.vol.source[0], e.from);
+  EXPECT_EQ(b.vol.source[1], e.to);
   EXPECT_EQ((std::vector<std::uint32_t>(b.vol.indices.begin(), b.vol.indices.begin() + 6)),
-            (std::vector<std::uint32_t>{e.from, e.to, n + e.to, e.from, n + e.to, n + e.from}));
+            (std::vector<std::uint32_t>{0, 2, 3, 0, 3, 1}));
   // Dark cap: the light cap's triangles, extruded and walked backwards.
-  for (std::uint32_t k = 0; k < r.light_cap_count; k += 3) {
-    const std::uint32_t* lc = &b.vol.indices[r.light_cap_first + k];
-    const std::uint32_t* dc = &b.vol.indices[r.dark_cap_first + k];
-    EXPECT_EQ(dc[0], n + lc[0]);
-    EXPECT_EQ(dc[1], n + lc[2]);
-    EXPECT_EQ(dc[2], n + lc[1]);
+  for (std::uint32_t i = 0; i < r.light_cap_count; i += 3) {
+    const std::uint32_t* lc = &b.vol.indices[r.light_cap_first + i];
+    const std::uint32_t* dc = &b.vol.indices[r.dark_cap_first + i];
+    EXPECT_EQ(dc[0], lc[0] + 1);
+    EXPECT_EQ(dc[1], lc[2] + 1);
+    EXPECT_EQ(dc[2], lc[1] + 1);
   }
   EXPECT_TRUE(closed_and_consistent(b.vol.indices));
 }
@@ -123,12 +143,16 @@ TYPED_TEST(VolumeTest, DirectionalToInfinityHasOneApexAndNoDarkCap) {
   const auto m = make_uv_sphere(T(1), 16, 9).value();
   const Vec4<T> light(1, 2, -3, 0);
   const auto b = build(m, light);  // dark_cap requested (the default): not needed, not emitted
-  const auto n = static_cast<std::uint32_t>(m.positions.size());
-  ASSERT_EQ(b.vol.vertices.size(), n + 1u);
-  EXPECT_EQ(b.vol.vertices[n], Vec4<T>(-1, -2, 3, 0));
+  const auto k = static_cast<std::uint32_t>(b.vol.source.size());
+  ASSERT_EQ(b.vol.vertices.size(), k + 1u);
+  EXPECT_EQ(b.vol.vertices[k], Vec4<T>(-1, -2, 3, 0));
+  for (std::uint32_t j = 0; j < k; ++j) {
+    const Vec3<T>& p = m.positions[b.vol.source[j]];
+    EXPECT_EQ(b.vol.vertices[j], Vec4<T>(p.x(), p.y(), p.z(), 1));
+  }
   EXPECT_EQ(b.vol.ranges.side_count, 3u * b.sil.edges.size());
   EXPECT_EQ(b.vol.ranges.dark_cap_count, 0u);
-  for (std::uint32_t k = 0; k < b.vol.ranges.side_count; k += 3) EXPECT_EQ(b.vol.indices[k + 2], n);
+  for (std::uint32_t i = 0; i < b.vol.ranges.side_count; i += 3) EXPECT_EQ(b.vol.indices[i + 2], k);
   EXPECT_TRUE(closed_and_consistent(b.vol.indices));
 }
 
@@ -139,6 +163,12 @@ TYPED_TEST(VolumeTest, ZPassOptionsGiveSidesOnly) {
   const auto b = build(make_torus(T(2), T(0.5), 24, 12).value(), Vec4<T>(1, 5, 2, 1), opt);
   EXPECT_EQ(b.vol.indices.size(), 6u * b.sil.edges.size());
   EXPECT_EQ(b.vol.ranges.light_cap_count + b.vol.ranges.dark_cap_count, 0u);
+  // Only the silhouette's vertices and their extrusions are in the buffer.
+  std::set<std::uint32_t> silhouette_vertices;
+  for (const SilhouetteEdge& e : b.sil.edges) silhouette_vertices.insert({e.from, e.to});
+  EXPECT_EQ(std::set<std::uint32_t>(b.vol.source.begin(), b.vol.source.end()), silhouette_vertices);
+  EXPECT_EQ(b.vol.source.size(), silhouette_vertices.size());
+  EXPECT_EQ(b.vol.vertices.size(), 2 * silhouette_vertices.size());
 }
 
 TYPED_TEST(VolumeTest, FiniteExtrusionMovesEachVertexByTheDistanceAwayFromTheLight) {
@@ -148,13 +178,16 @@ TYPED_TEST(VolumeTest, FiniteExtrusionMovesEachVertexByTheDistanceAwayFromTheLig
   VolumeOptions<T> opt;
   opt.finite_distance = T(7);
   const auto b = build(m, light, opt);
-  const std::size_t n = m.positions.size();
-  ASSERT_EQ(b.vol.vertices.size(), 2 * n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec4<T>& e = b.vol.vertices[n + i];
+  const std::size_t k = b.vol.source.size();
+  ASSERT_EQ(b.vol.vertices.size(), 2 * k);
+  EXPECT_EQ(used_mesh_vertices(b.vol).size(), k);
+  for (std::size_t j = 0; j < k; ++j) {
+    const Vec3<T>& p = m.positions[b.vol.source[j]];
+    EXPECT_EQ(b.vol.vertices[2 * j], Vec4<T>(p.x(), p.y(), p.z(), 1));
+    const Vec4<T>& e = b.vol.vertices[2 * j + 1];
     EXPECT_EQ(e.w(), T(1));
-    const Vec3<T> moved = e.template head<3>() - m.positions[i];
-    const Vec3<T> away = m.positions[i] - light.template head<3>();
+    const Vec3<T> moved = e.template head<3>() - p;
+    const Vec3<T> away = p - light.template head<3>();
     // Norm, division, product and sum over values up to ~12: a few ulps of that scale.
     EXPECT_CLOSE(moved.norm(), T(7), eps<T>(16, T(12)));
     EXPECT_CLOSE(moved.normalized().dot(away.normalized()), T(1), eps<T>(16));
@@ -186,6 +219,28 @@ TYPED_TEST(VolumeTest, BadFiniteDistanceIsRefused) {
   EXPECT_EQ(build_shadow_volume(caster, s, opt, v).error(), Error::NonFinite);
 }
 
+// One ShadowVolume for casters of different sizes, capped and not, one after the other (as a
+// renderer does): the same buffers as a fresh one each time (the scratch numbering is reset).
+TYPED_TEST(VolumeTest, OneVolumeForManyCastersEqualsFreshOnes) {
+  using T = TypeParam;
+  const std::vector<TriangleMesh<T>> meshes{make_uv_sphere(T(1), 24, 13).value(), test::cube<T>(), test::cube_with_fin<T>(),
+                                            make_torus(T(2), T(0.5), 24, 12).value()};
+  ShadowVolume<T> reused;
+  for (int round = 0; round < 2; ++round)
+    for (const auto& m : meshes)
+      for (const bool caps : {true, false}) {
+        VolumeOptions<T> opt;
+        opt.light_cap = opt.dark_cap = caps;
+        const auto b = build(m, Vec4<T>(3, 4, 5, 1), opt);
+        ASSERT_TRUE(build_shadow_volume(b.caster, b.sil, opt, reused).ok());
+        EXPECT_EQ(reused.indices, b.vol.indices);
+        EXPECT_EQ(reused.source, b.vol.source);
+        EXPECT_EQ(reused.vertices, b.vol.vertices);
+      }
+  EXPECT_EQ(std::count(reused.volume_vertex.begin(), reused.volume_vertex.end(), kNoVolumeVertex),
+            static_cast<std::ptrdiff_t>(reused.volume_vertex.size()));
+}
+
 TYPED_TEST(VolumeTest, BuffersAreReused) {
   using T = TypeParam;
   const auto caster = make_shadow_caster(make_uv_sphere(T(1), 24, 13).value()).value();
@@ -195,11 +250,14 @@ TYPED_TEST(VolumeTest, BuffersAreReused) {
   ASSERT_TRUE(build_shadow_volume(caster, s, VolumeOptions<T>{}, v).ok());
   v.indices.reserve(2 * v.indices.size());
   const auto* vp = v.vertices.data();
+  v.source.reserve(2 * v.source.size());
   const auto* ip = v.indices.data();
+  const auto* sp = v.source.data();
   ASSERT_TRUE(find_silhouette(caster, Vec4<T>(-3, 2, 1, 1), s).ok());
   ASSERT_TRUE(build_shadow_volume(caster, s, VolumeOptions<T>{}, v).ok());
   EXPECT_EQ(v.vertices.data(), vp);
   EXPECT_EQ(v.indices.data(), ip);
+  EXPECT_EQ(v.source.data(), sp);
 }
 
 }  // namespace

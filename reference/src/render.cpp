@@ -54,6 +54,7 @@ struct Surface {
   Vec3<double> p = Vec3<double>::Zero();
   Vec3<double> n = Vec3<double>::Zero();  // unit face normal, toward the viewer
   Vec3<float> albedo = Vec3<float>::Zero();
+  std::uint32_t object = 0;  // the scene object hit (Embree's geomID)
 };
 
 struct LightSetup {
@@ -190,6 +191,7 @@ class Renderer {
     n = n.norm() > 0 ? Vec3<double>(n.normalized()) : Vec3<double>(-dir.normalized());
     s.n = n.dot(dir) > 0 ? Vec3<double>(-n) : n;  // two-sided: the side the camera sees
     s.albedo = obj.color;
+    s.object = rh.hit.geomID;
     return s;
   }
 
@@ -232,6 +234,7 @@ class Renderer {
     lit_sum.assign(lights_.size(), 0.0);
     agree.assign(lights_.size(), 1);
     int hits = 0;
+    bool one_surface = true;  // "fully covered" (render.hpp, decided)
     // Sub-pixel samples: their slots follow the centre's.
     const std::int32_t* sub = slots + centre_slots_;
     for (std::size_t s = 1; s < samples_per_pixel_; ++s) {
@@ -243,6 +246,10 @@ class Renderer {
         continue;
       }
       ++hits;
+      if (c.hit) {
+        const Vec3<double> d = h.p - c.p;
+        if (h.object != c.object || std::abs(c.n.dot(d)) > kCreaseSine * d.norm() + eps_) one_surface = false;
+      }
       double radiance = kAmbient;
       for (std::size_t li = 0; li < lights_.size(); ++li) {
         const LightSetup& l = lights_[li];
@@ -268,7 +275,7 @@ class Renderer {
     float vis_sum = 0;
     for (std::size_t li = 0; li < lights_.size(); ++li) {
       LightImages& img = out_.lights[li];
-      bool decided = agree[li] != 0;
+      bool decided = agree[li] != 0 && one_surface;
       if (c.hit) {
         const bool lit1 = slot_lit(slots[2 * li], buf.shadow);
         const bool lit4 = slot_lit(slots[2 * li + 1], buf.shadow);

@@ -1,6 +1,7 @@
 // mesh_file.cpp — OBJ and glTF loading for mesh_file.hpp. OBJ faces are validated and triangulated
 // here rather than by tinyobjloader, whose triangulation reads vertex positions through unchecked
-// indices (an out-of-range index would be an out-of-bounds read before we could refuse it).
+// indices (an out-of-range index would be an out-of-bounds read before we could refuse it), and
+// OBJ coordinates are checked before tinyobjloader reads them (it turns "nan" into 0).
 #include "shadowref/scene/mesh_file.hpp"
 
 #include <tiny_gltf.h>
@@ -9,7 +10,10 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <string>
 
 namespace shadowref::scene {
@@ -27,7 +31,58 @@ std::string first_line(const std::string& text) {
   return s;
 }
 
+// tinyobjloader reads a coordinate it cannot parse ("nan", "inf", "0x1p3", "abc") or a missing
+// one as 0, which would silently move a vertex. So every "v" line is checked first: x, y and z
+// must be plain decimal numbers (digits, sign, point, exponent) that are finite in double.
+// Streams the file line by line (no copy of a large file in memory).
+bool is_decimal_token(const std::string& t) {
+  if (t.empty()) return false;
+  bool digit = false;
+  for (const char c : t) {
+    if (c >= '0' && c <= '9') digit = true;
+    else if (c != '+' && c != '-' && c != '.' && c != 'e' && c != 'E') return false;
+  }
+  return digit;
+}
+
+void check_obj_coordinates(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw MeshFileError("cannot open the file");
+  std::string line;
+  std::size_t vertex = 0;
+  while (std::getline(in, line)) {
+    std::size_t i = line.find_first_not_of(" \t");
+    if (i == std::string::npos || line.compare(i, 1, "v") != 0 || i + 1 >= line.size() ||
+        (line[i + 1] != ' ' && line[i + 1] != '\t'))
+      continue;
+    ++vertex;
+    i += 1;
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t b = line.find_first_not_of(" \t\r", i);
+      const std::size_t e = b == std::string::npos ? std::string::npos : line.find_first_of(" \t\r", b);
+      const std::string token = b == std::string::npos ? std::string() : line.substr(b, e == std::string::npos ? std::string::npos : e - b);
+      if (token.empty()) throw MeshFileError("vertex " + std::to_string(vertex) + " has fewer than 3 coordinates");
+      char* end = nullptr;
+      const double v = std::strtod(token.c_str(), &end);
+      const bool parsed = end == token.c_str() + token.size();
+      if (parsed && !std::isfinite(v)) throw MeshFileError("vertex " + std::to_string(vertex) + " is NaN or infinite");
+      if (!parsed || !is_decimal_token(token)) {
+        // strtod also reads "nan", "inf", "infinity" and hex floats: name NaN and infinity as such.
+        std::string lower = token;
+        std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+        if (lower.find("nan") != std::string::npos || lower.find("inf") != std::string::npos)
+          throw MeshFileError("vertex " + std::to_string(vertex) + " is NaN or infinite");
+        throw MeshFileError("vertex " + std::to_string(vertex) + " has a coordinate '" + token.substr(0, 40) +
+                            "' that is not a decimal number");
+      }
+      i = e == std::string::npos ? line.size() : e;
+    }
+  }
+  if (in.bad()) throw MeshFileError("cannot read the file");
+}
+
 TriangleMesh<double> load_obj(const std::filesystem::path& path) {
+  check_obj_coordinates(path);
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;  // see the file comment
   config.vertex_color = false;
@@ -40,7 +95,8 @@ TriangleMesh<double> load_obj(const std::filesystem::path& path) {
   TriangleMesh<double> mesh;
   mesh.positions.reserve(vertex_count);
   for (std::size_t i = 0; i < vertex_count; ++i) {
-    const Vec3<double> p(coords[3 * i], coords[3 * i + 1], coords[3 * i + 2]);
+    const Vec3<double> p(static_cast<double>(coords[3 * i]), static_cast<double>(coords[3 * i + 1]),
+                         static_cast<double>(coords[3 * i + 2]));
     if (!p.allFinite()) throw MeshFileError("vertex " + std::to_string(i + 1) + " is NaN or infinite");
     mesh.positions.push_back(p);
   }
@@ -115,7 +171,14 @@ void append_primitive(const tinygltf::Model& model, const tinygltf::Primitive& p
   if (prim.mode != TINYGLTF_MODE_TRIANGLES) throw MeshFileError("a primitive has mode " + std::to_string(prim.mode) + ", only TRIANGLES (4) is supported");
   const auto pos_it = prim.attributes.find("POSITION");
   if (pos_it == prim.attributes.end()) throw MeshFileError("a primitive has no POSITION attribute");
-  const auto& pos_acc = model.accessors.at(static_cast<std::size_t>(std::max(pos_it->second, 0)));
+  // Indices into the model are the file's word: check them (found by reliability/fuzz/gltf_fuzzer:
+  // vector::at's std::out_of_range used to escape as an uncaught exception).
+  const auto accessor = [&](int index) -> const tinygltf::Accessor& {
+    if (index < 0 || static_cast<std::size_t>(index) >= model.accessors.size())
+      throw MeshFileError("accessor " + std::to_string(index) + " does not exist");
+    return model.accessors[static_cast<std::size_t>(index)];
+  };
+  const auto& pos_acc = accessor(pos_it->second);
   if (pos_acc.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || pos_acc.type != TINYGLTF_TYPE_VEC3) {
     throw MeshFileError("POSITION must be a float VEC3 accessor");
   }
@@ -124,14 +187,14 @@ void append_primitive(const tinygltf::Model& model, const tinygltf::Primitive& p
   for (std::size_t i = 0; i < pos.count; ++i) {
     float p[3];
     std::memcpy(p, pos.data + i * pos.stride, sizeof p);
-    const Eigen::Vector4d w = xf * Eigen::Vector4d(p[0], p[1], p[2], 1.0);
+    const Eigen::Vector4d w = xf * Eigen::Vector4d(static_cast<double>(p[0]), static_cast<double>(p[1]), static_cast<double>(p[2]), 1.0);
     const Vec3<double> q = w.head<3>() / w[3];
     if (!q.allFinite()) throw MeshFileError("vertex " + std::to_string(i) + " is NaN or infinite");
     mesh.positions.push_back(q);
   }
   std::vector<std::uint32_t> idx;
   if (prim.indices >= 0) {
-    const auto& acc = model.accessors.at(static_cast<std::size_t>(prim.indices));
+    const auto& acc = accessor(prim.indices);
     std::size_t size = 0;
     switch (acc.componentType) {
       case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: size = 1; break;

@@ -5,8 +5,8 @@
 // Edges are matched on WELDED vertices (mesh.hpp, weld_map): a mesh exported with split vertices
 // (UV seams, flat normals) still gets its adjacency, while every index this header hands out is
 // an index of the original mesh. Matching is sort-based, once per mesh (O(T log T)); the flat
-// arrays it leaves (edge_offsets, edge_uses) are what the per-light silhouette loop walks, in
-// O(edges) with no hashing and no allocation.
+// arrays it leaves (edge_offsets, edge_uses) are what the shadow caster's edge list is built from
+// (silhouette.hpp), with no hashing and no allocation per light.
 //
 // Edge slot e of triangle (v0, v1, v2) is the directed edge v[e] -> v[(e + 1) % 3]:
 // slot 0 = v0->v1, slot 1 = v1->v2, slot 2 = v2->v0 (the order of the adjacency index buffer).

@@ -27,7 +27,7 @@ struct TriangleMesh {
   std::vector<std::array<std::uint32_t, 3>> triangles;
 };
 
-// The largest mesh the shadow-volume code accepts. Why: a volume's vertex buffer holds every
+// The largest mesh the shadow-volume code accepts. Why: a volume's vertex buffer can hold every
 // position twice (the mesh and its extrusion) in uint32 indices, and an edge use packs a triangle
 // index with 3 bits of edge slot and direction (adjacency.hpp).
 inline constexpr std::size_t kMaxMeshVertices = (std::size_t{1} << 31) - 2;

@@ -8,15 +8,21 @@
 // the volume is counter-clockwise seen from outside (its front faces out) — the orientation the
 // z-pass / z-fail stencil operations assume (front faces: z-pass increments, z-fail decrements).
 //
-// Vertex buffer layout (N = mesh vertex count):
-//   [0, N)    the mesh positions, (x, y, z, 1), in the mesh's own indices;
-//   [N, 2N)   their extrusions, vertex N + i belonging to vertex i — except for a directional light
-//             extruded to infinity, where every extrusion is the same point (−L.xyz, 0) and the
-//             buffer is [0, N] with that one point at index N.
+// Vertex buffer layout: only the mesh vertices the index buffer uses, K of them, in the order in
+// which the silhouette edges (from, to), then the lit faces (v0, v1, v2, in triangle order, when
+// a cap is drawn) first name them; ShadowVolume::source[j] is the mesh vertex of the j-th:
+//   2j        mesh vertex source[j], (x, y, z, 1);
+//   2j + 1    its extrusion (written for every j; the sides and the dark cap use it);
+// except for a directional light extruded to infinity, where every extrusion is the same point
+// (−L.xyz, 0): the buffer is then [0, K] with mesh vertex source[j] at j and that point at K.
+// Why only the used vertices: a volume without caps (z-pass) uses the silhouette's vertices only,
+// a few thousand of a million-vertex mesh; writing every vertex and its extrusion for each light
+// was most of its cost, and is also what the GPU would have to upload.
 // Index buffer: three ranges of triangles, in this order, so that z-pass draws only the first:
 //   sides, light cap, dark cap (VolumeRanges gives them, in indices).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cassert>
 #include <cmath>
@@ -69,12 +75,19 @@ struct VolumeRanges {
   std::uint32_t triangle_count() const { return (side_count + light_cap_count + dark_cap_count) / 3; }
 };
 
+// A mesh vertex that the volume being built does not use yet (ShadowVolume::volume_vertex).
+inline constexpr std::uint32_t kNoVolumeVertex = 0xFFFFFFFFu;
+
 template <class T>
 struct ShadowVolume {
   std::vector<Vec4<T>> vertices;  // homogeneous, layout at the top of this file
   std::vector<std::uint32_t> indices;
+  std::vector<std::uint32_t> source;  // source[j]: the mesh vertex of volume vertices 2j and 2j + 1 (or j)
   VolumeRanges ranges;
   Vec4<T> light = Vec4<T>::Zero();
+  // Scratch of build_shadow_volume, per mesh vertex: its j during a build, kNoVolumeVertex between
+  // builds (the build resets the entries it set, so a volume costs O(what it uses), not O(V)).
+  std::vector<std::uint32_t> volume_vertex;
 };
 
 // Builds the volume of `caster` for the light and silhouette in `sil` (find_silhouette's output
@@ -84,7 +97,8 @@ struct ShadowVolume {
 // Dark cap: the lit faces extruded, reversed. Errors: DistanceNotPositive (finite_distance <= 0),
 // NonFinite (a non-finite distance), LightOnCaster (a vertex the volume uses coincides with the
 // light: it has no extrusion direction; the buffers are then filled but not drawable).
-// Cost: O(V + silhouette + lit faces).
+// Cost: O(silhouette) without caps; O(T) to find the lit faces, plus O(lit faces), with caps.
+// Memory: out.volume_vertex grows to V entries once.
 template <class T>
 Result<VolumeRanges> build_shadow_volume(const ShadowCaster<T>& caster, const Silhouette<T>& sil,
                                          const VolumeOptions<T>& options, ShadowVolume<T>& out) {
@@ -95,63 +109,108 @@ Result<VolumeRanges> build_shadow_volume(const ShadowCaster<T>& caster, const Si
   }
   const Vec4<T>& light = sil.light;
   const auto& pos = caster.mesh.positions;
-  const auto n = static_cast<std::uint32_t>(pos.size());
+  const std::size_t n = pos.size();
   const bool directional = light.w() == T(0);
   const bool single_apex = directional && !options.finite_distance;  // all extrusions meet at one point
+  const bool dark = options.dark_cap && !single_apex;
+  const bool caps = options.light_cap || dark;
+  const std::size_t lit = sil.lit_count;
   out.light = light;
 
-  // Vertices: the mesh, then its extrusions (one pass over the positions); count the vertices
-  // with no extrusion direction (at the light).
-  out.vertices.resize(single_apex ? n + 1 : 2 * std::size_t{n});
-  Vec4<T>* vert = out.vertices.data();
-  std::size_t no_direction = 0;
-  if (single_apex) {
-    for (std::uint32_t i = 0; i < n; ++i) vert[i] = Vec4<T>(pos[i].x(), pos[i].y(), pos[i].z(), T(1));
-    vert[n] = Vec4<T>(-light.x(), -light.y(), -light.z(), T(0));
-  } else if (!options.finite_distance) {
-    for (std::uint32_t i = 0; i < n; ++i) {
-      const Vec4<T> v(pos[i].x(), pos[i].y(), pos[i].z(), T(1));
-      const Vec4<T> e = extrude_to_infinity(v, light);
-      no_direction += (e.x() == T(0) && e.y() == T(0) && e.z() == T(0)) ? 1 : 0;
-      vert[i] = v;
-      vert[n + i] = e;
-    }
-  } else {
-    const T dist = *options.finite_distance;
-    for (std::uint32_t i = 0; i < n; ++i) {
-      const Vec3<T> d = pos[i] * light.w() - light.template head<3>();
-      no_direction += (d.x() == T(0) && d.y() == T(0) && d.z() == T(0)) ? 1 : 0;
-      vert[i] = Vec4<T>(pos[i].x(), pos[i].y(), pos[i].z(), T(1));
-      vert[n + i] = extrude_finite(pos[i], light, dist);
-    }
-  }
-
-  // Indices: sides, light cap, dark cap.
-  const bool dark = options.dark_cap && !single_apex;
-  const std::size_t lit = sil.lit_count;
+  // Every allocation first: once volume_vertex entries are set, nothing may throw before they
+  // are reset.
   const std::size_t side_indices = (single_apex ? 3 : 6) * sil.edges.size();
   out.indices.resize(side_indices + (options.light_cap ? 3 * lit : 0) + (dark ? 3 * lit : 0));
+  const std::size_t most = std::min(n, 2 * sil.edges.size() + (caps ? 3 * lit : 0));  // vertices used, at most
+  out.source.resize(most + 1);  // + 1: the branch-free append below writes one past the end
+  out.vertices.reserve(single_apex ? most + 1 : 2 * most);
+  if (out.volume_vertex.size() < n) out.volume_vertex.resize(n, kNoVolumeVertex);
+
+  // Number the used vertices in order of first use: j for a new vertex, its number otherwise.
+  std::uint32_t* number = out.volume_vertex.data();
+  std::uint32_t* source = out.source.data();
+  std::uint32_t used = 0;
+  const auto use = [&](std::uint32_t v) {
+    const std::uint32_t j = number[v];
+    const bool fresh = j == kNoVolumeVertex;
+    const std::uint32_t k = fresh ? used : j;
+    number[v] = k;
+    source[used] = v;
+    used += fresh ? 1u : 0u;
+    return k;
+  };
+  const std::uint32_t ext = single_apex ? 0 : 1;  // volume index of j: j << ext; of its extrusion: (j << 1) + 1
+
+  // Indices: sides (their far corners once K is known when single_apex), light cap, dark cap.
   std::uint32_t* w = out.indices.data();
   for (const SilhouetteEdge& e : sil.edges) {
+    const std::uint32_t a = use(e.from), b = use(e.to);
     if (single_apex) {
-      *w++ = e.from, *w++ = e.to, *w++ = n;
+      *w++ = a, *w++ = b, *w++ = 0;  // the apex: set below
     } else {
-      *w++ = e.from, *w++ = e.to, *w++ = n + e.to;
-      *w++ = e.from, *w++ = n + e.to, *w++ = n + e.from;
+      *w++ = 2 * a, *w++ = 2 * b, *w++ = 2 * b + 1;
+      *w++ = 2 * a, *w++ = 2 * b + 1, *w++ = 2 * a + 1;
     }
   }
-  // Both caps in one pass over the triangles (the pass is memory-bound).
+  // Both caps in one pass over the triangles.
   const auto& tris = caster.mesh.triangles;
   std::uint32_t* light_w = w;
   std::uint32_t* dark_w = w + (options.light_cap ? 3 * lit : 0);
-  if (options.light_cap || dark)
+  if (caps)
     for (std::size_t t = 0; t < tris.size(); ++t) {
       if (!sil.lit[t]) continue;
       const auto& tri = tris[t];
-      if (options.light_cap) *light_w++ = tri[0], *light_w++ = tri[1], *light_w++ = tri[2];
-      if (dark) *dark_w++ = n + tri[0], *dark_w++ = n + tri[2], *dark_w++ = n + tri[1];
+      const std::uint32_t a = use(tri[0]) << ext, b = use(tri[1]) << ext, c = use(tri[2]) << ext;
+      if (options.light_cap) *light_w++ = a, *light_w++ = b, *light_w++ = c;
+      if (dark) *dark_w++ = a + 1, *dark_w++ = c + 1, *dark_w++ = b + 1;
     }
   assert((dark ? dark_w : light_w) == out.indices.data() + out.indices.size());
+  if (single_apex)
+    for (std::size_t i = 2; i < side_indices; i += 3) out.indices[i] = used;
+
+  // Vertices: each used one and its extrusion; reset the numbering; count the vertices with no
+  // extrusion direction (at the light).
+  out.source.resize(used);
+  out.vertices.resize(single_apex ? std::size_t{used} + 1 : 2 * std::size_t{used});
+  // Written coordinate by coordinate: building Vec4s from a Vec3 here went through the stack.
+  T* vert = out.vertices.empty() ? nullptr : out.vertices.front().data();  // Vec4<T>: four packed Ts
+  static_assert(sizeof(Vec4<T>) == 4 * sizeof(T));
+  const T lx = light.x(), ly = light.y(), lz = light.z(), lw = light.w();
+  std::size_t no_direction = 0;
+  if (single_apex) {
+    for (std::uint32_t j = 0; j < used; ++j) {
+      const Vec3<T>& p = pos[source[j]];
+      number[source[j]] = kNoVolumeVertex;
+      T* o = vert + 4 * std::size_t{j};
+      o[0] = p.x(), o[1] = p.y(), o[2] = p.z(), o[3] = T(1);
+    }
+    T* o = vert + 4 * std::size_t{used};
+    o[0] = -lx, o[1] = -ly, o[2] = -lz, o[3] = T(0);
+  } else if (!options.finite_distance) {
+    for (std::uint32_t j = 0; j < used; ++j) {
+      const Vec3<T>& p = pos[source[j]];
+      number[source[j]] = kNoVolumeVertex;
+      const T x = p.x(), y = p.y(), z = p.z();
+      // extrude_to_infinity with V.w = 1.
+      const T ex = x * lw - lx * T(1), ey = y * lw - ly * T(1), ez = z * lw - lz * T(1);
+      no_direction += (ex == T(0) && ey == T(0) && ez == T(0)) ? 1 : 0;
+      T* o = vert + 8 * std::size_t{j};
+      o[0] = x, o[1] = y, o[2] = z, o[3] = T(1);
+      o[4] = ex, o[5] = ey, o[6] = ez, o[7] = T(0);
+    }
+  } else {
+    const T dist = *options.finite_distance;
+    for (std::uint32_t j = 0; j < used; ++j) {
+      const Vec3<T>& p = pos[source[j]];
+      number[source[j]] = kNoVolumeVertex;
+      const Vec3<T> d = p * lw - light.template head<3>();
+      no_direction += (d.x() == T(0) && d.y() == T(0) && d.z() == T(0)) ? 1 : 0;
+      const Vec4<T> e = extrude_finite(p, light, dist);
+      T* o = vert + 8 * std::size_t{j};
+      o[0] = p.x(), o[1] = p.y(), o[2] = p.z(), o[3] = T(1);
+      o[4] = e.x(), o[5] = e.y(), o[6] = e.z(), o[7] = e.w();
+    }
+  }
 
   VolumeRanges& r = out.ranges;
   r.side_first = 0;
@@ -161,11 +220,12 @@ Result<VolumeRanges> build_shadow_volume(const ShadowCaster<T>& caster, const Si
   r.dark_cap_first = r.light_cap_first + r.light_cap_count;
   r.dark_cap_count = dark ? static_cast<std::uint32_t>(3 * lit) : 0;
 
-  // Rare path: some vertex sits on the light; an error only if the volume uses it.
+  // Rare path: some used vertex sits on the light; an error only if the volume uses its extrusion
+  // (odd indices; a single apex has no vertex at the light: directional).
   if (no_direction > 0) {
     for (std::uint32_t i : out.indices) {
-      if (i < n) continue;
-      const Vec3<T> d = pos[i - n] * light.w() - light.template head<3>();
+      if ((i & 1u) == 0) continue;
+      const Vec3<T> d = pos[out.source[i >> 1]] * light.w() - light.template head<3>();
       if (d.x() == T(0) && d.y() == T(0) && d.z() == T(0)) return Error::LightOnCaster;
     }
   }

@@ -22,7 +22,8 @@ class MeshFileError : public std::runtime_error {
 //   glTF: every TRIANGLES primitive reachable from the default scene (or from every root node
 //        when there is none), node transforms applied.
 // Throws MeshFileError for: a missing or unreadable file, an unknown extension, a parse error,
-// an index out of range (checked before any vertex is touched), NaN or infinite coordinates,
+// an index out of range (checked before any vertex is touched), NaN or infinite coordinates (in
+// OBJ also a coordinate that is missing or not a decimal number: tinyobjloader would read it as 0),
 // glTF primitives in another mode than TRIANGLES, and a file with no triangle at all.
 TriangleMesh<double> load_mesh_file(const std::filesystem::path& path);
 

@@ -48,7 +48,8 @@ struct RenderOptions {
   // Texels per side of each light's shadow map; 0 = automatic: for point and spot lights, as many
   // as make one texel at most a third of a camera pixel in angle at the centres of both views
   // (so that a pixel next to a silhouette seen from the light is not judged by a texel on the
-  // wrong side), clamped to [1024, 8192]; 2048 for directional lights.
+  // wrong side), clamped to [1024, 8192] (a point light's cube: [1024, 2048] per face, six
+  // faces); 2048 for directional lights.
   int shadow_map_size = 0;
   int frames = 1;              // frames rendered; frame_ms is their median (the first is output)
 };
@@ -95,6 +96,9 @@ class Renderer {
   // Renders `scene` with the technique `name`. Throws std::invalid_argument for an unknown
   // technique, GlError for a GL failure.
   RenderResult render(const scene::Scene& scene, std::string_view technique, const RenderOptions& options = {});
+  // [conformance hook, issue 7] The same with a technique that is not in the table: the
+  // deliberately wrong variants of conformance/tests/wrong_variants/, which the suite must catch.
+  RenderResult render(const scene::Scene& scene, const Technique& technique, const RenderOptions& options = {});
 
  private:
   struct Impl;

@@ -1,0 +1,137 @@
+// math_bench.cpp — shadow matrix and infinite projection construction, and a batch of N points
+// through the shadow matrix: our Eigen code against a GLM loop and a plain scalar loop, with a
+// plain copy of the same bytes as the ceiling (memory bandwidth: no transform can beat it).
+// Every batch variant reads N float4 points and writes N float4 results (32 bytes per point).
+#include <benchmark/benchmark.h>
+
+#include <Eigen/Core>
+#include <cstring>
+#include <glm/glm.hpp>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "bench_support.hpp"
+#include "shadowref/projection.hpp"
+#include "shadowref/shadow_matrix.hpp"
+
+namespace {
+
+using shadowref::Mat4;
+using shadowref::Vec4;
+
+void BM_ShadowMatrix(benchmark::State& state) {
+  const auto plane = shadowref::plane_from_coefficients(0.1, 1.0, 0.2, -0.5).value();
+  Vec4<double> light(2, 6, 1, 1);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(light);
+    auto s = shadowref::shadow_matrix(plane, light);
+    benchmark::DoNotOptimize(s);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_ShadowMatrix);
+
+void BM_PerspectiveInfinite(benchmark::State& state) {
+  double fovy = std::numbers::pi / 4;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(fovy);
+    auto p = shadowref::perspective_infinite(fovy, 16.0 / 9.0, 0.1, shadowref::kOpenGL, 4.8e-7);
+    benchmark::DoNotOptimize(p);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_PerspectiveInfinite);
+
+// N homogeneous points (x, y, z, 1), float, contiguous: the layout a vertex buffer has.
+struct Batch {
+  std::vector<float> in, out;
+  Mat4<float> s;
+  explicit Batch(std::size_t n) : in(4 * n), out(4 * n) {
+    std::mt19937 rng(42);
+    std::uniform_real_distribution<float> u(-10.0f, 10.0f);
+    for (std::size_t i = 0; i < n; ++i) {
+      in[4 * i] = u(rng);
+      in[4 * i + 1] = u(rng) + 11.0f;
+      in[4 * i + 2] = u(rng);
+      in[4 * i + 3] = 1.0f;
+    }
+    const auto plane = shadowref::plane_from_coefficients(0.0f, 1.0f, 0.0f, 0.0f).value();
+    s = shadowref::shadow_matrix(plane, Vec4<float>(2, 30, 1, 1)).value();
+  }
+};
+
+void finish_batch(benchmark::State& state, std::size_t n) {
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(n));
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(32 * n));
+}
+
+void BM_PointBatch_Eigen(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  Batch b(n);
+  const Eigen::Map<const Eigen::Matrix<float, 4, Eigen::Dynamic>> in(b.in.data(), 4, static_cast<Eigen::Index>(n));
+  Eigen::Map<Eigen::Matrix<float, 4, Eigen::Dynamic>> out(b.out.data(), 4, static_cast<Eigen::Index>(n));
+  for (auto _ : state) {
+    out.noalias() = b.s * in;
+    benchmark::ClobberMemory();
+  }
+  finish_batch(state, n);
+}
+
+void BM_PointBatch_GLM(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  Batch b(n);
+  glm::mat4 m;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) m[c][r] = b.s(r, c);  // GLM is column-major: m[column][row]
+  const auto* in = reinterpret_cast<const glm::vec4*>(b.in.data());
+  auto* out = reinterpret_cast<glm::vec4*>(b.out.data());
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < n; ++i) out[i] = m * in[i];
+    benchmark::ClobberMemory();
+  }
+  finish_batch(state, n);
+}
+
+void BM_PointBatch_Scalar(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  Batch b(n);
+  float m[16];
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) m[4 * r + c] = b.s(r, c);
+  const float* in = b.in.data();
+  float* out = b.out.data();
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const float* p = in + 4 * i;
+      float* q = out + 4 * i;
+      for (int r = 0; r < 4; ++r) q[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3] * p[3];
+    }
+    benchmark::ClobberMemory();
+  }
+  finish_batch(state, n);
+}
+
+// The ceiling: the same bytes read and written, no arithmetic.
+void BM_PointBatch_Copy(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  Batch b(n);
+  for (auto _ : state) {
+    std::memcpy(b.out.data(), b.in.data(), 16 * n);
+    benchmark::ClobberMemory();
+  }
+  finish_batch(state, n);
+}
+
+void batch_sizes(benchmark::internal::Benchmark* b) {
+  for (std::int64_t n : {1000, 10000, 100000, 1000000, 10000000}) b->Arg(n);
+  b->ArgName("points");
+}
+BENCHMARK(BM_PointBatch_Eigen)->Apply(batch_sizes);
+BENCHMARK(BM_PointBatch_GLM)->Apply(batch_sizes);
+BENCHMARK(BM_PointBatch_Scalar)->Apply(batch_sizes);
+BENCHMARK(BM_PointBatch_Copy)->Apply(batch_sizes);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,236 @@
+// reference_bench.cpp — the reference's shadow rays against a bare Embree loop over the same rays,
+// in the same run, on one thread and on all threads; the BVH build; a whole reference render.
+//
+//   BM_ShadowRays_Ours    the reference's path (what render()'s tiles run): from surface points and
+//                         normals to lit answers — make_shadow_ray per query into an RTCRay
+//                         buffer reused per thread, rtcOccluded1M in chunks, read tfar.
+//   BM_ShadowRays_Bare    rtcOccluded1M over the very rays Ours traces, already built (only tfar,
+//                         which Embree overwrites on a hit, is restored before each call): the
+//                         ceiling. Target: Bare time / Ours time >= 0.9.
+// The surface points are the pixel-centre hits of the scene's camera at 1024 × 1024, the light its
+// first light's homogeneous point, the offset the scene's epsilon: the pixel-centre rays of render().
+#include <benchmark/benchmark.h>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <xmmintrin.h>
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bench_support.hpp"
+#include "shadowref/reference/embree_scene.hpp"
+#include "shadowref/reference/render.hpp"
+#include "shadowref/reference/shadow_ray.hpp"
+#include "shadowref/scene/camera.hpp"
+#include "shadowref/scene/load_scene.hpp"
+
+namespace {
+
+using shadowref::Vec3;
+using shadowref::Vec4;
+namespace ref = shadowref::reference;
+namespace sc = shadowref::scene;
+
+constexpr int kResolution = 1024;
+constexpr std::size_t kBlock = 16384;  // queries per parallel task (both paths split alike)
+constexpr std::size_t kChunk = 4096;   // rays per rtcOccluded1M call, as in render.cpp
+
+// Flush-to-zero / denormals-are-zero for the tracing thread (PITFALLS.md), restored after.
+class Ftz {
+ public:
+  Ftz() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | 0x8040u); }
+  ~Ftz() { _mm_setcsr(saved_); }
+  Ftz(const Ftz&) = delete;
+  Ftz& operator=(const Ftz&) = delete;
+
+ private:
+  unsigned saved_;
+};
+
+struct Case {
+  sc::Scene scene;
+  std::unique_ptr<ref::EmbreeScene> embree;
+  std::vector<Vec3<double>> p, n;   // pixel-centre hits
+  Vec4<double> light;
+  double offset = 0;
+  std::vector<RTCRay> rays;         // the traced rays (make_shadow_ray's Trace kind), in query order
+  std::vector<float> tfar;          // their tfar before tracing
+};
+
+Case& get_case(const std::string& name) {
+  static std::map<std::string, std::unique_ptr<Case>> cache;
+  auto& slot = cache[name];
+  if (slot) return *slot;
+  slot = std::make_unique<Case>();
+  Case& c = *slot;
+  c.scene = sc::load_scene(std::string(SHADOWREF_SCENES_DIR) + "/" + name + ".json");
+  c.scene.width = c.scene.height = kResolution;
+  Ftz ftz;
+  c.embree = std::make_unique<ref::EmbreeScene>(c.scene);
+  const auto inv = (sc::projection_matrix<double>(c.scene.camera, kResolution, kResolution).value() *
+                    sc::view_matrix<double>(c.scene.camera).value()).inverse().eval();
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  for (int y = 0; y < kResolution; ++y)
+    for (int x = 0; x < kResolution; ++x) {
+      const auto ndc = sc::pixel_to_ndc<double>(x, y, 0.5, 0.5, kResolution, kResolution);
+      auto unproject = [&](double z) {
+        const Vec4<double> h = inv * Vec4<double>(ndc.x(), ndc.y(), z, 1.0);
+        return Vec3<double>(h.head<3>() / h[3]);
+      };
+      const Vec3<double> o = unproject(-1.0), d = (unproject(0.0) - o).normalized();
+      RTCRayHit rh{};
+      rh.ray.org_x = static_cast<float>(o.x()), rh.ray.org_y = static_cast<float>(o.y()), rh.ray.org_z = static_cast<float>(o.z());
+      rh.ray.dir_x = static_cast<float>(d.x()), rh.ray.dir_y = static_cast<float>(d.y()), rh.ray.dir_z = static_cast<float>(d.z());
+      rh.ray.tfar = std::numeric_limits<float>::infinity();
+      rh.ray.mask = 0xFFFFFFFFu;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(c.embree->handle(), &ctx, &rh);
+      if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+      Vec3<double> ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+      if (!(ng.norm() > 0)) continue;
+      ng.normalize();
+      c.p.push_back(o + static_cast<double>(rh.ray.tfar) * d);
+      c.n.push_back(ng.dot(d) > 0 ? Vec3<double>(-ng) : ng);
+    }
+  c.light = sc::homogeneous(c.scene.lights.front());
+  c.offset = c.embree->epsilon();
+  for (std::size_t i = 0; i < c.p.size(); ++i) {
+    const ref::ShadowRay r = ref::make_shadow_ray(c.p[i], c.n[i], c.light, c.offset);
+    if (r.kind != ref::ShadowRayKind::Trace) continue;
+    c.rays.push_back(r.ray);
+    c.tfar.push_back(r.ray.tfar);
+  }
+  return c;
+}
+
+int arena_threads(benchmark::State& state) {
+  return state.range(0) > 0 ? static_cast<int>(state.range(0)) : tbb::task_arena::automatic;
+}
+
+void finish(benchmark::State& state, const Case& c) {
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(c.rays.size()));
+  state.counters["rays"] = static_cast<double>(c.rays.size());
+  state.counters["triangles"] = static_cast<double>(c.embree ? [&] {
+    std::size_t t = 0;
+    for (const auto& o : c.scene.objects) t += o.mesh.triangles.size();
+    return t;
+  }() : 0);
+  state.counters["threads"] = static_cast<double>(tbb::task_arena(arena_threads(state)).max_concurrency());
+  shadowref::bench::report_peak_rss(state);
+}
+
+void BM_ShadowRays_Bare(benchmark::State& state, const std::string& name) {
+  Case& c = get_case(name);
+  tbb::task_arena arena(arena_threads(state));
+  const std::size_t blocks = (c.rays.size() + kBlock - 1) / kBlock;
+  for (auto _ : state) {
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        Ftz ftz;
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        for (std::size_t b = r.begin(); b < r.end(); ++b) {
+          const std::size_t end = std::min(c.rays.size(), (b + 1) * kBlock);
+          for (std::size_t first = b * kBlock; first < end; first += kChunk) {
+            const std::size_t count = std::min(kChunk, end - first);
+            for (std::size_t i = first; i < first + count; ++i) c.rays[i].tfar = c.tfar[i];
+            rtcOccluded1M(c.embree->handle(), &ctx, c.rays.data() + first, static_cast<unsigned>(count), sizeof(RTCRay));
+          }
+          benchmark::DoNotOptimize(c.rays[b * kBlock].tfar);
+        }
+      });
+    });
+  }
+  finish(state, c);
+}
+
+void BM_ShadowRays_Ours(benchmark::State& state, const std::string& name) {
+  Case& c = get_case(name);
+  tbb::task_arena arena(arena_threads(state));
+  tbb::enumerable_thread_specific<std::vector<RTCRay>> buffers;
+  const std::size_t blocks = (c.p.size() + kBlock - 1) / kBlock;
+  for (auto _ : state) {
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        Ftz ftz;
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        std::vector<RTCRay>& rays = buffers.local();
+        for (std::size_t b = r.begin(); b < r.end(); ++b) {
+          rays.clear();
+          const std::size_t end = std::min(c.p.size(), (b + 1) * kBlock);
+          for (std::size_t i = b * kBlock; i < end; ++i) {
+            const ref::ShadowRay s = ref::make_shadow_ray(c.p[i], c.n[i], c.light, c.offset);
+            if (s.kind == ref::ShadowRayKind::Trace) rays.push_back(s.ray);
+          }
+          for (std::size_t first = 0; first < rays.size(); first += kChunk)
+            rtcOccluded1M(c.embree->handle(), &ctx, rays.data() + first,
+                          static_cast<unsigned>(std::min(kChunk, rays.size() - first)), sizeof(RTCRay));
+          std::size_t lit = 0;
+          for (const RTCRay& ray : rays) lit += !(ray.tfar < 0);
+          benchmark::DoNotOptimize(lit);
+        }
+      });
+    });
+  }
+  finish(state, c);
+}
+
+void BM_SceneBuild(benchmark::State& state, const std::string& name) {
+  Case& c = get_case(name);
+  tbb::task_arena arena(arena_threads(state));
+  for (auto _ : state) {
+    arena.execute([&] {
+      Ftz ftz;
+      ref::EmbreeScene e(c.scene);
+      benchmark::DoNotOptimize(e.handle());
+    });
+  }
+  finish(state, c);
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(state.counters["triangles"].value));
+}
+
+// A whole reference render at the scene's own resolution (4 × 4 sub-pixel samples); embree_share
+// is the shadow phase's time inside Embree (Stats), for context: the phase also shades.
+void BM_ReferenceRender(benchmark::State& state, const std::string& name) {
+  const sc::Scene scene = sc::load_scene(std::string(SHADOWREF_SCENES_DIR) + "/" + name + ".json");
+  ref::Options options;
+  options.threads = static_cast<int>(state.range(0));
+  ref::Stats stats;
+  for (auto _ : state) {
+    auto images = ref::render(scene, options, &stats);
+    benchmark::DoNotOptimize(images.decided.data());
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * scene.width * scene.height);
+  state.counters["pixels_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()) * scene.width * scene.height,
+                                                      benchmark::Counter::kIsRate);
+  state.counters["embree_share"] = stats.seconds_shadow_calls / stats.seconds_shadow_phase;
+  shadowref::bench::report_peak_rss(state);
+}
+
+void threads(benchmark::internal::Benchmark* b) {
+  b->Arg(1)->Arg(0)->ArgName("threads")->UseRealTime()->Unit(benchmark::kMillisecond);
+}
+
+#define SHADOW_RAY_CASES(scene)                                           \
+  BENCHMARK_CAPTURE(BM_ShadowRays_Ours, scene, #scene)->Apply(threads);   \
+  BENCHMARK_CAPTURE(BM_ShadowRays_Bare, scene, #scene)->Apply(threads);   \
+  BENCHMARK_CAPTURE(BM_SceneBuild, scene, #scene)->Apply(threads)
+
+SHADOW_RAY_CASES(ground_sphere);
+SHADOW_RAY_CASES(stairs_room);
+SHADOW_RAY_CASES(large_sphere);
+BENCHMARK_CAPTURE(BM_ReferenceRender, ground_sphere, "ground_sphere")->Apply(threads);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,106 @@
+// shadowref/compare/compare.hpp — a candidate mask against the reference, on decided pixels only
+// (DESIGN.md "Comparing"), in the spirit of the VK-GL-CTS rasterization verifier: a pixel the
+// reference marks undecided (its sub-pixel samples disagree, or a nudge of the shadow ray flips
+// it) may honestly go either way and is never counted; every decided pixel must match.
+//
+// Pixel classes (mask values, DESIGN.md "Outputs"): 255 lit, 0 shadowed, 128 no surface. A
+// candidate value that is none of the three is classified by the nearest of them (below 64
+// shadowed, 64..191 no surface, 192 and up lit) and counted in `off_values`, so a sloppy writer
+// is visible without being judged twice.
+//
+// Wrong kinds on a decided pixel:
+//   false shadow  reference lit, candidate shadowed        (red in the error image)
+//   false light   reference shadowed, candidate lit        (blue)
+//   coverage      surface in one, no surface in the other  (magenta: the candidate's camera or
+//                 geometry differs, which no shadow technique explains)
+// `largest_region` is the largest 8-connected set of wrong pixels: resolution error is thin and
+// scattered along shadow boundaries, a real bug is a blob (thresholds.hpp caps it).
+//
+// Speed: one linear pass over the pixels, then a flood fill over the wrong pixels only.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "shadowref/compare/mask_image.hpp"
+#include "shadowref/compare/thresholds.hpp"
+
+namespace shadowref::compare {
+
+struct MaskMetrics {
+  int width = 0;
+  int height = 0;
+  std::size_t pixels = 0;           // width · height (summed over lights when accumulated)
+  std::size_t decided = 0;          // pixels the reference marks decided
+  std::size_t decided_surface = 0;  // decided pixels with a surface in the reference: the denominator
+  std::size_t wrong = 0;            // false_shadow + false_light + coverage
+  std::size_t false_shadow = 0;
+  std::size_t false_light = 0;
+  std::size_t coverage = 0;
+  std::size_t off_values = 0;       // candidate values other than 0, 128, 255
+  std::size_t regions = 0;          // 8-connected regions of wrong pixels
+  std::size_t largest_region = 0;   // pixels in the largest one
+
+  // wrong / decided_surface (0 when nothing is decided): the number thresholds judge.
+  double wrong_fraction() const;
+  double wrong_percent() const { return 100.0 * wrong_fraction(); }
+  // Sums the counts, keeps the largest region (for several lights: one verdict over all masks).
+  MaskMetrics& operator+=(const MaskMetrics& other);
+};
+
+struct MaskComparison {
+  MaskMetrics metrics;
+  Image8 error;  // RGB: wrong pixels by kind over the dimmed reference (colours in kErrorColours)
+};
+
+// Error-image colours (RGB), for the report's legend.
+struct ErrorColours {
+  unsigned char false_shadow[3] = {235, 50, 50};
+  unsigned char false_light[3] = {40, 120, 255};
+  unsigned char coverage[3] = {230, 40, 230};
+  unsigned char undecided[3] = {70, 105, 70};  // not judged: the reference's undecided pixels
+};
+inline constexpr ErrorColours kErrorColours{};
+
+// Compares one mask. All three images are 1-channel and of the same size; throws
+// CompareError(SizeMismatch) naming both sizes otherwise (`what` names the files in messages).
+MaskComparison compare_mask(const Image8& reference, const Image8& decided, const Image8& candidate,
+                            const std::string& what = "mask");
+
+enum class Verdict { Pass, QualityWarning, Fail };
+const char* to_string(Verdict v);  // "pass", "warning", "fail"
+
+struct Judgement {
+  Verdict verdict = Verdict::Pass;
+  std::vector<std::string> reasons;  // one line per bound exceeded, with the numbers; empty on pass
+};
+
+// The verdict of `metrics` against `threshold` (thresholds.hpp): FAIL beyond a fail bound, a
+// quality warning beyond a pass bound, PASS otherwise.
+Judgement judge(const MaskMetrics& metrics, const Threshold& threshold);
+
+// A reference folder (mask.png or mask_<i>.png, decided.png or decided_<i>.png) against a
+// candidate folder with the same mask names.
+struct FolderComparison {
+  std::vector<std::string> masks;          // mask file names, in light order
+  std::vector<MaskComparison> per_light;   // same order
+  MaskMetrics total;                       // summed over lights
+  Judgement judgement;
+  const Threshold* threshold = nullptr;
+};
+
+// The mask file names of a producer's folder: {"mask.png"} or {"mask_0.png", "mask_1.png", …}.
+// Throws CompareError(BadInput) when there is neither, or both.
+std::vector<std::string> mask_names(const std::filesystem::path& dir);
+
+// Throws CompareError: BadInput for missing or unreadable files, a candidate lacking a mask the
+// reference has; SizeMismatch when a candidate mask is not the reference's size.
+FolderComparison compare_folders(const std::filesystem::path& reference_dir,
+                                 const std::filesystem::path& candidate_dir, const Threshold& threshold);
+
+// Writes error.png (one light) or error_<i>.png into `dir`; returns the names written.
+std::vector<std::string> write_error_images(const FolderComparison& c, const std::filesystem::path& dir);
+
+}  // namespace shadowref::compare

@@ -1,0 +1,241 @@
+// compare.cpp — mask comparison on decided pixels, the error image, the verdict (compare.hpp).
+#include "shadowref/compare/compare.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <system_error>
+
+namespace shadowref::compare {
+namespace {
+
+enum Class : std::uint8_t { kShadowed = 0, kNoSurface = 1, kLit = 2 };
+
+// Nearest of 0 / 128 / 255.
+inline Class classify(std::uint8_t v) { return v < 64 ? kShadowed : v < 192 ? kNoSurface : kLit; }
+inline bool exact(std::uint8_t v) { return v == 0 || v == 128 || v == 255; }
+
+// Wrong-pixel codes in the scratch image.
+enum Wrong : std::uint8_t { kRight = 0, kFalseShadow = 1, kFalseLight = 2, kCoverage = 3 };
+
+std::string size_text(const Image8& i) { return std::to_string(i.width) + "x" + std::to_string(i.height); }
+
+// 8-connected regions of non-zero codes: count and largest, by an explicit-stack flood fill that
+// visits wrong pixels only (clears `codes` as it goes).
+void regions(std::vector<std::uint8_t>& codes, int w, int h, MaskMetrics& m) {
+  std::vector<std::size_t> stack;
+  const std::size_t n = codes.size();
+  for (std::size_t start = 0; start < n; ++start) {
+    if (!codes[start]) continue;
+    std::size_t size = 0;
+    codes[start] = 0;
+    stack.push_back(start);
+    while (!stack.empty()) {
+      const std::size_t p = stack.back();
+      stack.pop_back();
+      ++size;
+      const int x = static_cast<int>(p % static_cast<std::size_t>(w));
+      const int y = static_cast<int>(p / static_cast<std::size_t>(w));
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int nx = x + dx, ny = y + dy;
+          if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+          const std::size_t q = static_cast<std::size_t>(ny) * static_cast<std::size_t>(w) + static_cast<std::size_t>(nx);
+          if (codes[q]) {
+            codes[q] = 0;
+            stack.push_back(q);
+          }
+        }
+    }
+    ++m.regions;
+    m.largest_region = std::max(m.largest_region, size);
+  }
+}
+
+std::string percent(double fraction) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g %%", 100.0 * fraction);
+  return buf;
+}
+
+}  // namespace
+
+double MaskMetrics::wrong_fraction() const {
+  if (decided_surface == 0) return wrong == 0 ? 0.0 : 1.0;
+  return static_cast<double>(wrong) / static_cast<double>(decided_surface);
+}
+
+MaskMetrics& MaskMetrics::operator+=(const MaskMetrics& o) {
+  width = std::max(width, o.width);
+  height = std::max(height, o.height);
+  pixels += o.pixels;
+  decided += o.decided;
+  decided_surface += o.decided_surface;
+  wrong += o.wrong;
+  false_shadow += o.false_shadow;
+  false_light += o.false_light;
+  coverage += o.coverage;
+  off_values += o.off_values;
+  regions += o.regions;
+  largest_region = std::max(largest_region, o.largest_region);
+  return *this;
+}
+
+MaskComparison compare_mask(const Image8& reference, const Image8& decided, const Image8& candidate,
+                            const std::string& what) {
+  for (const Image8* i : {&reference, &decided, &candidate})
+    if (i->channels != 1 || i->pixels.size() != i->pixel_count())
+      throw CompareError(CompareError::Kind::BadInput, what + ": images must be 8-bit grey (1 channel)");
+  if (decided.width != reference.width || decided.height != reference.height)
+    throw CompareError(CompareError::Kind::SizeMismatch, what + ": the reference's decided image is " +
+                                                             size_text(decided) + ", its mask " + size_text(reference));
+  if (candidate.width != reference.width || candidate.height != reference.height)
+    throw CompareError(CompareError::Kind::SizeMismatch, what + ": candidate is " + size_text(candidate) +
+                                                             ", reference is " + size_text(reference));
+  const int w = reference.width, h = reference.height;
+  const std::size_t n = reference.pixel_count();
+  MaskComparison out;
+  MaskMetrics& m = out.metrics;
+  m.width = w;
+  m.height = h;
+  m.pixels = n;
+  out.error = Image8{w, h, 3, std::vector<std::uint8_t>(3 * n)};
+  std::vector<std::uint8_t> codes(n, kRight);
+  const std::uint8_t* ref = reference.pixels.data();
+  const std::uint8_t* dec = decided.pixels.data();
+  const std::uint8_t* cand = candidate.pixels.data();
+  std::uint8_t* err = out.error.pixels.data();
+  // The dimmed reference under the error colours: lit, shadowed, no surface.
+  static constexpr std::uint8_t kDim[3][3] = {{55, 55, 55}, {28, 28, 42}, {150, 150, 150}};
+  for (std::size_t i = 0; i < n; ++i) {
+    const Class r = classify(ref[i]);
+    const Class c = classify(cand[i]);
+    m.off_values += !exact(cand[i]);
+    const std::uint8_t* colour = kDim[r];
+    if (dec[i] >= 128) {
+      ++m.decided;
+      m.decided_surface += r != kNoSurface;
+      if (r != c) {
+        std::uint8_t code;
+        if (r == kNoSurface || c == kNoSurface) {
+          code = kCoverage;
+          ++m.coverage;
+          colour = kErrorColours.coverage;
+        } else if (r == kLit) {
+          code = kFalseShadow;
+          ++m.false_shadow;
+          colour = kErrorColours.false_shadow;
+        } else {
+          code = kFalseLight;
+          ++m.false_light;
+          colour = kErrorColours.false_light;
+        }
+        codes[i] = code;
+        ++m.wrong;
+      }
+    } else {
+      colour = kErrorColours.undecided;
+    }
+    err[3 * i + 0] = colour[0];
+    err[3 * i + 1] = colour[1];
+    err[3 * i + 2] = colour[2];
+  }
+  if (m.wrong) regions(codes, w, h, m);
+  return out;
+}
+
+const char* to_string(Verdict v) {
+  switch (v) {
+    case Verdict::Pass: return "pass";
+    case Verdict::QualityWarning: return "warning";
+    case Verdict::Fail: return "fail";
+  }
+  return "?";
+}
+
+Judgement judge(const MaskMetrics& m, const Threshold& t) {
+  Judgement j;
+  const auto raise = [&](Verdict v, std::string why) {
+    j.verdict = std::max(j.verdict, v);
+    j.reasons.push_back(std::move(why));
+  };
+  const double f = m.wrong_fraction();
+  const std::string counts = std::to_string(m.wrong) + " of " + std::to_string(m.decided_surface) + " decided pixels";
+  if (f > t.fail_fraction)
+    raise(Verdict::Fail, "wrong " + percent(f) + " (" + counts + ") > " + percent(t.fail_fraction) + " (fail bound, " +
+                             std::string(t.name) + ")");
+  else if (f > t.pass_fraction)
+    raise(Verdict::QualityWarning, "wrong " + percent(f) + " (" + counts + ") > " + percent(t.pass_fraction) +
+                                       " (pass bound, " + std::string(t.name) + ")");
+  if (m.largest_region > t.fail_region)
+    raise(Verdict::Fail, "largest wrong region " + std::to_string(m.largest_region) + " px > " +
+                             std::to_string(t.fail_region) + " px (fail bound, " + std::string(t.name) + ")");
+  else if (m.largest_region > t.pass_region)
+    raise(Verdict::QualityWarning, "largest wrong region " + std::to_string(m.largest_region) + " px > " +
+                                       std::to_string(t.pass_region) + " px (pass bound, " + std::string(t.name) + ")");
+  return j;
+}
+
+std::vector<std::string> mask_names(const std::filesystem::path& dir) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec))
+    throw CompareError(CompareError::Kind::BadInput, dir.string() + ": not a folder");
+  const bool single = std::filesystem::exists(dir / "mask.png", ec);
+  std::vector<std::string> names;
+  for (int i = 0;; ++i) {
+    const std::string name = "mask_" + std::to_string(i) + ".png";
+    if (!std::filesystem::exists(dir / name, ec)) break;
+    names.push_back(name);
+  }
+  if (single && !names.empty())
+    throw CompareError(CompareError::Kind::BadInput,
+                       dir.string() + ": has both mask.png and mask_0.png (one light or several?)");
+  if (single) return {"mask.png"};
+  if (names.empty())
+    throw CompareError(CompareError::Kind::BadInput, dir.string() + ": no mask.png (or mask_0.png, ...) in it");
+  return names;
+}
+
+FolderComparison compare_folders(const std::filesystem::path& reference_dir,
+                                 const std::filesystem::path& candidate_dir, const Threshold& threshold) {
+  FolderComparison out;
+  out.threshold = &threshold;
+  out.masks = mask_names(reference_dir);
+  std::error_code ec;
+  if (!std::filesystem::is_directory(candidate_dir, ec))
+    throw CompareError(CompareError::Kind::BadInput, candidate_dir.string() + ": not a folder");
+  for (std::size_t i = 0; i < out.masks.size(); ++i) {
+    const std::string& name = out.masks[i];
+    const std::string decided_name = out.masks.size() == 1 ? "decided.png" : "decided_" + std::to_string(i) + ".png";
+    if (!std::filesystem::exists(candidate_dir / name, ec))
+      throw CompareError(CompareError::Kind::BadInput,
+                         (candidate_dir / name).string() + ": no such file (the reference has " +
+                             std::to_string(out.masks.size()) + " light mask(s): " +
+                             (out.masks.size() == 1 ? std::string("mask.png") : "mask_0.png ... mask_" + std::to_string(out.masks.size() - 1) + ".png") + ")");
+    const Image8 ref = read_image8(reference_dir / name, 1);
+    const Image8 dec = read_image8(reference_dir / decided_name, 1);
+    const Image8 cand = read_image8(candidate_dir / name, 1);
+    out.per_light.push_back(compare_mask(ref, dec, cand, name));
+    out.total += out.per_light.back().metrics;
+  }
+  // One light beyond what the reference has is a wrong producer, not a detail.
+  const std::string extra = "mask_" + std::to_string(out.masks.size()) + ".png";
+  if (out.masks.size() > 1 && std::filesystem::exists(candidate_dir / extra, ec))
+    throw CompareError(CompareError::Kind::BadInput, (candidate_dir / extra).string() + ": the reference has only " +
+                                                         std::to_string(out.masks.size()) + " lights");
+  out.judgement = judge(out.total, threshold);
+  return out;
+}
+
+std::vector<std::string> write_error_images(const FolderComparison& c, const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir);
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < c.per_light.size(); ++i) {
+    const std::string name = c.per_light.size() == 1 ? "error.png" : "error_" + std::to_string(i) + ".png";
+    write_image8(c.per_light[i].error, dir / name);
+    names.push_back(name);
+  }
+  return names;
+}
+
+}  // namespace shadowref::compare

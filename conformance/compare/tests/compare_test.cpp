@@ -1,0 +1,205 @@
+// compare_test.cpp — the comparison on synthetic masks: counts by kind, undecided pixels ignored,
+// regions, verdicts against each bound, refusal of bad input, and the error image's colours.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "shadowref/compare/compare.hpp"
+
+namespace shadowref::compare {
+namespace {
+
+Image8 grey(int w, int h, std::uint8_t v) { return Image8{w, h, 1, std::vector<std::uint8_t>(static_cast<std::size_t>(w * h), v)}; }
+void set(Image8& i, int x, int y, std::uint8_t v) { i.pixels[static_cast<std::size_t>(y * i.width + x)] = v; }
+
+TEST(CompareMask, IdenticalMasksHaveNoWrongPixels) {
+  Image8 ref = grey(8, 8, 255);
+  set(ref, 1, 1, 0);
+  set(ref, 2, 2, 128);
+  const MaskComparison c = compare_mask(ref, grey(8, 8, 255), ref);
+  EXPECT_EQ(c.metrics.wrong, 0u);
+  EXPECT_EQ(c.metrics.decided, 64u);
+  EXPECT_EQ(c.metrics.decided_surface, 63u);
+  EXPECT_EQ(c.metrics.regions, 0u);
+  EXPECT_EQ(judge(c.metrics, kExactGeometry).verdict, Verdict::Pass);
+}
+
+TEST(CompareMask, CountsEachKindOnDecidedPixelsOnly) {
+  Image8 ref = grey(10, 10, 255);
+  for (int x = 0; x < 5; ++x) set(ref, x, 0, 0);  // a shadow strip in row 0
+  set(ref, 9, 9, 128);                             // background corner
+  Image8 dec = grey(10, 10, 255);
+  Image8 cand = ref;
+  set(cand, 5, 5, 0);    // false shadow
+  set(cand, 0, 0, 255);  // false light
+  set(cand, 9, 9, 255);  // coverage
+  set(cand, 3, 3, 0);    // false shadow, but undecided: ignored
+  set(dec, 3, 3, 0);
+  const MaskComparison c = compare_mask(ref, dec, cand);
+  EXPECT_EQ(c.metrics.false_shadow, 1u);
+  EXPECT_EQ(c.metrics.false_light, 1u);
+  EXPECT_EQ(c.metrics.coverage, 1u);
+  EXPECT_EQ(c.metrics.wrong, 3u);
+  EXPECT_EQ(c.metrics.decided, 99u);
+  EXPECT_EQ(c.metrics.decided_surface, 98u);
+  EXPECT_EQ(c.metrics.regions, 3u);
+  EXPECT_EQ(c.metrics.largest_region, 1u);
+  // Error image: kinds coloured, undecided tinted.
+  const auto rgb = [&](int x, int y) {
+    return std::array<int, 3>{c.error.at(x, y, 0), c.error.at(x, y, 1), c.error.at(x, y, 2)};
+  };
+  EXPECT_EQ(rgb(5, 5), (std::array<int, 3>{kErrorColours.false_shadow[0], kErrorColours.false_shadow[1], kErrorColours.false_shadow[2]}));
+  EXPECT_EQ(rgb(0, 0), (std::array<int, 3>{kErrorColours.false_light[0], kErrorColours.false_light[1], kErrorColours.false_light[2]}));
+  EXPECT_EQ(rgb(9, 9), (std::array<int, 3>{kErrorColours.coverage[0], kErrorColours.coverage[1], kErrorColours.coverage[2]}));
+  EXPECT_EQ(rgb(3, 3), (std::array<int, 3>{kErrorColours.undecided[0], kErrorColours.undecided[1], kErrorColours.undecided[2]}));
+}
+
+TEST(CompareMask, OffValuesAreClassifiedByNearestAndCounted) {
+  const Image8 ref = grey(4, 4, 255);
+  Image8 cand = grey(4, 4, 250);  // "almost lit": right, but sloppy
+  set(cand, 0, 0, 10);            // "almost shadowed": wrong
+  const MaskComparison c = compare_mask(ref, grey(4, 4, 255), cand);
+  EXPECT_EQ(c.metrics.off_values, 16u);
+  EXPECT_EQ(c.metrics.false_shadow, 1u);
+}
+
+TEST(CompareMask, RegionsAreEightConnected) {
+  const Image8 ref = grey(20, 20, 255);
+  Image8 cand = ref;
+  for (int i = 0; i < 6; ++i) set(cand, i, i, 0);  // a diagonal: one 8-connected region of 6
+  set(cand, 15, 2, 0);
+  const MaskComparison c = compare_mask(ref, grey(20, 20, 255), cand);
+  EXPECT_EQ(c.metrics.regions, 2u);
+  EXPECT_EQ(c.metrics.largest_region, 6u);
+}
+
+TEST(Judge, EachBoundGivesItsVerdict) {
+  const Threshold t{"test", 0.01, 0.05, 4, 10, "for the test"};
+  MaskMetrics m;
+  m.decided_surface = 1000;
+  m.wrong = 10;
+  m.largest_region = 4;
+  EXPECT_EQ(judge(m, t).verdict, Verdict::Pass);
+  m.wrong = 11;
+  EXPECT_EQ(judge(m, t).verdict, Verdict::QualityWarning);
+  m.wrong = 51;
+  EXPECT_EQ(judge(m, t).verdict, Verdict::Fail);
+  m.wrong = 5;
+  m.largest_region = 5;
+  EXPECT_EQ(judge(m, t).verdict, Verdict::QualityWarning);
+  m.largest_region = 11;
+  const Judgement j = judge(m, t);
+  EXPECT_EQ(j.verdict, Verdict::Fail);
+  ASSERT_EQ(j.reasons.size(), 1u);
+  EXPECT_NE(j.reasons[0].find("largest wrong region 11 px > 10 px"), std::string::npos) << j.reasons[0];
+}
+
+TEST(Judge, NothingDecidedButWrongIsAFailure) {
+  MaskMetrics m;
+  m.wrong = 1;
+  m.largest_region = 1;
+  EXPECT_EQ(judge(m, kShadowMap).verdict, Verdict::Fail);
+}
+
+TEST(Thresholds, EveryRendererTechniqueHasOneAndEachHasAReason) {
+  for (const char* t : {"planar", "volume-zpass", "volume-zfail", "volume-zfail-clamp", "volume-robust",
+                        "volume-finite"})
+    EXPECT_EQ(&threshold_for(t), &kExactGeometry) << t;
+  EXPECT_EQ(&threshold_for("shadowmap"), &kShadowMap);
+  EXPECT_EQ(&threshold_for("shadowmap-rgba8"), &kShadowMap);
+  EXPECT_EQ(&threshold_for("shadowmap-pcf"), &kShadowMapPcf);
+  EXPECT_EQ(&threshold_for("an-engine-technique"), &kExactGeometry);
+  for (const Threshold* t : all_thresholds()) {
+    EXPECT_FALSE(t->why.empty()) << t->name;
+    EXPECT_LE(t->pass_fraction, t->fail_fraction) << t->name;
+    EXPECT_LE(t->pass_region, t->fail_region) << t->name;
+  }
+}
+
+TEST(CompareMask, SizeMismatchIsItsOwnError) {
+  try {
+    compare_mask(grey(4, 4, 255), grey(4, 4, 255), grey(4, 5, 255));
+    FAIL() << "no exception";
+  } catch (const CompareError& e) {
+    EXPECT_EQ(e.kind(), CompareError::Kind::SizeMismatch);
+    EXPECT_NE(std::string(e.what()).find("4x5"), std::string::npos);
+  }
+}
+
+class Folders : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root = std::filesystem::temp_directory_path() /
+           ("shadowref-compare-test-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::remove_all(root);
+    std::filesystem::create_directories(root / "ref");
+    std::filesystem::create_directories(root / "cand");
+  }
+  void TearDown() override { std::filesystem::remove_all(root); }
+  std::filesystem::path root;
+};
+
+TEST_F(Folders, ComparesAndWritesErrorImages) {
+  Image8 ref = grey(16, 8, 255);
+  set(ref, 3, 3, 0);
+  write_image8(ref, root / "ref" / "mask.png");
+  write_image8(grey(16, 8, 255), root / "ref" / "decided.png");
+  write_image8(grey(16, 8, 255), root / "cand" / "mask.png");
+  const FolderComparison c = compare_folders(root / "ref", root / "cand", kExactGeometry);
+  EXPECT_EQ(c.total.false_light, 1u);
+  EXPECT_EQ(c.masks, std::vector<std::string>{"mask.png"});
+  EXPECT_EQ(write_error_images(c, root / "out"), std::vector<std::string>{"error.png"});
+  const Image8 e = read_image8(root / "out" / "error.png", 3);
+  EXPECT_EQ(e.at(3, 3, 2), kErrorColours.false_light[2]);
+}
+
+TEST_F(Folders, SeveralLightsAreSummedAndAMissingOneRefused) {
+  for (int i = 0; i < 2; ++i) {
+    write_image8(grey(4, 4, 255), root / "ref" / ("mask_" + std::to_string(i) + ".png"));
+    write_image8(grey(4, 4, 255), root / "ref" / ("decided_" + std::to_string(i) + ".png"));
+  }
+  write_image8(grey(4, 4, 0), root / "cand" / "mask_0.png");
+  EXPECT_THROW(compare_folders(root / "ref", root / "cand", kExactGeometry), CompareError);
+  write_image8(grey(4, 4, 255), root / "cand" / "mask_1.png");
+  const FolderComparison c = compare_folders(root / "ref", root / "cand", kExactGeometry);
+  EXPECT_EQ(c.total.false_shadow, 16u);
+  EXPECT_EQ(c.total.decided_surface, 32u);
+  EXPECT_EQ(c.judgement.verdict, Verdict::Fail);
+}
+
+TEST_F(Folders, RefusesBadFiles) {
+  write_image8(grey(4, 4, 255), root / "ref" / "mask.png");
+  write_image8(grey(4, 4, 255), root / "ref" / "decided.png");
+  const auto kind_of = [&] {
+    try {
+      compare_folders(root / "ref", root / "cand", kExactGeometry);
+    } catch (const CompareError& e) {
+      return e.kind();
+    }
+    ADD_FAILURE() << "no exception";
+    return CompareError::Kind::SizeMismatch;
+  };
+  EXPECT_EQ(kind_of(), CompareError::Kind::BadInput);  // missing candidate
+  Image8 rgb{4, 4, 3, std::vector<std::uint8_t>(48, 255)};
+  write_image8(rgb, root / "cand" / "mask.png");
+  EXPECT_EQ(kind_of(), CompareError::Kind::BadInput);  // three channels
+  write_image8(grey(64, 64, 255), root / "cand" / "mask.png");
+  {
+    // Truncate a valid PNG to half its bytes.
+    const auto size = std::filesystem::file_size(root / "cand" / "mask.png");
+    std::filesystem::resize_file(root / "cand" / "mask.png", size / 2);
+  }
+  EXPECT_EQ(kind_of(), CompareError::Kind::BadInput);  // truncated
+  {
+    std::ofstream f(root / "cand" / "mask.png");
+    f << "not a png";
+  }
+  EXPECT_EQ(kind_of(), CompareError::Kind::BadInput);  // garbage
+  write_image8(grey(5, 4, 255), root / "cand" / "mask.png");
+  EXPECT_EQ(kind_of(), CompareError::Kind::SizeMismatch);
+}
+
+}  // namespace
+}  // namespace shadowref::compare

@@ -1,0 +1,102 @@
+// shadowref/conform/conform.hpp — the conformance run: for each selected scene the reference
+// (cached), for each technique a render (or an engine team's files), the comparison, the
+// catalogue's expectation, and the case's status; then report.json and the HTML report.
+//
+// Status of a case (VK-GL-CTS wording where it exists):
+//   PASS   expected to pass, verdict pass
+//   WARN   expected to pass, verdict quality warning (within the looser bound)
+//   FAIL   expected to pass, verdict fail
+//   XFAIL  expected to fail (the catalogue's `why`), verdict fail: the limitation is detected
+//   XPASS  expected to fail, verdict pass or warning: a broken expectation, counted as a failure
+//   ERROR  the case could not be judged (GL error, missing or unreadable candidate file)
+// Exit (DESIGN.md): 2 when any FAIL, XPASS or ERROR; else 1 when any WARN; else 0.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "shadowref/compare/compare.hpp"
+#include "shadowref/conform/reference_cache.hpp"
+
+namespace shadowref::renderer {
+struct Technique;
+}
+
+namespace shadowref::conform {
+
+// A technique outside the renderer's table (the suite's own tests: deliberately wrong variants),
+// judged under the catalogue expectations and the threshold of the technique `judged_as`, or, when
+// `judged_as` names no catalogue technique, as expected to pass with the strictest threshold.
+struct ExtraTechnique {
+  const renderer::Technique* technique = nullptr;
+  std::string judged_as;
+};
+
+enum class Status { Pass, Warn, Fail, XFail, XPass, Error };
+const char* to_string(Status s);  // "PASS", "WARN", ...
+bool is_failure(Status s);         // FAIL, XPASS, ERROR
+
+// The status of a verdict under an expectation (expected_pass false: an expected failure).
+Status status_of(compare::Verdict verdict, bool expected_pass);
+
+struct ConformOptions {
+  std::vector<std::filesystem::path> scenes;    // scene files (catalogue.hpp selects them)
+  std::vector<std::string> techniques;          // renderer technique names; empty: all
+  std::string backend = "llvmpipe";             // llvmpipe | softpipe | native
+  std::string gl = "osmesa";                    // osmesa | egl
+  std::filesystem::path out = "conformance-out";
+  std::filesystem::path cache;                  // empty: <out>/reference-cache
+  ReferenceSettings reference;
+  int jobs = 0;                                 // threads for the reference and llvmpipe; 0: all cores
+  // An engine team's renders instead of ours: <candidate_dir>/<scene>/mask.png (or
+  // <scene>/<technique>/mask.png); `techniques` then names the one technique judged.
+  std::optional<std::filesystem::path> candidate_dir;
+  bool references_only = false;                 // fill the cache and stop (CTest fixtures)
+  std::vector<ExtraTechnique> extra_techniques; // selectable by name in `techniques`
+  bool write_report = true;                     // report.json and report/index.html
+  std::string command_line;                     // recorded in report.json
+};
+
+struct CaseResult {
+  std::string scene;
+  std::filesystem::path scene_file;
+  std::string technique;
+  bool expected_pass = true;
+  std::string why;                              // the catalogue's why (expected failures)
+  Status status = Status::Error;
+  std::optional<compare::FolderComparison> comparison;
+  std::string error;                            // ERROR: what went wrong
+  std::filesystem::path reference_dir, candidate_dir;
+  std::vector<std::string> error_images;        // in candidate_dir (ours) or out/errors/...
+  std::vector<std::string> notes;               // the renderer's notes
+  double frame_ms = 0;
+  double seconds = 0;
+};
+
+struct ConformResult {
+  std::vector<CaseResult> cases;
+  std::vector<std::string> scenes, techniques;  // table order
+  std::string gl_vendor, gl_renderer, gl_version;
+  double seconds = 0, reference_seconds = 0;
+  std::filesystem::path report_json, report_html;
+  int exit_code() const;
+  std::size_t count(Status s) const;
+};
+
+// One line per finished case, for the progress display: (done, total, case).
+using Progress = std::function<void(std::size_t, std::size_t, const CaseResult&)>;
+// One line for phases (references, the GL context).
+using Log = std::function<void(const std::string&)>;
+
+// Runs everything. Throws std::invalid_argument for bad options (unknown technique, backend),
+// scene::SceneError for a broken scene file, renderer::GlError when no context can be created;
+// a failure inside one case is that case's ERROR, not an exception.
+ConformResult run_conform(const ConformOptions& options, const Progress& progress = {}, const Log& log = {});
+
+// The scene × technique table as text (one row per scene, one column per technique).
+std::string table_text(const ConformResult& result);
+
+}  // namespace shadowref::conform

@@ -1,0 +1,42 @@
+// shadowref/conform/reference_cache.hpp — reference images computed once per scene and reused.
+//
+// The key is a 64-bit FNV-1a hash of: the scene file's bytes, the bytes of every mesh file it
+// names, the reference settings, and the bytes of the running executable (so that a rebuilt
+// reference renderer never reads a stale picture: a cache that can lie is worse than none).
+// An entry is a folder <cache>/<scene name>-<16 hex digits>/ holding what `shadowref reference`
+// writes plus key.json (the inputs of the key, for people). It is written into a temporary
+// sibling and renamed into place, so concurrent runs (CTest fixtures, --jobs) never see half an
+// entry; two runs racing for the same key both compute it and one rename wins.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "shadowref/scene/scene.hpp"
+
+namespace shadowref::conform {
+
+struct ReferenceSettings {
+  int samples_per_axis = 4;  // the sub-pixel grid of reference::Options: 4 × 4 = 16 samples
+  int threads = 0;           // not part of the key: the images do not depend on it (tested bit for bit)
+};
+
+// The key of `scene` (loaded from scene.file) under `settings`, as 16 hex digits.
+std::string reference_key(const scene::Scene& scene, const ReferenceSettings& settings);
+
+struct CachedReference {
+  std::filesystem::path dir;  // the entry folder: mask(_<i>).png, decided(_<i>).png, visibility.exr, shaded.png
+  bool computed = false;      // false: found in the cache
+  double seconds = 0;         // time spent computing it (0 when found)
+};
+
+// The entry of `scene`, computed with the Embree reference when missing. Throws
+// std::runtime_error on file-system or Embree failures.
+CachedReference ensure_reference(const scene::Scene& scene, const std::filesystem::path& cache,
+                                 const ReferenceSettings& settings);
+
+// The same, written to `dir` with no caching (goldens --check / --update).
+void render_reference_to(const scene::Scene& scene, const std::filesystem::path& dir, const ReferenceSettings& settings);
+
+}  // namespace shadowref::conform

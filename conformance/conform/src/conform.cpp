@@ -1,0 +1,229 @@
+// conform.cpp — the conformance run (conform.hpp): references, renders, comparisons, statuses.
+#include "shadowref/conform/conform.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <thread>
+
+#include "report_writer.hpp"
+#include "shadowref/renderer/renderer.hpp"
+#include "shadowref/scene/load_scene.hpp"
+
+namespace shadowref::conform {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+int thread_count(int jobs) {
+  if (jobs > 0) return jobs;
+  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+// The engine team's folder for a case: <dir>/<scene>/<technique>/ when it exists, else <dir>/<scene>/.
+std::filesystem::path candidate_folder(const std::filesystem::path& dir, const std::string& scene,
+                                       const std::string& technique) {
+  std::error_code ec;
+  const std::filesystem::path nested = dir / scene / technique;
+  if (std::filesystem::is_directory(nested, ec)) return nested;
+  return dir / scene;
+}
+
+}  // namespace
+
+const char* to_string(Status s) {
+  switch (s) {
+    case Status::Pass: return "PASS";
+    case Status::Warn: return "WARN";
+    case Status::Fail: return "FAIL";
+    case Status::XFail: return "XFAIL";
+    case Status::XPass: return "XPASS";
+    case Status::Error: return "ERROR";
+  }
+  return "?";
+}
+
+bool is_failure(Status s) { return s == Status::Fail || s == Status::XPass || s == Status::Error; }
+
+Status status_of(compare::Verdict verdict, bool expected_pass) {
+  if (expected_pass) {
+    switch (verdict) {
+      case compare::Verdict::Pass: return Status::Pass;
+      case compare::Verdict::QualityWarning: return Status::Warn;
+      case compare::Verdict::Fail: return Status::Fail;
+    }
+  }
+  // An expected failure must fail outright: a pass or a mere quality warning means the known
+  // limitation did not show, so the expectation (or the scene) is broken.
+  return verdict == compare::Verdict::Fail ? Status::XFail : Status::XPass;
+}
+
+std::size_t ConformResult::count(Status s) const {
+  return static_cast<std::size_t>(std::count_if(cases.begin(), cases.end(), [&](const CaseResult& c) { return c.status == s; }));
+}
+
+int ConformResult::exit_code() const {
+  for (const CaseResult& c : cases)
+    if (is_failure(c.status)) return 2;
+  return count(Status::Warn) ? 1 : 0;
+}
+
+ConformResult run_conform(const ConformOptions& o, const Progress& progress, const Log& log) {
+  const auto say = [&](const std::string& s) {
+    if (log) log(s);
+  };
+  const auto start = Clock::now();
+  ConformResult result;
+
+  // Techniques: ours must exist in the renderer; an engine team's may have any name (judged by
+  // the strictest threshold unless it is one of ours).
+  if (o.techniques.empty()) {
+    if (o.candidate_dir) throw std::invalid_argument("--candidate-dir needs --technique (the name of the technique judged)");
+    for (const renderer::Technique& t : renderer::techniques()) result.techniques.emplace_back(t.name);
+  } else {
+    for (const std::string& t : o.techniques) {
+      const bool extra = std::any_of(o.extra_techniques.begin(), o.extra_techniques.end(),
+                                     [&](const ExtraTechnique& e) { return e.technique->name == t; });
+      if (!o.candidate_dir && !extra && !renderer::find_technique(t))
+        throw std::invalid_argument("unknown technique '" + t + "' (shadowref render --help lists them)");
+      if (std::find(result.techniques.begin(), result.techniques.end(), t) == result.techniques.end())
+        result.techniques.push_back(t);
+    }
+  }
+  renderer::GlApi api{};
+  renderer::Driver driver{};
+  if (!o.candidate_dir && !o.references_only) {
+    api = renderer::parse_gl_api(o.gl);
+    driver = renderer::parse_driver(o.backend);
+  }
+  if (o.scenes.empty()) throw std::invalid_argument("no scenes selected");
+
+  std::vector<scene::Scene> scenes;
+  for (const auto& f : o.scenes) {
+    scenes.push_back(scene::load_scene(f));
+    result.scenes.push_back(scenes.back().name);
+  }
+
+  // References, once per scene (the cache makes a second run free).
+  const std::filesystem::path cache = o.cache.empty() ? o.out / "reference-cache" : o.cache;
+  ReferenceSettings settings = o.reference;
+  settings.threads = o.jobs;
+  std::vector<std::filesystem::path> reference_dirs;
+  const auto ref_start = Clock::now();
+  for (const scene::Scene& s : scenes) {
+    const CachedReference r = ensure_reference(s, cache, settings);
+    reference_dirs.push_back(r.dir);
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "computed in %.1f s", r.seconds);
+    say("reference " + s.name + ": " + (r.computed ? std::string(buf) : std::string("cached")) + " (" + r.dir.string() + ")");
+  }
+  result.reference_seconds = since(ref_start);
+  if (o.references_only) {
+    result.seconds = since(start);
+    return result;
+  }
+
+  std::unique_ptr<renderer::Renderer> gl;
+  if (!o.candidate_dir) {
+    // llvmpipe's rasteriser threads; an explicit LP_NUM_THREADS in the environment wins.
+    if (!std::getenv("LP_NUM_THREADS"))
+      ::setenv("LP_NUM_THREADS", std::to_string(thread_count(o.jobs)).c_str(), 1);
+    gl = std::make_unique<renderer::Renderer>(api, driver);
+    result.gl_vendor = gl->info().vendor;
+    result.gl_renderer = gl->info().renderer;
+    result.gl_version = gl->info().version;
+    say("OpenGL: " + result.gl_renderer + " (" + result.gl_version + ", " + o.gl + ")");
+  }
+
+  const std::size_t total = scenes.size() * result.techniques.size();
+  for (std::size_t si = 0; si < scenes.size(); ++si) {
+    const scene::Scene& s = scenes[si];
+    for (const std::string& technique : result.techniques) {
+      const auto case_start = Clock::now();
+      CaseResult c;
+      c.scene = s.name;
+      c.scene_file = s.file;
+      c.technique = technique;
+      c.reference_dir = reference_dirs[si];
+      const renderer::Technique* extra = nullptr;
+      std::string judged_as = technique;
+      for (const ExtraTechnique& e : o.extra_techniques)
+        if (e.technique->name == technique) {
+          extra = e.technique;
+          judged_as = e.judged_as;
+        }
+      if (const auto e = s.expect.find(judged_as); e != s.expect.end()) {
+        c.expected_pass = e->second.pass;
+        c.why = e->second.why;
+      }
+      try {
+        if (gl) {
+          c.candidate_dir = std::filesystem::absolute(o.out / "renders" / s.name / technique);
+          const renderer::RenderResult r = extra ? gl->render(s, *extra) : gl->render(s, technique);
+          renderer::write_outputs(r, gl->info(), s, c.candidate_dir);
+          c.notes = r.notes;
+          c.frame_ms = r.median_frame_ms();
+        } else {
+          c.candidate_dir = std::filesystem::absolute(candidate_folder(*o.candidate_dir, s.name, technique));
+        }
+        c.comparison = compare::compare_folders(c.reference_dir, c.candidate_dir, compare::threshold_for(judged_as));
+        const std::filesystem::path error_dir =
+            gl ? c.candidate_dir : std::filesystem::absolute(o.out / "errors" / s.name / technique);
+        c.error_images = compare::write_error_images(*c.comparison, error_dir);
+        if (!gl) c.candidate_dir = std::filesystem::absolute(c.candidate_dir);
+        c.status = status_of(c.comparison->judgement.verdict, c.expected_pass);
+        if (!gl) {
+          // Keep where the error images went for the report.
+          for (auto& e : c.error_images) e = (error_dir / e).string();
+        }
+      } catch (const std::exception& e) {
+        c.status = Status::Error;
+        c.error = e.what();
+      }
+      c.seconds = since(case_start);
+      result.cases.push_back(std::move(c));
+      if (progress) progress(result.cases.size(), total, result.cases.back());
+    }
+  }
+  result.seconds = since(start);
+  if (o.write_report) {
+    result.report_json = std::filesystem::absolute(o.out / "report.json");
+    result.report_html = std::filesystem::absolute(o.out / "report" / "index.html");
+    write_reports(result, o, cache);
+  }
+  return result;
+}
+
+std::string table_text(const ConformResult& r) {
+  std::size_t name_w = 5;
+  for (const auto& s : r.scenes) name_w = std::max(name_w, s.size());
+  std::map<std::pair<std::string, std::string>, const CaseResult*> at;
+  for (const CaseResult& c : r.cases) at[{c.scene, c.technique}] = &c;
+  std::vector<std::size_t> col_w;
+  for (const auto& t : r.techniques) col_w.push_back(std::max<std::size_t>(t.size(), 5));
+  std::string out;
+  const auto pad = [](std::string s, std::size_t w) {
+    if (s.size() < w) s += std::string(w - s.size(), ' ');
+    return s;
+  };
+  out += pad("scene", name_w);
+  for (std::size_t i = 0; i < r.techniques.size(); ++i) out += "  " + pad(r.techniques[i], col_w[i]);
+  out += "\n";
+  for (const auto& s : r.scenes) {
+    out += pad(s, name_w);
+    for (std::size_t i = 0; i < r.techniques.size(); ++i) {
+      const auto it = at.find({s, r.techniques[i]});
+      out += "  " + pad(it == at.end() ? "-" : to_string(it->second->status), col_w[i]);
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+}  // namespace shadowref::conform

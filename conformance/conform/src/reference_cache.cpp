@@ -1,0 +1,135 @@
+// reference_cache.cpp — the hashed reference cache (reference_cache.hpp).
+#include "shadowref/conform/reference_cache.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <system_error>
+#include <vector>
+
+#include "shadowref/reference/render.hpp"
+#include "shadowref/reference/write_images.hpp"
+
+namespace shadowref::conform {
+namespace {
+
+struct Fnv1a {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  void add(const void* data, std::size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i) {
+      h ^= p[i];
+      h *= 0x100000001b3ull;
+    }
+  }
+  void add(const std::string& s) {
+    const std::uint64_t n = s.size();
+    add(&n, sizeof n);  // length first: "ab"+"c" and "a"+"bc" differ
+    add(s.data(), s.size());
+  }
+};
+
+std::string read_bytes(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + file.string() + " (for the reference cache key)");
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// The running executable's hash, computed once per process.
+std::uint64_t executable_hash() {
+  static std::once_flag once;
+  static std::uint64_t value = 0;
+  std::call_once(once, [] {
+    Fnv1a f;
+    std::error_code ec;
+    const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (!ec) f.add(read_bytes(exe));
+    value = f.h;
+  });
+  return value;
+}
+
+// Mesh files named by the scene file (objects[].shape.file, relative to the scene).
+std::vector<std::filesystem::path> mesh_files(const std::filesystem::path& scene_file, const std::string& text) {
+  std::vector<std::filesystem::path> out;
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+  if (!j.is_object() || !j.contains("objects") || !j["objects"].is_array()) return out;
+  for (const auto& o : j["objects"])
+    if (o.is_object() && o.contains("shape") && o["shape"].is_object() && o["shape"].contains("file") &&
+        o["shape"]["file"].is_string())
+      out.push_back(scene_file.parent_path() / o["shape"]["file"].get<std::string>());
+  return out;
+}
+
+std::string hex(std::uint64_t v) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
+  return buf;
+}
+
+}  // namespace
+
+std::string reference_key(const scene::Scene& scene, const ReferenceSettings& settings) {
+  Fnv1a f;
+  const std::string text = read_bytes(scene.file);
+  f.add(text);
+  for (const auto& m : mesh_files(scene.file, text)) {
+    f.add(m.filename().string());
+    f.add(read_bytes(m));
+  }
+  f.add("samples_per_axis=" + std::to_string(settings.samples_per_axis));
+  const std::uint64_t exe = executable_hash();
+  f.add(&exe, sizeof exe);
+  return hex(f.h);
+}
+
+void render_reference_to(const scene::Scene& scene, const std::filesystem::path& dir, const ReferenceSettings& settings) {
+  reference::Options options;
+  options.samples_per_axis = settings.samples_per_axis;
+  options.threads = settings.threads;
+  const reference::Images images = reference::render(scene, options);
+  reference::write_images(images, dir);
+}
+
+CachedReference ensure_reference(const scene::Scene& scene, const std::filesystem::path& cache,
+                                 const ReferenceSettings& settings) {
+  const std::string key = reference_key(scene, settings);
+  CachedReference out;
+  out.dir = std::filesystem::absolute(cache / (scene.name + "-" + key));
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(out.dir / "key.json", ec)) return out;  // key.json is written last
+  const auto start = std::chrono::steady_clock::now();
+  std::filesystem::create_directories(cache);
+  const std::filesystem::path tmp =
+      out.dir.parent_path() / (out.dir.filename().string() + ".tmp-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(tmp, ec);
+  render_reference_to(scene, tmp, settings);
+  {
+    nlohmann::json k;
+    k["scene"] = scene.name;
+    k["scene_file"] = std::filesystem::absolute(scene.file).string();
+    k["samples_per_axis"] = settings.samples_per_axis;
+    k["key"] = key;
+    k["key_inputs"] = "FNV-1a 64 of the scene file, its mesh files, the settings and the shadowref executable";
+    std::ofstream f(tmp / "key.json");
+    f << k.dump(2) << "\n";
+    if (!f) throw std::runtime_error("cannot write " + (tmp / "key.json").string());
+  }
+  std::filesystem::rename(tmp, out.dir, ec);
+  if (ec) {
+    // Another process finished the same key first: theirs is as good as ours.
+    std::filesystem::remove_all(tmp, ec);
+    if (!std::filesystem::is_regular_file(out.dir / "key.json", ec))
+      throw std::runtime_error("cannot move the reference into the cache at " + out.dir.string());
+  }
+  out.computed = true;
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace shadowref::conform

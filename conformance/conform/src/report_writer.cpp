@@ -1,0 +1,125 @@
+// report_writer.cpp — report.json (every metric, versions, GL strings) and report/index.html.
+#include "report_writer.hpp"
+
+#include <chrono>
+#include <ctime>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <system_error>
+
+#include "shadowref/report/comparison_json.hpp"
+#include "shadowref/report/html.hpp"
+
+namespace shadowref::conform {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string now_utc() {
+  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+// Copies `from` to <report>/<rel> and returns rel; "" when `from` is missing.
+std::string copy_in(const fs::path& from, const fs::path& report, const std::string& rel) {
+  std::error_code ec;
+  if (!fs::is_regular_file(from, ec)) return "";
+  fs::create_directories((report / rel).parent_path());
+  fs::copy_file(from, report / rel, fs::copy_options::overwrite_existing, ec);
+  return ec ? "" : rel;
+}
+
+}  // namespace
+
+void write_reports(const ConformResult& r, const ConformOptions& o, const fs::path& cache) {
+  const fs::path report_dir = r.report_html.parent_path();
+  std::error_code ec;
+  fs::remove_all(report_dir / "img", ec);
+  fs::create_directories(report_dir);
+
+  json j;
+  j["tool"] = "shadowref";
+  j["version"] = SHADOWREF_VERSION;
+  j["generated"] = now_utc();
+  j["command"] = o.command_line;
+  j["mode"] = o.candidate_dir ? "candidate-dir" : "render";
+  if (o.candidate_dir) j["candidate_dir"] = fs::absolute(*o.candidate_dir).string();
+  j["backend"] = o.candidate_dir ? json() : json(o.backend);
+  j["gl_api"] = o.candidate_dir ? json() : json(o.gl);
+  j["gl"] = {{"vendor", r.gl_vendor}, {"renderer", r.gl_renderer}, {"version", r.gl_version}};
+  j["reference"] = {{"producer", "shadowref reference (Embree 3)"},
+                    {"samples_per_axis", o.reference.samples_per_axis},
+                    {"cache", fs::absolute(cache).string()}};
+  j["seconds"] = r.seconds;
+  j["reference_seconds"] = r.reference_seconds;
+  json thresholds = json::array();
+  for (const compare::Threshold* t : compare::all_thresholds()) thresholds.push_back(report::to_json(*t));
+  j["thresholds"] = thresholds;
+  j["scenes"] = r.scenes;
+  j["techniques"] = r.techniques;
+  j["summary"] = {{"cases", r.cases.size()},         {"pass", r.count(Status::Pass)},   {"warn", r.count(Status::Warn)},
+                  {"fail", r.count(Status::Fail)},   {"xfail", r.count(Status::XFail)}, {"xpass", r.count(Status::XPass)},
+                  {"error", r.count(Status::Error)}, {"exit_code", r.exit_code()}};
+
+  json cases = json::array();
+  std::set<std::string> scenes_copied;
+  for (const CaseResult& c : r.cases) {
+    json k;
+    k["scene"] = c.scene;
+    k["scene_file"] = fs::absolute(c.scene_file).string();
+    k["technique"] = c.technique;
+    k["status"] = to_string(c.status);
+    k["expected"] = c.expected_pass ? "pass" : "fail";
+    k["why"] = c.why;
+    k["reference_dir"] = c.reference_dir.string();
+    k["candidate_dir"] = c.candidate_dir.string();
+    k["frame_ms"] = c.frame_ms;
+    k["seconds"] = c.seconds;
+    k["notes"] = c.notes;
+    if (!c.error.empty()) k["error"] = c.error;
+    if (c.comparison) {
+      k["comparison"] = report::to_json(*c.comparison);
+      // The images the page shows, per light: reference mask, candidate mask, error, candidate shaded.
+      const std::string base = "img/" + c.scene + "/" + c.technique + "/";
+      json lights = json::array();
+      for (std::size_t i = 0; i < c.comparison->masks.size(); ++i) {
+        const std::string& m = c.comparison->masks[i];
+        json l;
+        l["mask"] = m;
+        l["reference"] = copy_in(c.reference_dir / m, report_dir, "img/" + c.scene + "/reference_" + m);
+        l["candidate"] = copy_in(c.candidate_dir / m, report_dir, base + "candidate_" + m);
+        const fs::path err = fs::path(c.error_images[i]).is_absolute() ? fs::path(c.error_images[i])
+                                                                       : c.candidate_dir / c.error_images[i];
+        l["error"] = copy_in(err, report_dir, base + fs::path(c.error_images[i]).filename().string());
+        l["metrics"] = report::to_json(c.comparison->per_light[i].metrics);
+        lights.push_back(l);
+      }
+      k["lights"] = lights;
+      k["shaded"] = copy_in(c.candidate_dir / "shaded.png", report_dir, base + "shaded.png");
+      if (!scenes_copied.count(c.scene)) {
+        copy_in(c.reference_dir / "shaded.png", report_dir, "img/" + c.scene + "/reference_shaded.png");
+        scenes_copied.insert(c.scene);
+      }
+      k["reference_shaded"] = fs::is_regular_file(report_dir / ("img/" + c.scene + "/reference_shaded.png"), ec)
+                                  ? json("img/" + c.scene + "/reference_shaded.png")
+                                  : json("");
+    }
+    cases.push_back(k);
+  }
+  j["cases"] = cases;
+
+  {
+    std::ofstream f(r.report_json);
+    f << j.dump(2) << "\n";
+    if (!f) throw std::runtime_error("cannot write " + r.report_json.string());
+  }
+  report::write_html(j, r.report_html);
+}
+
+}  // namespace shadowref::conform

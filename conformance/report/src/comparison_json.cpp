@@ -1,0 +1,44 @@
+// comparison_json.cpp — comparison results as JSON (comparison_json.hpp).
+#include "shadowref/report/comparison_json.hpp"
+
+namespace shadowref::report {
+
+nlohmann::json to_json(const compare::MaskMetrics& m) {
+  return {{"width", m.width},
+          {"height", m.height},
+          {"pixels", m.pixels},
+          {"decided", m.decided},
+          {"decided_surface", m.decided_surface},
+          {"wrong", m.wrong},
+          {"wrong_percent", m.wrong_percent()},
+          {"false_shadow", m.false_shadow},
+          {"false_light", m.false_light},
+          {"coverage", m.coverage},
+          {"off_values", m.off_values},
+          {"regions", m.regions},
+          {"largest_region", m.largest_region}};
+}
+
+nlohmann::json to_json(const compare::Threshold& t) {
+  return {{"name", t.name},
+          {"pass_fraction", t.pass_fraction},
+          {"fail_fraction", t.fail_fraction},
+          {"pass_region", t.pass_region},
+          {"fail_region", t.fail_region},
+          {"why", t.why}};
+}
+
+nlohmann::json to_json(const compare::FolderComparison& c) {
+  nlohmann::json masks = nlohmann::json::array();
+  for (std::size_t i = 0; i < c.masks.size(); ++i)
+    masks.push_back({{"mask", c.masks[i]}, {"metrics", to_json(c.per_light[i].metrics)}});
+  nlohmann::json j;
+  j["verdict"] = compare::to_string(c.judgement.verdict);
+  j["reasons"] = c.judgement.reasons;
+  j["threshold"] = c.threshold ? to_json(*c.threshold) : nlohmann::json();
+  j["total"] = to_json(c.total);
+  j["masks"] = masks;
+  return j;
+}
+
+}  // namespace shadowref::report

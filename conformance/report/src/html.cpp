@@ -1,0 +1,320 @@
+// html.cpp — report.json → report/index.html (html.hpp). Plain HTML and CSS, no external files
+// but the images, so the folder opens anywhere (a CI artefact, a file:// URL).
+#include "shadowref/report/html.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace shadowref::report {
+namespace {
+
+using nlohmann::json;
+
+std::string str(const json& j, const char* key, const std::string& fallback = "-") {
+  if (!j.is_object() || !j.contains(key) || j[key].is_null()) return fallback;
+  if (j[key].is_string()) return j[key].get<std::string>();
+  return j[key].dump();
+}
+
+std::string num(const json& j, const char* key, const char* format = "%.4g") {
+  if (!j.is_object() || !j.contains(key) || !j[key].is_number()) return "-";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, j[key].get<double>());
+  return buf;
+}
+
+// "0", "0.0021", "2.8", "73", "100": two significant digits without exponents.
+std::string short_percent(const json& total) {
+  if (!total.contains("wrong_percent") || !total["wrong_percent"].is_number()) return "-";
+  const double v = total["wrong_percent"].get<double>();
+  char buf[32];
+  std::snprintf(buf, sizeof buf, v >= 10 ? "%.0f" : "%.2g", v);
+  return buf;
+}
+
+std::string anchor(const std::string& scene, const std::string& technique) {
+  std::string a = "case-" + scene + "--" + technique;
+  for (char& c : a)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_')) c = '_';
+  return a;
+}
+
+std::string status_class(const std::string& s) {
+  std::string c = "st-";
+  for (char ch : s) c += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return c;
+}
+
+constexpr const char* kStyle = R"css(
+:root { --fg:#1d2330; --muted:#5b6475; --line:#d9dee7; --bg:#f6f7fa; --card:#fff;
+  --pass:#1e8e3e; --pass-bg:#e6f4ea; --fail:#c5221f; --fail-bg:#fce8e6; --xfail:#8a5a00; --xfail-bg:#fef3d6;
+  --xpass:#a50e8e; --xpass-bg:#fbe4f6; --warn:#b06000; --warn-bg:#fff0db; --error:#fff; --error-bg:#5f6368; }
+* { box-sizing: border-box; }
+body { margin:0; font:14px/1.45 system-ui,-apple-system,"Segoe UI",Roboto,sans-serif; color:var(--fg); background:var(--bg); }
+header { background:#1d2330; color:#fff; padding:18px 28px; }
+header h1 { margin:0 0 4px; font-size:22px; font-weight:600; }
+header .meta { color:#c4cad6; font-size:13px; }
+header .meta code { color:#fff; }
+main { padding:20px 28px 40px; }
+section { background:var(--card); border:1px solid var(--line); border-radius:8px; padding:16px 18px; margin-bottom:20px; }
+h2 { font-size:17px; margin:0 0 12px; }
+.counts span { display:inline-block; margin:0 8px 6px 0; padding:3px 10px; border-radius:12px; font-weight:600; font-size:13px; }
+table { border-collapse:collapse; }
+#summary th, #summary td { border:1px solid var(--line); padding:4px 8px; text-align:center; font-size:13px; }
+#summary th { background:#eef1f6; font-weight:600; }
+#summary td.scene { text-align:left; font-weight:600; white-space:nowrap; }
+#summary td small { display:block; font-size:10.5px; opacity:.75; font-weight:400; }
+#summary td a { display:block; text-decoration:none; color:inherit; font-weight:700; }
+.st-pass { background:var(--pass-bg); color:var(--pass); }
+.st-fail { background:var(--fail-bg); color:var(--fail); }
+.st-xfail { background:var(--xfail-bg); color:var(--xfail); }
+.st-xpass { background:var(--xpass-bg); color:var(--xpass); }
+.st-warn { background:var(--warn-bg); color:var(--warn); }
+.st-error { background:var(--error-bg); color:var(--error); }
+.badge { display:inline-block; padding:1px 9px; border-radius:10px; font-weight:700; font-size:12px; letter-spacing:.03em; }
+.legend span { display:inline-flex; align-items:center; margin-right:18px; font-size:13px; }
+.legend i { display:inline-block; width:14px; height:14px; border-radius:3px; margin-right:6px; border:1px solid #0002; }
+#cases { width:100%; }
+#cases > tbody > tr { border-top:1px solid var(--line); }
+#cases > tbody > tr > td { padding:14px 10px; vertical-align:top; }
+#cases > thead th { text-align:left; font-size:12px; color:var(--muted); font-weight:600; padding:0 10px 6px; text-transform:uppercase; letter-spacing:.04em; }
+#cases tr.case:target { outline:3px solid #4c8df6; outline-offset:-3px; }
+.info { width:360px; }
+.info h3 { margin:0 0 6px; font-size:15px; }
+.info .why { margin:6px 0; padding:6px 9px; background:#f3f4f8; border-left:3px solid #a3abbd; font-size:13px; }
+.info ul.reasons { margin:6px 0; padding-left:18px; font-size:13px; }
+.info .error { color:var(--fail); font-weight:600; }
+table.metrics td { padding:1px 10px 1px 0; font-size:12.5px; }
+table.metrics td:first-child { color:var(--muted); }
+figure { margin:0 0 8px; display:inline-block; }
+figure img { width:192px; height:auto; image-rendering:pixelated; border:1px solid var(--line); background:#888; display:block; }
+figure img.broken { outline:3px dashed var(--fail); min-height:40px; }
+figcaption { font-size:12px; color:var(--muted); margin-top:2px; }
+.notes { font-size:12px; color:var(--muted); }
+.filters button { margin-right:6px; border:1px solid var(--line); background:#fff; border-radius:14px; padding:3px 12px; cursor:pointer; }
+.filters button.on { background:#1d2330; color:#fff; }
+#thresholds td, #thresholds th { border-bottom:1px solid var(--line); padding:4px 10px; text-align:left; font-size:13px; vertical-align:top; }
+)css";
+
+// Marks broken images and records counts on <body> (the Chromium test reads them from the DOM).
+constexpr const char* kScript = R"js(
+function shadowrefCheckImages() {
+  var imgs = document.querySelectorAll('img'), broken = [];
+  for (var i = 0; i < imgs.length; ++i) {
+    var im = imgs[i];
+    if (!im.complete || im.naturalWidth === 0) { im.classList.add('broken'); broken.push(im.getAttribute('src')); }
+  }
+  document.body.setAttribute('data-images', String(imgs.length));
+  document.body.setAttribute('data-broken', String(broken.length));
+  document.body.setAttribute('data-checked', '1');
+  document.getElementById('broken-images').textContent = broken.join('\n');
+}
+window.addEventListener('load', shadowrefCheckImages);
+function shadowrefFilter(kind, button) {
+  var rows = document.querySelectorAll('#cases tr.case');
+  for (var i = 0; i < rows.length; ++i) {
+    var s = rows[i].getAttribute('data-status');
+    var show = kind === 'all' || (kind === 'problems' && (s === 'FAIL' || s === 'XPASS' || s === 'ERROR' || s === 'WARN')) ||
+               (kind === 'xfail' && s === 'XFAIL');
+    rows[i].style.display = show ? '' : 'none';
+  }
+  var bs = document.querySelectorAll('.filters button');
+  for (var j = 0; j < bs.length; ++j) bs[j].classList.remove('on');
+  button.classList.add('on');
+}
+)js";
+
+void figure(std::ostringstream& h, const std::string& src, const std::string& caption) {
+  if (src.empty()) {
+    h << "<figure><div class=\"notes\">(" << escape_html(caption) << ": none)</div></figure>";
+    return;
+  }
+  h << "<figure><a href=\"" << escape_html(src) << "\"><img src=\"" << escape_html(src) << "\" alt=\""
+    << escape_html(caption) << "\" loading=\"eager\"></a><figcaption>" << escape_html(caption) << "</figcaption></figure>";
+}
+
+void metrics_table(std::ostringstream& h, const json& m) {
+  h << "<table class=\"metrics\">";
+  const auto row = [&](const char* label, const std::string& v) {
+    h << "<tr><td>" << label << "</td><td>" << escape_html(v) << "</td></tr>";
+  };
+  row("wrong", str(m, "wrong") + " (" + num(m, "wrong_percent") + " %)");
+  row("false shadow", str(m, "false_shadow"));
+  row("false light", str(m, "false_light"));
+  row("coverage", str(m, "coverage"));
+  row("largest region", str(m, "largest_region") + " px (" + str(m, "regions") + " regions)");
+  row("decided surface px", str(m, "decided_surface") + " of " + str(m, "pixels"));
+  if (m.contains("off_values") && m["off_values"].is_number() && m["off_values"].get<double>() > 0)
+    row("values not 0/128/255", str(m, "off_values"));
+  h << "</table>";
+}
+
+}  // namespace
+
+std::string escape_html(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&#39;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string render_html(const json& r) {
+  std::ostringstream h;
+  const json cases = r.contains("cases") && r["cases"].is_array() ? r["cases"] : json::array();
+  const json summary = r.value("summary", json::object());
+  h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+    << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
+    << "<title>shadowref conformance — " << escape_html(str(r, "backend", "candidate renders")) << "</title><style>"
+    << kStyle << "</style></head>\n<body data-checked=\"0\">\n";
+
+  // Header.
+  const json gl = r.value("gl", json::object());
+  h << "<header><h1>shadowref conformance</h1><div class=\"meta\">";
+  if (str(r, "mode") == "candidate-dir")
+    h << "candidate renders from <code>" << escape_html(str(r, "candidate_dir")) << "</code>";
+  else
+    h << "backend <code>" << escape_html(str(r, "backend")) << "</code> via <code>" << escape_html(str(r, "gl_api"))
+      << "</code> · " << escape_html(str(gl, "renderer")) << " · OpenGL " << escape_html(str(gl, "version"));
+  h << " · reference: Embree, " << escape_html(str(r.value("reference", json::object()), "samples_per_axis"))
+    << "² samples per pixel · " << escape_html(str(r, "tool")) << " " << escape_html(str(r, "version")) << " · "
+    << escape_html(str(r, "generated")) << " · " << num(r, "seconds", "%.1f") << " s</div></header>\n<main>\n";
+
+  // Counts and the scene × technique table.
+  h << "<section><h2>Summary</h2><div class=\"counts\">";
+  const auto count = [&](const char* key, const char* label, const char* cls) {
+    h << "<span class=\"" << cls << "\">" << label << " " << str(summary, key, "0") << "</span>";
+  };
+  h << "<span style=\"background:#eef1f6\">cases " << str(summary, "cases", "0") << "</span>";
+  count("pass", "PASS", "st-pass");
+  count("xfail", "XFAIL", "st-xfail");
+  count("fail", "FAIL", "st-fail");
+  count("xpass", "XPASS", "st-xpass");
+  count("warn", "WARN", "st-warn");
+  count("error", "ERROR", "st-error");
+  h << "</div><p class=\"notes\">PASS: within the technique's threshold. XFAIL: a known limitation the catalogue "
+       "expects, detected (its why is in the case). FAIL and XPASS (an expected failure that did not fail) are "
+       "failures of the run; WARN is within the looser quality bound.</p>";
+  std::vector<std::string> scenes, techniques;
+  if (r.contains("scenes")) scenes = r["scenes"].get<std::vector<std::string>>();
+  if (r.contains("techniques")) techniques = r["techniques"].get<std::vector<std::string>>();
+  std::map<std::pair<std::string, std::string>, json> at;
+  for (const json& c : cases) at[{str(c, "scene"), str(c, "technique")}] = c;
+  h << "<table id=\"summary\"><thead><tr><th>scene</th>";
+  for (const auto& t : techniques) h << "<th>" << escape_html(t) << "</th>";
+  h << "</tr></thead><tbody>\n";
+  for (const auto& s : scenes) {
+    h << "<tr class=\"scene-row\"><td class=\"scene\">" << escape_html(s) << "</td>";
+    for (const auto& t : techniques) {
+      const auto it = at.find({s, t});
+      if (it == at.end()) {
+        h << "<td>-</td>";
+        continue;
+      }
+      const std::string st = str(it->second, "status");
+      const json cmp = it->second.value("comparison", json::object());
+      const std::string tip = cmp.contains("total") ? "wrong " + num(cmp["total"], "wrong_percent") + " %" : str(it->second, "error", "");
+      h << "<td class=\"" << status_class(st) << "\" title=\"" << escape_html(tip) << "\"><a href=\"#"
+        << anchor(s, t) << "\">" << escape_html(st) << "</a>"
+        << (cmp.contains("total") ? "<small>" + short_percent(cmp["total"]) + " %</small>" : std::string())
+        << "</td>";
+    }
+    h << "</tr>\n";
+  }
+  h << "</tbody></table></section>\n";
+
+  // Legend.
+  h << "<section><h2>Reading the images</h2><div class=\"legend\">"
+    << "<span><i style=\"background:#fff\"></i>reference / candidate mask: white lit</span>"
+    << "<span><i style=\"background:#000\"></i>black shadowed</span>"
+    << "<span><i style=\"background:#808080\"></i>grey no surface</span></div><div class=\"legend\" style=\"margin-top:8px\">"
+    << "<span>error image:</span>"
+    << "<span><i style=\"background:rgb(235,50,50)\"></i>false shadow (reference lit)</span>"
+    << "<span><i style=\"background:rgb(40,120,255)\"></i>false light (reference shadowed)</span>"
+    << "<span><i style=\"background:rgb(230,40,230)\"></i>coverage (surface vs none)</span>"
+    << "<span><i style=\"background:rgb(70,105,70)\"></i>undecided: not judged</span>"
+    << "<span><i style=\"background:rgb(150,150,150)\"></i><i style=\"background:rgb(55,55,55)\"></i>"
+    << "<i style=\"background:rgb(28,28,42)\"></i>dimmed reference: lit, shadowed, no surface</span></div></section>\n";
+
+  // Cases, one row each.
+  h << "<section><h2>Cases</h2><div class=\"filters\" style=\"margin-bottom:10px\">"
+    << "<button class=\"on\" onclick=\"shadowrefFilter('all', this)\">all</button>"
+    << "<button onclick=\"shadowrefFilter('problems', this)\">FAIL / XPASS / WARN / ERROR</button>"
+    << "<button onclick=\"shadowrefFilter('xfail', this)\">XFAIL</button></div>"
+    << "<table id=\"cases\"><thead><tr><th>case</th><th>reference · candidate · error · shaded</th></tr></thead><tbody>\n";
+  for (const json& c : cases) {
+    const std::string st = str(c, "status");
+    const json cmp = c.value("comparison", json::object());
+    h << "<tr class=\"case\" id=\"" << anchor(str(c, "scene"), str(c, "technique")) << "\" data-status=\""
+      << escape_html(st) << "\"><td class=\"info\"><h3>" << escape_html(str(c, "scene")) << " · "
+      << escape_html(str(c, "technique")) << "</h3><span class=\"badge " << status_class(st) << "\">"
+      << escape_html(st) << "</span> <span class=\"notes\">expected " << escape_html(str(c, "expected"))
+      << (cmp.contains("threshold") ? ", threshold " + escape_html(str(cmp["threshold"], "name")) : std::string())
+      << "</span>";
+    if (!str(c, "why", "").empty()) h << "<div class=\"why\"><b>why it is expected to fail:</b> " << escape_html(str(c, "why")) << "</div>";
+    if (c.contains("error")) h << "<p class=\"error\">" << escape_html(str(c, "error")) << "</p>";
+    if (cmp.contains("reasons") && !cmp["reasons"].empty()) {
+      h << "<ul class=\"reasons\">";
+      for (const auto& reason : cmp["reasons"]) h << "<li>" << escape_html(reason.get<std::string>()) << "</li>";
+      h << "</ul>";
+    }
+    if (cmp.contains("total")) metrics_table(h, cmp["total"]);
+    if (c.contains("notes") && !c["notes"].empty()) {
+      h << "<div class=\"notes\">";
+      for (const auto& n : c["notes"]) h << "note: " << escape_html(n.get<std::string>()) << "<br>";
+      h << "</div>";
+    }
+    if (c.contains("frame_ms") && c["frame_ms"].is_number() && c["frame_ms"].get<double>() > 0)
+      h << "<div class=\"notes\">frame " << num(c, "frame_ms", "%.1f") << " ms</div>";
+    h << "</td><td>";
+    if (c.contains("lights")) {
+      const json& lights = c["lights"];
+      for (std::size_t i = 0; i < lights.size(); ++i) {
+        const json& l = lights[i];
+        const std::string suffix = lights.size() > 1 ? " (light " + std::to_string(i) + ")" : "";
+        h << "<div class=\"light\">";
+        figure(h, str(l, "reference", ""), "reference" + suffix);
+        figure(h, str(l, "candidate", ""), "candidate" + suffix);
+        figure(h, str(l, "error", ""), "error" + suffix + ": " + str(l.value("metrics", json::object()), "wrong") + " wrong");
+        if (i == 0) figure(h, str(c, "shaded", ""), "candidate shaded");
+        h << "</div>";
+      }
+    } else {
+      h << "<span class=\"notes\">no images: the case could not be compared</span>";
+    }
+    h << "</td></tr>\n";
+  }
+  h << "</tbody></table></section>\n";
+
+  // Thresholds with their reasons.
+  h << "<section><h2>Thresholds</h2><table id=\"thresholds\"><thead><tr><th>name</th><th>pass</th><th>fail</th><th>why</th></tr></thead><tbody>";
+  if (r.contains("thresholds"))
+    for (const json& t : r["thresholds"])
+      h << "<tr><td>" << escape_html(str(t, "name")) << "</td><td>≤ " << num(t, "pass_fraction", "%.4g")
+        << " wrong fraction, regions ≤ " << str(t, "pass_region") << " px</td><td>&gt; " << num(t, "fail_fraction", "%.4g")
+        << " or regions &gt; " << str(t, "fail_region") << " px</td><td>" << escape_html(str(t, "why")) << "</td></tr>";
+  h << "</tbody></table><p class=\"notes\">Wrong fraction = wrong decided pixels / decided pixels with a surface "
+       "(all lights together). Between the pass and fail bounds: a quality warning.</p></section>\n";
+  h << "<pre id=\"broken-images\" class=\"notes\"></pre>\n</main>\n<script>" << kScript << "</script>\n</body></html>\n";
+  return h.str();
+}
+
+void write_html(const json& report, const std::filesystem::path& file) {
+  if (!file.parent_path().empty()) std::filesystem::create_directories(file.parent_path());
+  std::ofstream f(file);
+  f << render_html(report);
+  if (!f) throw std::runtime_error("cannot write " + file.string());
+}
+
+}  // namespace shadowref::report

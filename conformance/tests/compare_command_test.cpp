@@ -1,0 +1,85 @@
+// compare_command_test.cpp — `shadowref compare` end to end: exit codes (0 pass, 2 fail, 3 size
+// mismatch, 4 bad input), one line on stderr for errors, the JSON, the error image.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "run_command.hpp"
+#include "shadowref/compare/mask_image.hpp"
+
+namespace shadowref {
+namespace {
+
+namespace fs = std::filesystem;
+
+class CompareCommand : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root = fs::temp_directory_path() / ("shadowref-compare-cli-" + std::to_string(::getpid()) + "-" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(root);
+    fs::create_directories(root / "ref");
+    fs::create_directories(root / "cand");
+    grey(root / "ref" / "mask.png", 64, 64, 255);
+    grey(root / "ref" / "decided.png", 64, 64, 255);
+  }
+  void TearDown() override { fs::remove_all(root); }
+  static void grey(const fs::path& f, int w, int h, std::uint8_t v) {
+    compare::write_image8(compare::Image8{w, h, 1, std::vector<std::uint8_t>(static_cast<std::size_t>(w * h), v)}, f);
+  }
+  test::CommandResult compare(std::vector<std::string> extra = {}) {
+    std::vector<std::string> a{SHADOWREF_EXE, "compare", "--reference", (root / "ref").string(), "--candidate",
+                               (root / "cand").string()};
+    a.insert(a.end(), extra.begin(), extra.end());
+    return test::run_command(a);
+  }
+  fs::path root;
+};
+
+TEST_F(CompareCommand, IdenticalIsAPass) {
+  grey(root / "cand" / "mask.png", 64, 64, 255);
+  const auto r = compare();
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("verdict: PASS"), std::string::npos) << r.out;
+}
+
+TEST_F(CompareCommand, AllWrongIsAFailWithJsonAndErrorImage) {
+  grey(root / "cand" / "mask.png", 64, 64, 0);
+  const auto r = compare({"--json", "--technique", "shadowmap", "--out", (root / "err").string()});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["verdict"], "fail");
+  EXPECT_EQ(j["total"]["false_shadow"], 4096);
+  EXPECT_EQ(j["threshold"]["name"], "shadow-map");
+  EXPECT_TRUE(fs::exists(root / "err" / "error.png"));
+}
+
+TEST_F(CompareCommand, SizeMismatchExits3) {
+  grey(root / "cand" / "mask.png", 32, 64, 255);
+  const auto r = compare();
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find("32x64"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+}
+
+TEST_F(CompareCommand, BadInputExits4WithOneLine) {
+  auto r = compare();  // no candidate mask
+  EXPECT_EQ(r.exit_code, 4);
+  EXPECT_NE(r.err.find("mask.png"), std::string::npos) << r.err;
+  {
+    std::ofstream f(root / "cand" / "mask.png");
+    f << "\x89PNG\r\n\x1a\n truncated";
+  }
+  r = compare();
+  EXPECT_EQ(r.exit_code, 4) << r.err;
+  compare::write_image8(compare::Image8{64, 64, 3, std::vector<std::uint8_t>(64 * 64 * 3, 255)}, root / "cand" / "mask.png");
+  r = compare();
+  EXPECT_EQ(r.exit_code, 4);
+  EXPECT_NE(r.err.find("3 channel"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace shadowref

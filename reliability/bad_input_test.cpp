@@ -1,0 +1,430 @@
+// bad_input_test.cpp — issue 9, item 1: every `shadowref` subcommand answers bad input with one
+// line naming the file, JSON path or argument, and DESIGN.md's exit code (4 bad input or file
+// error, 3 size mismatch); never a crash, a hang, a partial output folder.
+//
+// The table is generated: each defect (a bad scene, mesh, image or argument) × each subcommand that
+// reads that kind of input. Bad files are written at test time into a fresh folder per case. A case
+// passes when
+//   - the exit code is the expected one (a signal, a sanitizer abort or the 120 s watchdog fail it),
+//   - the last stderr line starts with "shadowref <subcommand>" and names what `must_mention` says
+//     (the file, the JSON path or the argument), and every earlier stderr line is progress
+//     (cases whose failure comes before any work demand exactly one line),
+//   - stdout is empty,
+//   - the case's output folder does not exist afterwards (nothing left looking complete).
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "run_command.hpp"
+
+namespace shadowref::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// ------------------------------------------------------------------------------------ fixtures
+
+// A valid scene, small and fast: a box over a ground plane, 32 × 32 pixels.
+std::string good_scene(const std::string& patch_key = "", const std::string& patch_value = "") {
+  std::string res = "[32, 32]", camera = R"({"position": [0, 4, 8], "target": [0, 0.5, 0], "fovy_deg": 45, "near": 0.1})",
+              lights = R"([{"type": "point", "position": [2, 6, 1]}])",
+              objects = R"([{"name": "ground", "shape": {"type": "plane", "size": [20, 20]}, "receiver": true},
+                 {"name": "box", "shape": {"type": "box", "size": [1, 1, 1]}, "transform": {"translate": [0, 1, 0]}}])",
+              extra;
+  if (patch_key == "resolution") res = patch_value;
+  else if (patch_key == "camera") camera = patch_value;
+  else if (patch_key == "lights") lights = patch_value;
+  else if (patch_key == "objects") objects = patch_value;
+  else if (!patch_key.empty()) extra = ", \"" + patch_key + "\": " + patch_value;
+  return R"({"name": "bad", "resolution": )" + res + ", \"camera\": " + camera + ", \"lights\": " + lights +
+         ", \"objects\": " + objects + extra + "}";
+}
+
+std::string mesh_object(const std::string& file) {
+  return R"([{"name": "ground", "shape": {"type": "plane", "size": [20, 20]}, "receiver": true},
+            {"name": "part", "shape": {"type": "mesh", "file": ")" + file + R"("}}])";
+}
+
+void write_text(const fs::path& p, const std::string& text) {
+  fs::create_directories(p.parent_path());
+  std::ofstream(p, std::ios::binary) << text;
+}
+
+void write_png(const fs::path& p, int w, int h, int channels, std::uint8_t value,
+               OIIO::TypeDesc format = OIIO::TypeDesc::UINT8) {
+  fs::create_directories(p.parent_path());
+  auto out = OIIO::ImageOutput::create(p.string());
+  ASSERT_TRUE(out);
+  const OIIO::ImageSpec spec(w, h, channels, format);
+  std::vector<std::uint16_t> pixels(static_cast<std::size_t>(w * h * channels), static_cast<std::uint16_t>(value * 257));
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(w * h * channels), value);
+  ASSERT_TRUE(out->open(p.string(), spec));
+  ASSERT_TRUE(format == OIIO::TypeDesc::UINT8 ? out->write_image(OIIO::TypeDesc::UINT8, bytes.data())
+                                              : out->write_image(OIIO::TypeDesc::UINT16, pixels.data()));
+  ASSERT_TRUE(out->close());
+}
+
+// A mask folder as every producer writes it: mask.png (+ decided.png for a reference).
+void write_mask_folder(const fs::path& dir, int w, int h, bool reference) {
+  write_png(dir / "mask.png", w, h, 1, 255);
+  if (reference) write_png(dir / "decided.png", w, h, 1, 255);
+}
+
+// A PNG header (signature + IHDR with a correct CRC) claiming w × h 8-bit grey, and no pixel data.
+std::string png_header_only(std::uint32_t w, std::uint32_t h) {
+  std::string ihdr = "IHDR";
+  for (std::uint32_t v : {w, h})
+    for (int s = 24; s >= 0; s -= 8) ihdr.push_back(static_cast<char>((v >> s) & 0xff));
+  ihdr += std::string("\x08\x00\x00\x00\x00", 5);
+  std::uint32_t crc = 0xffffffffu;
+  for (unsigned char c : ihdr) {
+    crc ^= c;
+    for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+  }
+  crc ^= 0xffffffffu;
+  std::string png = "\x89PNG\r\n\x1a\n";
+  png += std::string("\x00\x00\x00\x0d", 4) + ihdr;
+  for (int s = 24; s >= 0; s -= 8) png.push_back(static_cast<char>((crc >> s) & 0xff));
+  return png;
+}
+
+// ------------------------------------------------------------------------------------ the table
+
+struct Case {
+  std::string name;                                  // "<defect>_<subcommand>"
+  std::function<void(const fs::path& dir)> setup;    // writes the bad files under dir
+  std::vector<std::string> args;                     // "@" is replaced by the case's folder
+  int exit_code = 4;
+  std::string must_mention;                          // "@" replaced too
+  bool one_line = true;                              // false: progress lines may precede the error
+  std::string known_bug = {};                        // non-empty: an expected failure (XFAIL), reported to
+                                                     // the code's owner; passing then fails (XPASS)
+};
+
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
+
+std::string expand(std::string s, const fs::path& dir) {
+  for (std::size_t at; (at = s.find('@')) != std::string::npos;) s.replace(at, 1, dir.string());
+  return s;
+}
+
+// The subcommands that read a scene file, as argv for a scene at `@/scene.json` (or a catalogue
+// folder `@/cat` holding it), each writing into @/out.
+struct SceneReader {
+  std::string name;
+  std::vector<std::string> args;
+  bool catalogue;  // reads a folder of scenes (scene written to @/cat/scene.json)
+};
+
+const std::vector<SceneReader>& scene_readers() {
+  static const std::vector<SceneReader> r = {
+      {"render", {"render", "--scene", "@/scene.json", "--technique", "planar", "--out", "@/out"}, false},
+      {"reference", {"reference", "--scene", "@/scene.json", "--out", "@/out", "--spp", "1"}, false},
+      {"conform", {"conform", "--catalogue", "@/cat", "--out", "@/out", "--quiet", "--spp", "1"}, true},
+      {"export", {"export", "--catalogue", "@/cat", "--out", "@/out"}, true},
+      {"goldens", {"goldens", "--check", "--catalogue", "@/cat", "--dir", "@/out"}, true},
+  };
+  return r;
+}
+
+// A defective scene (and what the message must name, relative to the scene file).
+struct SceneDefect {
+  std::string name;
+  std::function<void(const fs::path& scene_dir)> extra_files;  // meshes next to the scene
+  std::string text;
+  std::string must_mention;  // in addition to the scene file's name
+};
+
+const std::vector<SceneDefect>& scene_defects() {
+  static const std::vector<SceneDefect> d = {
+      {"malformed_json", nullptr, R"({"name": "bad", "resolution": [32, 32], "camera": )", "invalid JSON"},
+      {"wrong_type", nullptr, good_scene("resolution", R"("large")"), "resolution"},
+      {"wrong_type_nested", nullptr, good_scene("lights", R"([{"type": "point", "position": "up"}])"), "lights[0].position"},
+      {"out_of_range", nullptr, good_scene("camera", R"({"position": [0, 4, 8], "target": [0, 0, 0], "fovy_deg": 200})"),
+       "camera.fovy_deg"},
+      {"infinite_number", nullptr, good_scene("lights", R"([{"type": "point", "position": [1e999, 6, 1]}])"), "invalid JSON"},
+      {"unknown_key", nullptr, good_scene("colour", "1"), "colour"},
+      {"resolution_zero", nullptr, good_scene("resolution", "[0, 32]"), "resolution[0]"},
+      {"resolution_huge", nullptr, good_scene("resolution", "[32, 1000000000]"), "resolution[1]"},
+      {"unknown_expect_technique", nullptr, good_scene("expect", R"({"planer": {"result": "pass"}})"), "expect.planer"},
+      {"obj_nan_vertex", [](const fs::path& dir) { write_text(dir / "nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"); },
+       good_scene("objects", mesh_object("nan.obj")), "vertex 2 is NaN or infinite"},
+      {"obj_inf_vertex", [](const fs::path& dir) { write_text(dir / "inf.obj", "v 0 0 0\nv 1 -inf 0\nv 0 1 0\nf 1 2 3\n"); },
+       good_scene("objects", mesh_object("inf.obj")), "vertex 2 is NaN or infinite"},
+      {"obj_index_out_of_range",
+       [](const fs::path& dir) { write_text(dir / "idx.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"); },
+       good_scene("objects", mesh_object("idx.obj")), "uses vertex 9"},
+      {"obj_negative_index",
+       [](const fs::path& dir) { write_text(dir / "neg.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -7\n"); },
+       good_scene("objects", mesh_object("neg.obj")), "objects[1].shape.file"},
+      {"empty_mesh", [](const fs::path& dir) { write_text(dir / "empty.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"); },
+       good_scene("objects", mesh_object("empty.obj")), "no triangles"},
+      {"missing_mesh", nullptr, good_scene("objects", mesh_object("nowhere.obj")), "nowhere.obj"},
+      {"truncated_gltf", [](const fs::path& dir) { write_text(dir / "cut.gltf", R"({"asset": {"version": "2.0"}, "meshes": [)"); },
+       good_scene("objects", mesh_object("cut.gltf")), "cut.gltf"},
+  };
+  return d;
+}
+
+std::vector<Case> make_cases() {
+  std::vector<Case> cases;
+  // Scene defects × every subcommand that reads scenes.
+  for (const SceneReader& r : scene_readers()) {
+    cases.push_back({"missing_file_" + r.name, nullptr,
+                     r.catalogue ? std::vector<std::string>{} : r.args, 4, "@/scene.json"});
+    if (r.catalogue) {  // a catalogue folder that does not exist
+      cases.back().args = r.args;
+      cases.back().must_mention = "@/cat";
+    }
+    for (const SceneDefect& d : scene_defects()) {
+      const std::string scene_name = r.catalogue ? "@/cat/scene.json" : "@/scene.json";
+      const auto extra = d.extra_files;
+      const std::string text = d.text;
+      const bool cat = r.catalogue;
+      cases.push_back({d.name + "_" + r.name,
+                       [extra, text, cat](const fs::path& dir) {
+                         const fs::path sdir = cat ? dir / "cat" : dir;
+                         write_text(sdir / "scene.json", text);
+                         if (extra) extra(sdir);
+                       },
+                       r.args, 4, d.must_mention});
+      cases.push_back(cases.back());  // and the file name, separately
+      cases.back().name += "_names_file";
+      cases.back().must_mention = scene_name;
+    }
+  }
+  const std::string good = good_scene();
+  const auto good_scene_file = [good](const fs::path& dir) { write_text(dir / "scene.json", good); };
+  const auto blocked_out = [good](const fs::path& dir) {  // --out below a regular file
+    write_text(dir / "scene.json", good);
+    write_text(dir / "file", "not a folder");
+  };
+
+  // render: arguments.
+  const std::vector<std::string> render = {"render", "--scene", "@/scene.json", "--out", "@/out"};
+  const auto with = [](std::vector<std::string> a, std::initializer_list<std::string> more) {
+    a.insert(a.end(), more);
+    return a;
+  };
+  cases.push_back({"unknown_technique_render", good_scene_file, with(render, {"--technique", "planer"}), 4, "--technique"});
+  cases.push_back({"unknown_backend_render", good_scene_file, with(render, {"--technique", "planar", "--backend", "vulkan"}), 4, "vulkan"});
+  cases.push_back({"unknown_gl_render", good_scene_file, with(render, {"--technique", "planar", "--gl", "glx"}), 4, "glx"});
+  cases.push_back({"shadow_map_size_huge_render", good_scene_file,
+                   with(render, {"--technique", "shadowmap", "--shadow-map-size", "1000000"}), 4, "--shadow-map-size"});
+  cases.push_back({"frames_zero_render", good_scene_file, with(render, {"--technique", "planar", "--frames", "0"}), 4, "--frames"});
+  cases.push_back({"missing_argument_render", good_scene_file, {"render", "--scene", "@/scene.json", "--out", "@/out"}, 4, "--technique"});
+  cases.push_back({"unwritable_out_render", blocked_out,
+                   {"render", "--scene", "@/scene.json", "--technique", "planar", "--out", "@/file/out"}, 4, "@/file", false});
+
+  // reference: arguments.
+  const std::vector<std::string> reference = {"reference", "--scene", "@/scene.json", "--out", "@/out"};
+  cases.push_back({"spp_not_square_reference", good_scene_file, with(reference, {"--spp", "3"}), 4, "--spp"});
+  cases.push_back({"spp_huge_reference", good_scene_file, with(reference, {"--spp", "1000000"}), 4, "--spp"});
+  cases.push_back({"threads_negative_reference", good_scene_file, with(reference, {"--threads", "-1"}), 4, "--threads"});
+  cases.push_back({"not_a_number_reference", good_scene_file, with(reference, {"--spp", "many"}), 4, "--spp"});
+  cases.push_back({"unwritable_out_reference", blocked_out,
+                   {"reference", "--scene", "@/scene.json", "--spp", "1", "--out", "@/file/out"}, 4, "@/file", false});
+
+  // compare: images.
+  const std::vector<std::string> compare = {"compare", "--reference", "@/ref", "--candidate", "@/cand"};
+  const auto ref_ok = [](const fs::path& dir) { write_mask_folder(dir / "ref", 16, 16, true); };
+  cases.push_back({"missing_file_compare", [](const fs::path&) {}, compare, 4, "@/ref"});
+  cases.push_back({"missing_candidate_compare", ref_ok, compare, 4, "@/cand"});
+  cases.push_back({"truncated_image_compare",
+                   [ref_ok](const fs::path& dir) {
+                     ref_ok(dir);
+                     write_mask_folder(dir / "cand", 16, 16, false);
+                     const fs::path m = dir / "cand" / "mask.png";
+                     const auto size = fs::file_size(m);
+                     fs::resize_file(m, size / 2);
+                   },
+                   compare, 4, "@/cand/mask.png"});
+  cases.push_back({"empty_image_compare",
+                   [ref_ok](const fs::path& dir) {
+                     ref_ok(dir);
+                     write_text(dir / "cand" / "mask.png", "");
+                   },
+                   compare, 4, "@/cand/mask.png"});
+  cases.push_back({"text_as_image_compare",
+                   [ref_ok](const fs::path& dir) {
+                     ref_ok(dir);
+                     write_text(dir / "cand" / "mask.png", "this is not a PNG\n");
+                   },
+                   compare, 4, "@/cand/mask.png"});
+  cases.push_back({"rgb_mask_compare",
+                   [ref_ok](const fs::path& dir) {
+                     ref_ok(dir);
+                     write_png(dir / "cand" / "mask.png", 16, 16, 3, 255);
+                   },
+                   compare, 4, "channel"});
+  cases.push_back({"sixteen_bit_mask_compare",
+                   [ref_ok](const fs::path& dir) {
+                     ref_ok(dir);
+                     write_png(dir / "cand" / "mask.png", 16, 16, 1, 255, OIIO::TypeDesc::UINT16);
+                   },
+                   compare, 4, "8-bit"});
+  cases.push_back({"absurd_header_compare",
+                   [ref_ok](const fs::path& dir) {
+                     ref_ok(dir);
+                     write_text(dir / "cand" / "mask.png", png_header_only(1000000, 1000000));
+                   },
+                   compare, 4, "@/cand/mask.png"});
+  cases.push_back({"absurd_header_reference_compare",
+                   [](const fs::path& dir) {
+                     write_mask_folder(dir / "cand", 16, 16, false);
+                     write_mask_folder(dir / "ref", 16, 16, true);
+                     write_text(dir / "ref" / "decided.png", png_header_only(1000000, 1000000));
+                   },
+                   compare, 4, "@/ref/decided.png"});
+  cases.push_back({"size_mismatch_compare",
+                   [ref_ok](const fs::path& dir) {
+                     ref_ok(dir);
+                     write_mask_folder(dir / "cand", 8, 16, false);
+                   },
+                   compare, 3, "size mismatch"});
+  cases.push_back({"decided_size_mismatch_compare",
+                   [](const fs::path& dir) {
+                     write_mask_folder(dir / "ref", 16, 16, false);
+                     write_png(dir / "ref" / "decided.png", 16, 15, 1, 255);
+                     write_mask_folder(dir / "cand", 16, 16, false);
+                   },
+                   compare, 3, "size mismatch"});
+  cases.push_back({"unknown_technique_compare",
+                   [ref_ok](const fs::path& dir) {
+                     ref_ok(dir);
+                     write_mask_folder(dir / "cand", 16, 16, false);
+                   },
+                   with(compare, {"--technique", "planer"}), 4, "planer"});
+
+  // conform: arguments.
+  const std::vector<std::string> conform = {"conform", "--catalogue", "@/cat", "--out", "@/out", "--quiet"};
+  const auto good_catalogue = [good](const fs::path& dir) { write_text(dir / "cat" / "scene.json", good); };
+  cases.push_back({"unknown_technique_conform", good_catalogue, with(conform, {"--techniques", "planer"}), 4, "planer"});
+  cases.push_back({"unknown_backend_conform", good_catalogue, with(conform, {"--backend", "vulkan"}), 4, "vulkan"});
+  cases.push_back({"unknown_scene_conform", good_catalogue, with(conform, {"--scenes", "no_such_scene"}), 4, "no_such_scene"});
+  cases.push_back({"spp_not_square_conform", good_catalogue, with(conform, {"--spp", "3"}), 4, "--spp"});
+  cases.push_back({"missing_candidate_dir_conform", good_catalogue, with(conform, {"--candidate-dir", "@/nowhere"}), 4,
+                   "@/nowhere"});
+
+  // export / goldens: arguments.
+  cases.push_back({"unknown_scene_export", good_catalogue, {"export", "--catalogue", "@/cat", "--out", "@/out", "--scenes", "nope"}, 4, "nope"});
+  cases.push_back({"jobs_negative_export", good_catalogue, {"export", "--catalogue", "@/cat", "--out", "@/out", "--jobs", "-1"}, 4, "--jobs"});
+  cases.push_back({"check_and_update_goldens", good_catalogue,
+                   {"goldens", "--check", "--update", "--catalogue", "@/cat", "--dir", "@/out"}, 4, "--check"});
+  cases.push_back({"unknown_scene_goldens", good_catalogue, {"goldens", "--check", "--catalogue", "@/cat", "--dir", "@/out", "--scenes", "nope"}, 4, "nope"});
+
+  // math: arguments and mesh files.
+  cases.push_back({"nan_argument_math", nullptr, {"math", "shadow-matrix", "--plane", "0,1,0,0", "--light", "nan,5,0,1"}, 4, "--light"});
+  cases.push_back({"infinite_argument_math", nullptr, {"math", "shadow-matrix", "--plane", "0,inf,0,0", "--light", "0,5,0,1"}, 4, "--plane"});
+  cases.push_back({"overflow_argument_math", nullptr, {"math", "perspective", "--fovy-deg", "60", "--aspect", "1e999", "--near", "1"}, 4, "--aspect"});
+  cases.push_back({"out_of_range_math", nullptr, {"math", "perspective", "--fovy-deg", "60", "--aspect", "1", "--near", "-1"}, 4, "near"});
+  cases.push_back({"unknown_layout_math", nullptr, {"math", "shadow-matrix", "--plane", "0,1,0,0", "--light", "0,5,0,1", "--layout", "colmajor"}, 4, "--layout"});
+  for (const std::string sub : {"mesh-report", "silhouette"}) {
+    std::vector<std::string> base = {"math", sub, "--mesh"};
+    const auto mesh_case = [&](const std::string& defect, const std::string& file, const std::string& text, const std::string& mention) {
+      std::vector<std::string> a = base;
+      a.push_back("@/" + file);
+      if (sub == "silhouette") a.insert(a.end(), {"--light", "0,5,0,1"});
+      cases.push_back({defect + "_math_" + sub,
+                       text.empty() ? std::function<void(const fs::path&)>([](const fs::path&) {})
+                                    : std::function<void(const fs::path&)>([file, text](const fs::path& dir) { write_text(dir / file, text); }),
+                       a, 4, mention});
+    };
+    mesh_case("missing_file", "none.obj", "", "no such file");
+    mesh_case("obj_nan_vertex", "nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", "vertex 2 is NaN or infinite");
+    mesh_case("obj_inf_vertex", "inf.obj", "v 0 0 0\nv 0 0 0\nv 0 1 INF\nf 1 2 3\n", "vertex 3 is NaN or infinite");
+    mesh_case("obj_overflow_vertex", "big.obj", "v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n", "vertex 2 is NaN or infinite");
+    mesh_case("obj_missing_coordinate", "short.obj", "v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n", "vertex 2 has fewer than 3");
+    mesh_case("obj_garbage_coordinate", "junk.obj", "v 0 0 0\nv 1 zero 0\nv 0 1 0\nf 1 2 3\n", "'zero'");
+    mesh_case("obj_index_out_of_range", "idx.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", "uses vertex 4");
+    mesh_case("obj_index_zero", "zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "--mesh");
+    mesh_case("empty_mesh", "empty.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n", "no triangles");
+    mesh_case("empty_file", "nothing.obj", "\n", "no triangles");
+    mesh_case("truncated_gltf", "cut.gltf", R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 12)", "cut.gltf");
+    mesh_case("binary_garbage_glb", "junk.glb", std::string("glTF\x02\x00\x00\x00\xff\xff\xff\x7f", 12), "junk.glb");
+    mesh_case("unknown_format", "mesh.ply", "ply\n", "unknown mesh format");
+  }
+
+  // Known bugs in code still being written (issue 7's compare / export), reported to its owner
+  // rather than patched here: each stays an expected failure until fixed, then XPASS says so.
+  for (Case& c : cases) {
+    const auto ends_with = [&](const std::string& suffix) {
+      return c.name.size() >= suffix.size() && c.name.compare(c.name.size() - suffix.size(), suffix.size(), suffix) == 0;
+    };
+    if (c.name != "unknown_scene_export" && c.name != "jobs_negative_export" && c.name != "missing_file_export" &&
+        (ends_with("_export") || ends_with("_export_names_file")))
+      c.known_bug = "export creates OUT/scenes before loading the scenes and writes the pack in place: a failed export "
+                    "leaves a partial pack (needs a temporary folder renamed when complete)";
+    if (c.name == "truncated_image_compare" || c.name == "absurd_header_compare" || c.name == "absurd_header_reference_compare")
+      c.known_bug = "compare: libpng (through OpenImageIO) prints its own 'libpng error' / 'PNG read error' lines on stderr "
+                    "around ours (3 lines, the last not ours)";
+    if (c.name == "unknown_technique_compare")
+      c.known_bug = "compare --technique accepts an unknown technique (falls back to the strictest threshold and exits 0)";
+  }
+  return cases;
+}
+
+// ------------------------------------------------------------------------------------ the test
+
+class BadInput : public ::testing::TestWithParam<Case> {};
+
+TEST_P(BadInput, OneLineNamedAndTheDesignExitCode) {
+  const Case& c = GetParam();
+  const fs::path dir = fs::path(::testing::TempDir()) / ("shadowref-bad-input-" + c.name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  if (c.setup) c.setup(dir);
+  // The watchdog turns a hang into exit 124 (a failure with its own message).
+  std::vector<std::string> argv = {"/usr/bin/timeout", "120", SHADOWREF_EXE};
+  for (const std::string& a : c.args) argv.push_back(expand(a, dir));
+  std::string cmdline;
+  for (std::size_t i = 2; i < argv.size(); ++i) cmdline += argv[i] + " ";
+  const CommandResult r = run_command(argv);
+  ASSERT_NE(r.exit_code, 124) << cmdline << "\nhung (killed after 120 s)";
+  // Every check adds to `problems`, so that a known bug can be an expected failure as a whole.
+  std::vector<std::string> problems;
+  const auto check = [&](bool ok, const std::string& what) {
+    if (!ok) problems.push_back(what);
+  };
+  check(r.exit_code == c.exit_code, "exit code " + std::to_string(r.exit_code) + ", expected " + std::to_string(c.exit_code));
+  check(r.out.empty(), "stdout is not empty: " + r.out.substr(0, 200));
+  check(!r.err.empty() && r.err.back() == '\n', "stderr is empty or does not end with a newline");
+  const auto lines = std::count(r.err.begin(), r.err.end(), '\n');
+  if (c.one_line) check(lines == 1, std::to_string(lines) + " lines on stderr, expected one");
+  std::string last = r.err.empty() ? r.err : r.err.substr(0, r.err.size() - 1);
+  last = last.substr(last.rfind('\n') == std::string::npos ? 0 : last.rfind('\n') + 1);
+  check(last.rfind("shadowref " + c.args.front(), 0) == 0, "the last line does not start with 'shadowref " + c.args.front() + "'");
+  const std::string mention = expand(c.must_mention, dir);
+  check(last.find(mention) != std::string::npos, "the last line does not name '" + mention + "'");
+  for (const char* crash : {"terminate called", "Sanitizer", "runtime error", "Segmentation", "Aborted", "std::bad_alloc"})
+    check(r.err.find(crash) == std::string::npos, std::string("stderr shows a crash: ") + crash);
+  check(!fs::exists(dir / "out") && !fs::exists(dir / "file" / "out"), "the failed command left an output folder");
+  fs::remove_all(dir);
+  std::string report;
+  for (const std::string& p : problems) report += "  - " + p + "\n";
+  report += cmdline + "\nstderr:\n" + r.err;
+  if (!c.known_bug.empty()) {
+    if (problems.empty()) FAIL() << "XPASS: the known bug is fixed, drop known_bug from this case: " << c.known_bug;
+    GTEST_SKIP() << "XFAIL (known bug, reported): " << c.known_bug << "\n" << report;
+  }
+  EXPECT_TRUE(problems.empty()) << report;
+}
+
+INSTANTIATE_TEST_SUITE_P(Table, BadInput, ::testing::ValuesIn(make_cases()),
+                         [](const ::testing::TestParamInfo<Case>& param_info) {
+                           std::string n = param_info.param.name;
+                           std::replace(n.begin(), n.end(), '-', '_');
+                           return n;
+                         });
+
+}  // namespace
+}  // namespace shadowref::test

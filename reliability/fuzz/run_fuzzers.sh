@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# run_fuzzers.sh — builds the libFuzzer targets with clang (ASan + UBSan + libFuzzer) in a build
+# folder of their own and runs each for a bounded time on a copy of its seed corpus.
+#
+#   reliability/fuzz/run_fuzzers.sh [--smoke | --seconds N] [--build-dir DIR] [--jobs J] [TARGET...]
+#     --smoke       8 s per target (5 targets: 40 s of fuzzing; what `ctest` runs)
+#     --seconds N   N s per target (the long run in reliability/README.md uses 600)
+#     --build-dir   default build/fuzz
+#     TARGET        scene_fuzzer obj_fuzzer gltf_fuzzer mask_compare_fuzzer math_args_fuzzer (default: all)
+# Exit: 0 nothing found, 1 a target crashed, leaked, hung or ran out of memory (the input is kept
+# in DIR/artifacts/, and the log in DIR/logs/), 77 clang or libFuzzer is not installed (skipped).
+# New inputs found go to DIR/corpus/<target>/, never into the seed corpora of the repository.
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+root="$(cd "$here/../.." && pwd)"
+seconds=8
+build="$root/build/fuzz"
+jobs=2
+targets=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --smoke) seconds=8 ;;
+    --seconds) seconds="$2"; shift ;;
+    --build-dir) build="$2"; shift ;;
+    --jobs) jobs="$2"; shift ;;
+    -h|--help) sed -n 2,14p "$0"; exit 0 ;;
+    *) targets+=("$1") ;;
+  esac
+  shift
+done
+[ ${#targets[@]} -gt 0 ] || targets=(scene_fuzzer obj_fuzzer gltf_fuzzer mask_compare_fuzzer math_args_fuzzer)
+
+cxx="$(command -v clang++ || command -v clang++-14 || true)"
+cc="$(command -v clang || command -v clang-14 || true)"
+if [ -z "$cxx" ] || [ -z "$cc" ] || ! echo 'extern "C" int LLVMFuzzerTestOneInput(const char*, unsigned long) { return 0; }' |
+     "$cxx" -x c++ -fsanitize=fuzzer - -o /dev/null 2>/dev/null; then
+  echo "run_fuzzers.sh: SKIPPED: clang++ with libFuzzer not found (apt-get install clang libclang-rt-14-dev)"
+  exit 77
+fi
+
+flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer -gline-tables-only"
+if [ ! -f "$build/CMakeCache.txt" ]; then
+  cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_COMPILER="$cc" -DCMAKE_CXX_COMPILER="$cxx" \
+    -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_C_FLAGS="$flags" -DSHADOWREF_FUZZ=ON -DSHADOWREF_FUZZ_SMOKE=OFF \
+    -DSHADOWREF_BUILD_BENCH=OFF >"$build.configure.log" 2>&1 || { cat "$build.configure.log"; exit 1; }
+fi
+start=$(date +%s)
+cmake --build "$build" -j "$jobs" --target "${targets[@]}" >"$build.build.log" 2>&1 || { tail -50 "$build.build.log"; exit 1; }
+echo "run_fuzzers.sh: built ${#targets[@]} target(s) in $(( $(date +%s) - start )) s; fuzzing ${seconds} s each"
+
+mkdir -p "$build/artifacts" "$build/logs"
+status=0
+printf '%-22s %8s %12s %10s %8s  %s\n' target seconds executions exec/s corpus result
+for t in "${targets[@]}"; do
+  seeds="$here/corpus/${t%_fuzzer}"
+  work="$build/corpus/$t"
+  mkdir -p "$work"
+  log="$build/logs/$t.log"
+  opts=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048 -max_len=65536
+        -print_final_stats=1 -artifact_prefix="$build/artifacts/$t-")
+  [ -f "$here/$t.dict" ] && opts+=(-dict="$here/$t.dict")
+  # Leaks are findings, except those wholly inside the system libraries named in lsan.supp
+  # (OpenImageIO keeps one 31-byte string for the process); matching a library needs full
+  # malloc stacks, which cost speed, so only the target that loads OpenImageIO pays for them.
+  asan="detect_leaks=1:allocator_may_return_null=0"
+  [ "$t" = mask_compare_fuzzer ] && asan="$asan:fast_unwind_on_malloc=0"
+  set +e
+  ASAN_OPTIONS="$asan" LSAN_OPTIONS="suppressions=$here/../lsan.supp:print_suppressions=0" UBSAN_OPTIONS="print_stacktrace=1" \
+    "$build/reliability/fuzz/$t" "${opts[@]}" "$work" "$seeds" >"$log" 2>&1
+  rc=$?
+  set -e
+  runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
+  rate=$(grep -o 'stat::average_exec_per_sec: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
+  size=$(find "$work" -type f | wc -l)
+  if [ $rc -eq 0 ]; then result=ok; else result="FOUND (exit $rc): see $log"; status=1; fi
+  printf '%-22s %8s %12s %10s %8s  %s\n' "$t" "$seconds" "${runs:-?}" "${rate:-?}" "$size" "$result"
+  if [ $rc -ne 0 ]; then grep -m5 -E 'ERROR|SUMMARY|runtime error|terminate|deadly|Test unit written' "$log" | sed 's/^/    /'; fi
+done
+exit $status
