@@ -354,22 +354,6 @@ std::vector<Case> make_cases() {
     mesh_case("unknown_format", "mesh.ply", "ply\n", "unknown mesh format");
   }
 
-  // Known bugs in code still being written (issue 7's compare / export), reported to its owner
-  // rather than patched here: each stays an expected failure until fixed, then XPASS says so.
-  for (Case& c : cases) {
-    const auto ends_with = [&](const std::string& suffix) {
-      return c.name.size() >= suffix.size() && c.name.compare(c.name.size() - suffix.size(), suffix.size(), suffix) == 0;
-    };
-    if (c.name != "unknown_scene_export" && c.name != "jobs_negative_export" && c.name != "missing_file_export" &&
-        (ends_with("_export") || ends_with("_export_names_file")))
-      c.known_bug = "export creates OUT/scenes before loading the scenes and writes the pack in place: a failed export "
-                    "leaves a partial pack (needs a temporary folder renamed when complete)";
-    if (c.name == "truncated_image_compare" || c.name == "absurd_header_compare" || c.name == "absurd_header_reference_compare")
-      c.known_bug = "compare: libpng (through OpenImageIO) prints its own 'libpng error' / 'PNG read error' lines on stderr "
-                    "around ours (3 lines, the last not ours)";
-    if (c.name == "unknown_technique_compare")
-      c.known_bug = "compare --technique accepts an unknown technique (falls back to the strictest threshold and exits 0)";
-  }
   return cases;
 }
 

@@ -6,6 +6,8 @@
 // numbers per mask and the verdict, or one JSON object with --json; writes the error image(s)
 // with --out. Exit: 0 pass, 1 quality warning, 2 fail, 3 size mismatch, 4 bad input.
 #include <CLI/CLI.hpp>
+
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
@@ -15,6 +17,7 @@
 #include <string>
 
 #include "command.hpp"
+#include "shadowref/scene/scene.hpp"
 #include "shadowref/compare/compare.hpp"
 #include "shadowref/report/comparison_json.hpp"
 
@@ -49,6 +52,12 @@ void print_metrics(const std::string& name, const compare::MaskMetrics& m) {
 int run_compare(const CompareArgs& a) {
   std::string technique = a.technique;
   std::string technique_source = "--technique";
+  if (!technique.empty() &&
+      std::find(scene::kTechniques.begin(), scene::kTechniques.end(), technique) == scene::kTechniques.end()) {
+    std::string known;
+    for (const char* t : scene::kTechniques) known += (known.empty() ? "" : ", ") + std::string(t);
+    throw BadInput("--technique '" + technique + "': unknown technique (expected one of " + known + ")");
+  }
   if (technique.empty()) {
     technique = technique_from_render_json(a.candidate);
     technique_source = "render.json";

@@ -15,6 +15,7 @@
 // Every matrix comes from mathlib (view.hpp, projection.hpp, shadow_matrix.hpp, shadow_map.hpp,
 // d3dx.hpp) through scene/camera.hpp: the ones our renderer and the reference use.
 #include <CLI/CLI.hpp>
+#include <unistd.h>
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
@@ -233,23 +234,48 @@ void run_export(const ExportArgs& a) {
   } catch (const std::invalid_argument& e) {
     throw BadInput(e.what());
   }
-  const fs::path out = a.out;
+  // Every scene is loaded and validated before anything is written: a bad scene leaves no pack.
+  std::vector<scene::Scene> scenes;
+  for (const fs::path& f : files) {
+    try {
+      scenes.push_back(scene::load_scene(f));
+    } catch (const scene::SceneError& e) {
+      throw BadInput(e.what());
+    }
+  }
+  // The pack is written into a staging folder beside --out and renamed into place when complete,
+  // so an interrupted or failed export never leaves a folder that looks like a pack.
+  const fs::path final_out = fs::absolute(fs::path(a.out)).lexically_normal();
   std::error_code ec;
+  if (fs::exists(final_out, ec)) {
+    const bool is_pack = fs::exists(final_out / "manifest.json", ec);
+    const bool is_empty = fs::is_directory(final_out, ec) && fs::is_empty(final_out, ec);
+    if (!is_pack && !is_empty)
+      throw BadInput("--out " + a.out + ": exists and is not a shadowref pack (no manifest.json): choose another folder");
+  }
+  fs::create_directories(final_out.parent_path(), ec);
+  if (ec) throw BadInput("--out " + a.out + ": " + ec.message());
+  const fs::path out = final_out.parent_path() / ("." + final_out.filename().string() + ".partial-" + std::to_string(::getpid()));
+  fs::remove_all(out, ec);
   fs::create_directories(out / "scenes", ec);
   if (ec) throw BadInput("--out " + a.out + ": " + ec.message());
+  struct Staging {
+    fs::path dir;
+    bool done = false;
+    ~Staging() {
+      std::error_code ignored;
+      if (!done) fs::remove_all(dir, ignored);
+    }
+  } staging{out};
   conform::ReferenceSettings settings;
   settings.threads = a.jobs;
   json manifest;
   manifest["tool"] = "shadowref export";
   manifest["mask_values"] = {{"lit", 255}, {"shadowed", 0}, {"no_surface", 128}};
   manifest["scenes"] = json::array();
-  for (const fs::path& f : files) {
-    scene::Scene s;
-    try {
-      s = scene::load_scene(f);
-    } catch (const scene::SceneError& e) {
-      throw BadInput(e.what());
-    }
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    const fs::path& f = files[k];
+    const scene::Scene& s = scenes[k];
     const fs::path dir = out / s.name;
     fs::create_directories(dir / "meshes");
     // The scene file, and the mesh files it names next to it (the same relative paths).
@@ -292,9 +318,13 @@ void run_export(const ExportArgs& a) {
     std::printf("exported %s (%zu objects, %zu light(s), reference %s)\n", s.name.c_str(), s.objects.size(),
                 s.lights.size(), ref.computed ? "computed" : "cached");
   }
-  write_text(out / "manifest.json", manifest.dump(2) + "\n");
   write_text(out / "README.md", readme(manifest));
-  std::printf("pack: %s (README.md says what to render and how to name the files)\n", fs::absolute(out).string().c_str());
+  write_text(out / "manifest.json", manifest.dump(2) + "\n");  // last: its presence marks a complete pack
+  fs::remove_all(final_out, ec);
+  fs::rename(out, final_out, ec);
+  if (ec) throw BadInput("--out " + a.out + ": cannot move the pack into place: " + ec.message());
+  staging.done = true;
+  std::printf("pack: %s (README.md says what to render and how to name the files)\n", final_out.string().c_str());
 }
 
 }  // namespace

@@ -3,10 +3,43 @@
 #include "shadowref/compare/mask_image.hpp"
 
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <system_error>
 
 namespace shadowref::compare {
+namespace {
+
+// Images larger than this are refused before their pixels are allocated (the scene loader's own
+// resolution limit is 16384 on a side).
+constexpr std::size_t kMaxPixels = std::size_t{16384} * 16384;
+
+// libpng, inside OpenImageIO, writes its own "libpng error: …" lines to stderr when a stream is
+// truncated or corrupt; the command line promises ONE line naming the file, which we print from
+// the exception. So stderr goes to /dev/null while a file is decoded. Process-wide, but only for
+// the decode of one image, during which shadowref itself prints nothing.
+class QuietStderr {
+ public:
+  QuietStderr() : saved_(::dup(2)) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    if (saved_ >= 0 && null >= 0) ::dup2(null, 2);
+    if (null >= 0) ::close(null);
+  }
+  ~QuietStderr() {
+    if (saved_ >= 0) {
+      ::dup2(saved_, 2);
+      ::close(saved_);
+    }
+  }
+  QuietStderr(const QuietStderr&) = delete;
+  QuietStderr& operator=(const QuietStderr&) = delete;
+
+ private:
+  int saved_;
+};
+
+}  // namespace
 
 Image8 read_image8(const std::filesystem::path& file, int channels) {
   const auto bad = [&](const std::string& what) {
@@ -15,14 +48,23 @@ Image8 read_image8(const std::filesystem::path& file, int channels) {
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) throw bad("no such file");
   if (!std::filesystem::is_regular_file(file, ec)) throw bad("not a regular file");
+  QuietStderr quiet;
+  // OpenImageIO prints errors nobody retrieved when their holder dies (at exit for the global
+  // queue); we retrieve every error we act on and report it in our own one line.
+  static const bool no_uncaught_printing = OIIO::attribute("oiio:print_uncaught_errors", 0);
+  (void)no_uncaught_printing;
   auto in = OIIO::ImageInput::open(file.string());
   if (!in) {
     std::string why = OIIO::geterror();
     if (why.empty()) why = "not an image OpenImageIO can read";
+    const auto newline = why.find('\n');  // several queued messages: the first says it
+    if (newline != std::string::npos) why.resize(newline);
     throw bad("cannot open: " + why);
   }
   const OIIO::ImageSpec& spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.depth != 1) throw bad("not a 2D image");
+  if (static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) > kMaxPixels)
+    throw bad(std::to_string(spec.width) + " x " + std::to_string(spec.height) + " pixels: larger than 16384 x 16384");
   if (spec.nchannels != channels)
     throw bad("has " + std::to_string(spec.nchannels) + " channel(s), expected " + std::to_string(channels) +
               (channels == 1 ? " (8-bit grey: 255 lit, 0 shadowed, 128 no surface)" : ""));
