@@ -64,6 +64,27 @@ inline std::optional<Error> check_convention(const ClipConvention& conv) {
   return std::nullopt;
 }
 
+// The depth rows (third and fourth) of a finite perspective, in GLM's expression order.
+template <class T>
+void finite_depth_rows(Mat4<T>& m, T s, T near, T far, DepthRange depth) {
+  m(3, 2) = s;
+  if (depth == DepthRange::NegOneToOne) {
+    m(2, 2) = s * (far + near) / (far - near);
+    m(2, 3) = -(T(2) * far * near) / (far - near);
+  } else {
+    m(2, 2) = s * far / (far - near);
+    m(2, 3) = -(far * near) / (far - near);
+  }
+}
+
+// The depth rows of the infinite form (the limit far → ∞) with Lengyel's epsilon.
+template <class T>
+void infinite_depth_rows(Mat4<T>& m, T s, T near, T epsilon, DepthRange depth) {
+  m(3, 2) = s;
+  m(2, 2) = s * (T(1) - epsilon);
+  m(2, 3) = depth == DepthRange::NegOneToOne ? (epsilon - T(2)) * near : (epsilon - T(1)) * near;
+}
+
 }  // namespace detail
 
 // Finite perspective from the vertical field of view (radians), aspect = width / height,
@@ -82,14 +103,7 @@ Result<Mat4<T>> perspective(T fovy, T aspect, T near, T far, ClipConvention conv
   Mat4<T> m = Mat4<T>::Zero();
   m(0, 0) = T(1) / (aspect * tan_half);
   m(1, 1) = T(1) / tan_half;
-  m(3, 2) = s;
-  if (conv.depth == DepthRange::NegOneToOne) {
-    m(2, 2) = s * (far + near) / (far - near);
-    m(2, 3) = -(T(2) * far * near) / (far - near);
-  } else {
-    m(2, 2) = s * far / (far - near);
-    m(2, 3) = -(far * near) / (far - near);
-  }
+  detail::finite_depth_rows(m, s, near, far, conv.depth);
   return detail::finish(m, conv);
 }
 
@@ -108,9 +122,7 @@ Result<Mat4<T>> perspective_infinite(T fovy, T aspect, T near, ClipConvention co
   Mat4<T> m = Mat4<T>::Zero();
   m(0, 0) = T(1) / (aspect * tan_half);
   m(1, 1) = T(1) / tan_half;
-  m(3, 2) = s;
-  m(2, 2) = s * (T(1) - epsilon);
-  m(2, 3) = conv.depth == DepthRange::NegOneToOne ? (epsilon - T(2)) * near : (epsilon - T(1)) * near;
+  detail::infinite_depth_rows(m, s, near, epsilon, conv.depth);
   return detail::finish(m, conv);
 }
 
@@ -131,14 +143,7 @@ Result<Mat4<T>> frustum(T l, T r, T b, T t, T near, T far, ClipConvention conv =
   m(1, 1) = (T(2) * near) / (t - b);
   m(0, 2) = -s * (r + l) / (r - l);
   m(1, 2) = -s * (t + b) / (t - b);
-  m(3, 2) = s;
-  if (conv.depth == DepthRange::NegOneToOne) {
-    m(2, 2) = s * (far + near) / (far - near);
-    m(2, 3) = -(T(2) * far * near) / (far - near);
-  } else {
-    m(2, 2) = s * far / (far - near);
-    m(2, 3) = -(far * near) / (far - near);
-  }
+  detail::finite_depth_rows(m, s, near, far, conv.depth);
   return detail::finish(m, conv);
 }
 
@@ -158,9 +163,7 @@ Result<Mat4<T>> frustum_infinite(T l, T r, T b, T t, T near, ClipConvention conv
   m(1, 1) = (T(2) * near) / (t - b);
   m(0, 2) = -s * (r + l) / (r - l);
   m(1, 2) = -s * (t + b) / (t - b);
-  m(3, 2) = s;
-  m(2, 2) = s * (T(1) - epsilon);
-  m(2, 3) = conv.depth == DepthRange::NegOneToOne ? (epsilon - T(2)) * near : (epsilon - T(1)) * near;
+  detail::infinite_depth_rows(m, s, near, epsilon, conv.depth);
   return detail::finish(m, conv);
 }
 
