@@ -97,6 +97,10 @@ struct Frame {
   Image8 read_stencil_mask(std::uint8_t value, bool value_is_lit) const;
   // Any mask already drawn into the colour buffer as grey (red channel), rows flipped.
   Image8 read_grey() const;
+  // Attached shadows: per light, a mask that is shadowed where the visible surface faces away from
+  // the light (n · l <= 0), lit elsewhere, kMaskNoSurface where there is none. Clears the target:
+  // call before drawing the picture.
+  std::vector<Image8> facing_masks(const Mat4<float>& clip) const;
   // The colour buffer as RGB, rows flipped.
   Image8 read_rgb() const;
   // The light intensity each light contributes: lighting adds up, ambient once.

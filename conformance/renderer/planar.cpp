@@ -40,24 +40,7 @@ void render_planar(Frame& frame) {
   if (!receiver || !plane) frame.result.notes.push_back("the scene has no receiver: planar shadows cast nothing");
 
   // Attached shadows, one facing mask per light (before the picture: these passes clear it).
-  std::vector<Image8> facing;
-  const Program& surface = frame.programs.surface;
-  for (std::size_t i = 0; i < frame.scene.lights.size(); ++i) {
-    frame.bind_target(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, static_cast<float>(kMaskNoSurface) / 255.0f);
-    gl.Enable(GL_DEPTH_TEST);
-    gl.DepthFunc(GL_LESS);
-    gl.Disable(GL_BLEND);
-    gl.Disable(GL_STENCIL_TEST);
-    gl.UseProgram(surface.id);
-    set_matrix(gl, surface.clip_from_world, clip);
-    set_matrix(gl, surface.shadow_from_world, Mat4<float>::Identity());
-    gl.Uniform1i(surface.mode, 2);
-    gl.Uniform1i(surface.shadow, 0);
-    const Vec4<float> l = frame.light(i).cast<float>();
-    gl.Uniform4f(surface.light, l.x(), l.y(), l.z(), l.w());
-    for (const GpuMesh& m : frame.objects) m.draw();
-    facing.push_back(frame.read_grey());
-  }
+  const std::vector<Image8> facing = frame.facing_masks(clip);
 
   // The picture without shadows: ambient, then every light.
   frame.ambient_pass(clip);

@@ -306,6 +306,28 @@ Image8 Frame::read_stencil_mask(std::uint8_t value, bool value_is_lit) const {
   return Image8{width(), height(), 1, flip_rows(mask, width(), height(), 1)};
 }
 
+std::vector<Image8> Frame::facing_masks(const Mat4<float>& clip) const {
+  std::vector<Image8> masks;
+  const Program& p = programs.surface;
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+    bind_target(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, static_cast<float>(kMaskNoSurface) / 255.0f);
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_LESS);
+    gl.Disable(GL_BLEND);
+    gl.Disable(GL_STENCIL_TEST);
+    gl.UseProgram(p.id);
+    set_matrix(gl, p.clip_from_world, clip);
+    set_matrix(gl, p.shadow_from_world, Mat4<float>::Identity());
+    gl.Uniform1i(p.mode, 2);    // the 0/1 mask
+    gl.Uniform1i(p.shadow, 0);  // no map: the facing test alone
+    const Vec4<float> l = light(i).cast<float>();
+    gl.Uniform4f(p.light, l.x(), l.y(), l.z(), l.w());
+    for (const GpuMesh& m : objects) m.draw();
+    masks.push_back(read_grey());
+  }
+  return masks;
+}
+
 Image8 Frame::read_grey() const {
   gl.BindFramebuffer(GL_FRAMEBUFFER, target_fbo);
   gl.PixelStorei(GL_PACK_ALIGNMENT, 1);

@@ -1,6 +1,7 @@
 // planar_transposed.cpp — planar projected shadows with the shadow matrix transposed: the D3DX
 // layout (row vectors) fed to a column-vector pipeline, the classic copy-paste bug between
 // D3DXMatrixShadow and OpenGL. The right version is conformance/renderer/planar.cpp.
+#include <vector>
 #include "frame.hpp"
 #include "shadowref/shadow_matrix.hpp"
 #include "wrong_variants.hpp"
@@ -15,6 +16,7 @@ void render_planar_transposed(Frame& frame) {
   const Mat4<float> clip = to_float(pv);
   const std::optional<std::size_t> receiver = frame.scene.receiver_index();
   const std::optional<Plane<double>> plane = scene::receiver_plane(frame.scene);
+  const std::vector<Image8> facing = frame.facing_masks(clip);  // before the picture: it clears
   frame.ambient_pass(clip);
   for (std::size_t i = 0; i < frame.scene.lights.size(); ++i) frame.light_pass(clip, i);
   for (std::size_t i = 0; i < frame.scene.lights.size(); ++i) {
@@ -49,7 +51,11 @@ void render_planar_transposed(Frame& frame) {
       gl.DepthFunc(GL_LESS);
       gl.DepthMask(GL_TRUE);
     }
-    frame.result.masks.push_back(frame.read_stencil_mask(2, /*value_is_lit=*/false));
+    // The same attached-shadow rule as the right technique, so the transposition is the only bug.
+    Image8 mask = frame.read_stencil_mask(2, /*value_is_lit=*/false);
+    for (std::size_t px = 0; px < mask.pixels.size(); ++px)
+      if (mask.pixels[px] == kMaskLit && facing[i].pixels[px] == kMaskShadowed) mask.pixels[px] = kMaskShadowed;
+    frame.result.masks.push_back(std::move(mask));
   }
   frame.result.shaded = frame.read_rgb();
 }
