@@ -102,10 +102,10 @@ Case& get_case(const std::string& name) {
   c.light = sc::homogeneous(c.scene.lights.front());
   c.offset = c.embree->epsilon();
   for (std::size_t i = 0; i < c.p.size(); ++i) {
-    const ref::ShadowRay r = ref::make_shadow_ray(c.p[i], c.n[i], c.light, c.offset);
-    if (r.kind != ref::ShadowRayKind::Trace) continue;
-    c.rays.push_back(r.ray);
-    c.tfar.push_back(r.ray.tfar);
+    RTCRay ray{};
+    if (ref::make_shadow_ray(c.p[i], c.n[i], c.light, c.offset, ray) != ref::ShadowRayKind::Trace) continue;
+    c.rays.push_back(ray);
+    c.tfar.push_back(ray.tfar);
   }
   return c;
 }
@@ -169,8 +169,9 @@ void BM_ShadowRays_Ours(benchmark::State& state, const std::string& name) {
           rays.clear();
           const std::size_t end = std::min(c.p.size(), (b + 1) * kBlock);
           for (std::size_t i = b * kBlock; i < end; ++i) {
-            const ref::ShadowRay s = ref::make_shadow_ray(c.p[i], c.n[i], c.light, c.offset);
-            if (s.kind == ref::ShadowRayKind::Trace) rays.push_back(s.ray);
+            rays.emplace_back();  // as render.cpp's add_ray: built in its slot
+            if (ref::make_shadow_ray(c.p[i], c.n[i], c.light, c.offset, rays.back()) != ref::ShadowRayKind::Trace)
+              rays.pop_back();
           }
           for (std::size_t first = 0; first < rays.size(); first += kChunk)
             rtcOccluded1M(c.embree->handle(), &ctx, rays.data() + first,

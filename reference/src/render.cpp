@@ -197,11 +197,11 @@ class Renderer {
 
   static std::int32_t add_ray(const Surface& s, const Vec4<double>& L, double offset, std::vector<RTCRay>& rays) {
     if (!s.hit) return kSlotShadowed;  // never read
-    const ShadowRay r = make_shadow_ray(s.p, s.n, L, offset);
-    if (r.kind == ShadowRayKind::Attached) return kSlotShadowed;
-    if (r.kind == ShadowRayKind::Touching) return kSlotLit;
-    rays.push_back(r.ray);
-    return static_cast<std::int32_t>(rays.size() - 1);
+    rays.emplace_back();  // the ray is built in its stream slot (shadow_ray.hpp: no copy)
+    const ShadowRayKind kind = make_shadow_ray(s.p, s.n, L, offset, rays.back());
+    if (kind == ShadowRayKind::Trace) return static_cast<std::int32_t>(rays.size() - 1);
+    rays.pop_back();
+    return kind == ShadowRayKind::Attached ? kSlotShadowed : kSlotLit;
   }
 
   static bool slot_lit(std::int32_t slot, const std::vector<RTCRay>& rays) {

@@ -27,46 +27,14 @@ double facing(const Vec3<double>& p, const Vec3<double>& n, const Vec4<double>& 
   return len > 0 ? n.dot(d) / len : 0.0;
 }
 
-ShadowRay make_shadow_ray(const Vec3<double>& p, const Vec3<double>& n, const Vec4<double>& L, double offset) {
-  ShadowRay out;
-  if (!(facing(p, n, L) > 0)) return out;
-  const Vec3<double> o = p + offset * n;
-  Vec3<double> d;
-  double tfar = std::numeric_limits<double>::infinity();
-  if (L[3] == 0) {
-    d = L.head<3>().normalized();
-  } else {
-    d = L.head<3>() - o;
-    const double len = d.norm();
-    if (len <= 2 * offset) {
-      out.kind = ShadowRayKind::Touching;
-      return out;
-    }
-    d /= len;
-    tfar = len - offset;
-  }
-  out.kind = ShadowRayKind::Trace;
-  RTCRay& r = out.ray;
-  r.org_x = static_cast<float>(o.x());
-  r.org_y = static_cast<float>(o.y());
-  r.org_z = static_cast<float>(o.z());
-  r.dir_x = static_cast<float>(d.x());
-  r.dir_y = static_cast<float>(d.y());
-  r.dir_z = static_cast<float>(d.z());
-  r.tnear = 0.0f;
-  r.tfar = static_cast<float>(tfar);
-  r.mask = 0xFFFFFFFFu;
-  r.flags = 0;
-  return out;
-}
-
 bool lit(const EmbreeScene& scene, const Vec3<double>& p, const Vec3<double>& n, const Vec4<double>& L, double offset) {
-  ShadowRay s = make_shadow_ray(p, n, L, offset);
-  if (s.kind != ShadowRayKind::Trace) return s.kind == ShadowRayKind::Touching;
+  RTCRay ray{};
+  const ShadowRayKind kind = make_shadow_ray(p, n, L, offset, ray);
+  if (kind != ShadowRayKind::Trace) return kind == ShadowRayKind::Touching;
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
-  rtcOccluded1(scene.handle(), &ctx, &s.ray);
-  return !(s.ray.tfar < 0);  // Embree sets tfar to −inf on a hit
+  rtcOccluded1(scene.handle(), &ctx, &ray);
+  return !(ray.tfar < 0);  // Embree sets tfar to −inf on a hit
 }
 
 double lit_fraction(const EmbreeScene& scene, const Vec3<double>& p, const Vec3<double>& n, const scene::Light& light) {

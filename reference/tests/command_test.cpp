@@ -28,31 +28,40 @@ CommandRun run(const std::string& args) {
   return r;
 }
 
-const std::filesystem::path kTmp = std::filesystem::path(::testing::TempDir()) / "shadowref_reference_cli";
+// A fresh folder per test: CTest runs each test as its own process, in parallel, so a folder
+// shared between tests (one of them clearing it) made them race.
+std::filesystem::path fresh_dir() {
+  const auto dir = std::filesystem::path(::testing::TempDir()) /
+                   (std::string("shadowref_reference_cli_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
 
 TEST(ReferenceCommand, WritesTheFourImages) {
-  std::filesystem::remove_all(kTmp);
-  const CommandRun r = run("reference --scene " SHADOWREF_SCENES_DIR "/ground_sphere.json --spp 1 --out " + (kTmp / "gs").string());
+  const auto dir = fresh_dir();
+  const CommandRun r = run("reference --scene " SHADOWREF_SCENES_DIR "/ground_sphere.json --spp 1 --out " + (dir / "gs").string());
   EXPECT_EQ(r.exit_code, 0) << r.output;
-  for (const char* f : {"mask.png", "shaded.png", "visibility.exr", "decided.png"}) EXPECT_TRUE(std::filesystem::exists(kTmp / "gs" / f)) << f;
+  for (const char* f : {"mask.png", "shaded.png", "visibility.exr", "decided.png"}) EXPECT_TRUE(std::filesystem::exists(dir / "gs" / f)) << f;
 }
 
 TEST(ReferenceCommand, BadSceneNamesJsonPathAndExits4) {
-  std::filesystem::create_directories(kTmp);
-  const auto bad = kTmp / "bad.json";
+  const auto dir = fresh_dir();
+  const auto bad = dir / "bad.json";
   std::ofstream(bad) << R"({"name": "bad", "camera": {"position": [0, 4, 8], "target": [0, 0, 0]},
     "lights": [{"type": "point", "position": [0, 5, 0]}],
     "objects": [{"shape": {"type": "plane", "size": [1, 1]}}, {"shape": {"type": "plane", "size": [1, 1]}},
                 {"shape": {"type": "sphere", "radius": -1}}]})";
-  const CommandRun r = run("reference --scene " + bad.string() + " --out " + (kTmp / "bad_out").string());
+  const CommandRun r = run("reference --scene " + bad.string() + " --out " + (dir / "bad_out").string());
   EXPECT_EQ(r.exit_code, 4);
   EXPECT_EQ(r.output, "shadowref reference: " + bad.string() + ": objects[2].shape.radius: must be > 0\n");
-  EXPECT_FALSE(std::filesystem::exists(kTmp / "bad_out"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad_out"));
 }
 
 TEST(ReferenceCommand, BadOptionsExit4) {
-  EXPECT_EQ(run("reference --scene " SHADOWREF_SCENES_DIR "/ground_sphere.json --spp 3 --out " + (kTmp / "x").string()).exit_code, 4);
-  EXPECT_EQ(run("reference --scene /nonexistent.json --out " + (kTmp / "x").string()).exit_code, 4);
+  const auto dir = fresh_dir();
+  EXPECT_EQ(run("reference --scene " SHADOWREF_SCENES_DIR "/ground_sphere.json --spp 3 --out " + (dir / "x").string()).exit_code, 4);
+  EXPECT_EQ(run("reference --scene /nonexistent.json --out " + (dir / "x").string()).exit_code, 4);
 }
 
 }  // namespace

@@ -55,7 +55,8 @@ TEST(Visibility, FacingAwayIsAttachedShadow) {
   const scene::Scene s = sphere_scene(R"({"type": "point", "position": [0, 5, 0]})");
   const EmbreeScene e(s);
   EXPECT_EQ(lit_fraction(e, Vec3<double>(0, 1, 0), -kUp, s.lights[0]), 0.0);
-  EXPECT_EQ(make_shadow_ray(Vec3<double>(0, 1, 0), -kUp, Vec4<double>(0, 5, 0, 1), e.epsilon()).kind, ShadowRayKind::Attached);
+  RTCRay ray{};
+  EXPECT_EQ(make_shadow_ray(Vec3<double>(0, 1, 0), -kUp, Vec4<double>(0, 5, 0, 1), e.epsilon(), ray), ShadowRayKind::Attached);
   EXPECT_EQ(lit_fraction(e, Vec3<double>(0, 3, 0), kUp, s.lights[0]), 1.0);
 }
 

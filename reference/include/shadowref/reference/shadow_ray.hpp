@@ -13,6 +13,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <limits>
 #include <vector>
 
 #include "shadowref/conventions.hpp"
@@ -36,14 +37,45 @@ enum class ShadowRayKind {
   Touching,  // a point light within 2 offsets of the start: lit (nothing fits in between), no ray
   Trace,     // `ray` decides
 };
-struct ShadowRay {
-  ShadowRayKind kind = ShadowRayKind::Attached;
-  RTCRay ray{};
-};
-
-// The shadow ray of rule 2 from p toward L. `offset` > 0 is the start offset along n (the
-// reference uses 1 and 4 epsilons); the ray is in float, as Embree wants it.
-ShadowRay make_shadow_ray(const Vec3<double>& p, const Vec3<double>& n, const Vec4<double>& L, double offset);
+// The shadow ray of rule 2 from p toward L, written into `ray` when the answer is Trace (`ray` is
+// left alone otherwise). `offset` > 0 is the start offset along n (the reference uses 1 and 4
+// epsilons); the ray is in float, as Embree wants it. Cost: one square root and one division per
+// component (a point light) or the normalisation of L (a directional light). Inline, and writing
+// straight into the caller's stream slot, because the reference builds one per sample and light
+// sample: returning the 48-byte ray by value made every copy into the stream a store-forwarding
+// stall (the fields are written 4 and 8 bytes at a time, then read 16 at a time), which perf
+// measured at half the time of building the stream.
+inline ShadowRayKind make_shadow_ray(const Vec3<double>& p, const Vec3<double>& n, const Vec4<double>& L, double offset,
+                                     RTCRay& ray) {
+  const bool directional = L[3] == 0;
+  // Rule 1 needs only the sign of n · (direction to L): facing() > 0 exactly when this is > 0,
+  // the division by the (positive) distance cannot change a sign, and a distance of 0 gives 0.
+  const Vec3<double> to_light = directional ? Vec3<double>(L.head<3>()) : Vec3<double>(L.head<3>() - p);
+  if (!(n.dot(to_light) > 0)) return ShadowRayKind::Attached;
+  const Vec3<double> o = p + offset * n;
+  Vec3<double> d;
+  double tfar = std::numeric_limits<double>::infinity();
+  if (directional) {
+    d = L.head<3>().normalized();
+  } else {
+    d = L.head<3>() - o;
+    const double len = d.norm();
+    if (len <= 2 * offset) return ShadowRayKind::Touching;
+    d /= len;
+    tfar = len - offset;
+  }
+  ray.org_x = static_cast<float>(o.x());
+  ray.org_y = static_cast<float>(o.y());
+  ray.org_z = static_cast<float>(o.z());
+  ray.dir_x = static_cast<float>(d.x());
+  ray.dir_y = static_cast<float>(d.y());
+  ray.dir_z = static_cast<float>(d.z());
+  ray.tnear = 0.0f;
+  ray.tfar = static_cast<float>(tfar);
+  ray.mask = 0xFFFFFFFFu;
+  ray.flags = 0;
+  return ShadowRayKind::Trace;
+}
 
 // Rule 1 and 2 for one light point with single-ray tracing: true when lit.
 class EmbreeScene;
