@@ -1,7 +1,6 @@
-// shadow_ray.cpp — light samples and shadow-ray construction (shadow_ray.hpp).
+// shadow_ray.cpp — light samples, the facing cosine and single-ray visibility (shadow_ray.hpp;
+// the ray construction itself is inline there).
 #include "shadowref/reference/shadow_ray.hpp"
-
-#include <limits>
 
 #include "shadowref/reference/embree_scene.hpp"
 
