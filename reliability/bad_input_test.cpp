@@ -248,6 +248,16 @@ std::vector<Case> make_cases() {
                      fs::resize_file(m, size / 2);
                    },
                    compare, 4, "@/cand/mask.png"});
+  // Cut inside the pixel data of a larger image: the error surfaces in read_image, not at open,
+  // and OpenImageIO's message there has three lines (its own, its PNG reader's, libpng's).
+  cases.push_back({"truncated_in_pixels_compare",
+                   [](const fs::path& dir) {
+                     write_mask_folder(dir / "ref", 256, 256, true);
+                     write_mask_folder(dir / "cand", 256, 256, false);
+                     const fs::path m = dir / "cand" / "mask.png";
+                     fs::resize_file(m, fs::file_size(m) * 3 / 4);
+                   },
+                   compare, 4, "@/cand/mask.png"});
   cases.push_back({"empty_image_compare",
                    [ref_ok](const fs::path& dir) {
                      ref_ok(dir);

@@ -39,6 +39,15 @@ class QuietStderr {
   int saved_;
 };
 
+// OpenImageIO queues one message per layer (ours, its PNG reader's, libpng's), one per line; the
+// first says it, and the command line promises one line.
+std::string first_line(std::string why, const char* if_empty) {
+  if (why.empty()) return if_empty;
+  const auto newline = why.find('\n');
+  if (newline != std::string::npos) why.resize(newline);
+  return why;
+}
+
 }  // namespace
 
 Image8 read_image8(const std::filesystem::path& file, int channels) {
@@ -54,13 +63,7 @@ Image8 read_image8(const std::filesystem::path& file, int channels) {
   static const bool no_uncaught_printing = OIIO::attribute("oiio:print_uncaught_errors", 0);
   (void)no_uncaught_printing;
   auto in = OIIO::ImageInput::open(file.string());
-  if (!in) {
-    std::string why = OIIO::geterror();
-    if (why.empty()) why = "not an image OpenImageIO can read";
-    const auto newline = why.find('\n');  // several queued messages: the first says it
-    if (newline != std::string::npos) why.resize(newline);
-    throw bad("cannot open: " + why);
-  }
+  if (!in) throw bad("cannot open: " + first_line(OIIO::geterror(), "not an image OpenImageIO can read"));
   const OIIO::ImageSpec& spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.depth != 1) throw bad("not a 2D image");
   if (static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) > kMaxPixels)
@@ -75,13 +78,10 @@ Image8 read_image8(const std::filesystem::path& file, int channels) {
   image.channels = channels;
   image.pixels.resize(image.pixel_count() * static_cast<std::size_t>(channels));
   // A truncated or corrupt PNG fails here (libpng reports the broken stream), not at open.
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, image.pixels.data())) {
-    std::string why = in->geterror();
-    if (why.empty()) why = "decoding failed";
-    throw bad("cannot read pixels (truncated or corrupt?): " + why);
-  }
+  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, image.pixels.data()))
+    throw bad("cannot read pixels (truncated or corrupt?): " + first_line(in->geterror(), "decoding failed"));
   // OpenImageIO may defer an error until close (libpng's CRC check at the end of the stream).
-  if (!in->close()) throw bad("cannot read pixels (truncated or corrupt?): " + in->geterror());
+  if (!in->close()) throw bad("cannot read pixels (truncated or corrupt?): " + first_line(in->geterror(), "closing failed"));
   return image;
 }
 
