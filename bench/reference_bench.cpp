@@ -41,7 +41,7 @@ constexpr int kResolution = 1024;
 constexpr std::size_t kBlock = 16384;  // queries per parallel task (both paths split alike)
 constexpr std::size_t kChunk = 4096;   // rays per rtcOccluded1M call, as in render.cpp
 
-// Flush-to-zero / denormals-are-zero for the tracing thread (PITFALLS.md), restored after.
+// Flush-to-zero / denormals-are-zero for the tracing thread (docs/dependencies.md), restored after.
 class Ftz {
  public:
   Ftz() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | 0x8040u); }

@@ -1,5 +1,5 @@
 # Every external dependency, found once, from Debian 12 packages (scripts/setup.sh installs them).
-# Facts about these packages are in ../shared/PITFALLS.md; the workarounds below cite it.
+# Facts about these packages are in docs/dependencies.md; the workarounds below cite it.
 find_package(Eigen3 3.4 REQUIRED CONFIG)
 find_package(glm REQUIRED CONFIG)
 find_package(nlohmann_json REQUIRED CONFIG)

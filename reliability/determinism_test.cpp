@@ -1,4 +1,4 @@
-// determinism_test.cpp — issue 9, item 4: the reference and the renderer produce byte-identical
+// determinism_test.cpp — the reference and the renderer produce byte-identical
 // images across two runs and across thread counts, for every scene of the default catalogue
 // (conformance/scenes/*.json, without the scenes tagged "large"), at a reduced resolution
 // (reduced_resolution.hpp: the longer side at most kMaxSide pixels) to keep the test small.

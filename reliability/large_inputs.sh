@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# large_inputs.sh — issue 9, item 5: a 5M-triangle mesh through `shadowref math mesh-report`,
+# large_inputs.sh — a 5M-triangle mesh through `shadowref math mesh-report`,
 # `math silhouette`, `reference` and `render`, each under /usr/bin/time -v: wall time and peak
 # RSS, printed as Markdown rows for bench/README.md's peak-memory table.
 #

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# run_asan.sh — issue 9, item 3: the whole test suite under AddressSanitizer + UndefinedBehaviorSanitizer.
+# run_asan.sh — the whole test suite under AddressSanitizer + UndefinedBehaviorSanitizer.
 # Configures the `asan` preset (CMakePresets.json: RelWithDebInfo, SHADOWREF_SANITIZE=ON, no
 # benchmarks) into BUILD (default build/asan), builds it, and runs every test but the fuzz smoke
 # run (which has its own ASan build) with the options below. Prints ctest's summaries; exits

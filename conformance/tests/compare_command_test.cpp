@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "run_command.hpp"
-#include "shadowref/compare/mask_image.hpp"
+#include "shadowref/outputs/image_io.hpp"
 
 namespace shadowref {
 namespace {
@@ -28,7 +28,7 @@ class CompareCommand : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(root); }
   static void grey(const fs::path& f, int w, int h, std::uint8_t v) {
-    compare::write_image8(compare::Image8{w, h, 1, std::vector<std::uint8_t>(static_cast<std::size_t>(w * h), v)}, f);
+    outputs::write_png(outputs::Image8{w, h, 1, std::vector<std::uint8_t>(static_cast<std::size_t>(w * h), v)}, f);
   }
   test::CommandResult compare(std::vector<std::string> extra = {}) {
     std::vector<std::string> a{SHADOWREF_EXE, "compare", "--reference", (root / "ref").string(), "--candidate",
@@ -75,7 +75,7 @@ TEST_F(CompareCommand, BadInputExits4WithOneLine) {
   }
   r = compare();
   EXPECT_EQ(r.exit_code, 4) << r.err;
-  compare::write_image8(compare::Image8{64, 64, 3, std::vector<std::uint8_t>(64 * 64 * 3, 255)}, root / "cand" / "mask.png");
+  outputs::write_png(outputs::Image8{64, 64, 3, std::vector<std::uint8_t>(64 * 64 * 3, 255)}, root / "cand" / "mask.png");
   r = compare();
   EXPECT_EQ(r.exit_code, 4);
   EXPECT_NE(r.err.find("3 channel"), std::string::npos) << r.err;

@@ -13,7 +13,7 @@
 #include <string>
 
 #include "run_command.hpp"
-#include "shadowref/compare/mask_image.hpp"
+#include "shadowref/outputs/image_io.hpp"
 #include "shadowref/report/html.hpp"
 
 namespace shadowref {
@@ -58,7 +58,7 @@ Dom load(const fs::path& page) {
 
 void write_mask(const fs::path& file, std::uint8_t v, int channels = 1) {
   fs::create_directories(file.parent_path());
-  compare::write_image8(compare::Image8{8, 8, channels, std::vector<std::uint8_t>(static_cast<std::size_t>(64 * channels), v)}, file);
+  outputs::write_png(outputs::Image8{8, 8, channels, std::vector<std::uint8_t>(static_cast<std::size_t>(64 * channels), v)}, file);
 }
 
 // A report.json-shaped object with `n` cases, each with its three mask images and a shaded one.

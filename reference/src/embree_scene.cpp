@@ -11,14 +11,14 @@ namespace {
 
 void check(RTCDevice device, const char* what) {
   const RTCError err = rtcGetDeviceError(device);
-  if (err != RTC_ERROR_NONE) throw std::runtime_error(std::string("Embree: ") + what + " failed (error " + std::to_string(static_cast<int>(err)) + ")");
+  if (err != RTC_ERROR_NONE) throw EmbreeError(std::string("Embree: ") + what + " failed (error " + std::to_string(static_cast<int>(err)) + ")");
 }
 
 }  // namespace
 
 EmbreeScene::EmbreeScene(const scene::Scene& scene) : source_(&scene) {
   device_ = rtcNewDevice(nullptr);
-  if (!device_) throw std::runtime_error("Embree: rtcNewDevice failed (error " + std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")");
+  if (!device_) throw EmbreeError("Embree: rtcNewDevice failed (error " + std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")");
   scene_ = rtcNewScene(device_);
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);

@@ -16,9 +16,12 @@
 #include <limits>
 #include <stdexcept>
 
+#include "shadowref/outputs/image.hpp"
+#include "shadowref/outputs/shading.hpp"
 #include "shadowref/reference/embree_scene.hpp"
 #include "shadowref/reference/shadow_ray.hpp"
 #include "shadowref/scene/camera.hpp"
+#include "shadowref/scene/prepared_scene.hpp"
 
 namespace shadowref::reference {
 namespace {
@@ -28,14 +31,13 @@ using Clock = std::chrono::steady_clock;
 constexpr int kTile = 16;                  // 16 × 16 pixels: coherent streams, enough tiles to balance
 constexpr std::size_t kStreamChunk = 4096; // rays per rtcOccluded1M call: big enough to amortise, small enough for L2
 constexpr int kNudge = 4;                  // the decided test's second start offset, in epsilons
-constexpr double kAmbient = 0.1;
 constexpr std::int32_t kSlotShadowed = -1; // attached shadow: no ray
 constexpr std::int32_t kSlotLit = -2;      // light touching the surface: no ray
-const Vec3<double> kBackground(0.05, 0.06, 0.09);
+const Vec3<double> kBackground(outputs::kBackground[0], outputs::kBackground[1], outputs::kBackground[2]);
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-// Embree asks for flush-to-zero and denormals-are-zero on the threads that trace (PITFALLS.md);
+// Embree asks for flush-to-zero and denormals-are-zero on the threads that trace (docs/dependencies.md);
 // the mode is per thread and changes other float results there, so it is set for one tile and
 // restored after, leaving TBB's worker threads as we found them.
 class FlushDenormalsGuard {
@@ -75,12 +77,14 @@ struct TileBuffers {
 
 class Renderer {
  public:
-  Renderer(const scene::Scene& scene, const Options& options, const EmbreeScene& embree, Images& out)
-      : scene_(scene), embree_(embree), out_(out), n_(options.samples_per_axis) {
-    const Mat4<double> view = scene::view_matrix<double>(scene.camera).value();
-    const Mat4<double> proj = scene::projection_matrix<double>(scene.camera, scene.width, scene.height).value();
-    inverse_view_proj_ = (proj * view).inverse();
-    for (const auto& l : scene.lights) lights_.push_back({&l, scene::homogeneous(l), light_samples(l)});
+  Renderer(const scene::PreparedScene& prepared, const Options& options, const EmbreeScene& embree, Images& out)
+      : scene_(*prepared.scene), embree_(embree), out_(out), n_(options.samples_per_axis) {
+    // The prepared scene's camera, in its run convention: the very matrices the renderer draws with.
+    inverse_view_proj_ = prepared.camera.clip_from_scene.inverse();
+    near_ndc_ = near_ndc_z(*prepared.convention);
+    far_ndc_ = far_ndc_z(*prepared.convention);
+    for (std::size_t i = 0; i < scene_.lights.size(); ++i)
+      lights_.push_back({&scene_.lights[i], prepared.lights[i], light_samples(scene_.lights[i])});
     sub_slots_ = 0;
     for (const auto& l : lights_) sub_slots_ += l.samples.size();
     centre_slots_ = 2 * lights_.size();
@@ -156,10 +160,11 @@ class Renderer {
       const Vec4<double> h = inverse_view_proj_ * Vec4<double>(ndc.x(), ndc.y(), z, 1.0);
       return Vec3<double>(h.head<3>() / h[3]);
     };
-    // From the near plane (what a rasteriser clips at); z = 0 is finite even with an infinite far.
-    const Vec3<double> o = unproject(-1.0);
-    const Vec3<double> d = (unproject(0.0) - o).normalized();
-    const double tfar = scene_.camera.far ? (unproject(1.0) - o).norm() : std::numeric_limits<double>::infinity();
+    // From the near plane (what a rasteriser clips at), toward the point halfway to the far plane in
+    // clip depth, which is finite even with an infinite far.
+    const Vec3<double> o = unproject(near_ndc_);
+    const Vec3<double> d = (unproject(0.5 * (near_ndc_ + far_ndc_)) - o).normalized();
+    const double tfar = scene_.camera.far ? (unproject(far_ndc_) - o).norm() : std::numeric_limits<double>::infinity();
     RTCRayHit rh{};
     rh.ray.org_x = static_cast<float>(o.x());
     rh.ray.org_y = static_cast<float>(o.y());
@@ -226,7 +231,7 @@ class Renderer {
     const std::size_t slots_per_pixel = centre_slots_ + (samples_per_pixel_ - 1) * sub_slots_;
     const std::int32_t* slots = buf.slots.data() + pixel * slots_per_pixel;
     const Surface& c = buf.surfaces[first_sample];
-    const double light_weight = 0.9 / static_cast<double>(lights_.size());
+    const double light_weight = outputs::kDirect / static_cast<double>(lights_.size());
 
     Vec3<double> colour = Vec3<double>::Zero();
     std::vector<double>& lit_sum = buf.lit_sum;  // no allocation per pixel
@@ -250,7 +255,7 @@ class Renderer {
         const Vec3<double> d = h.p - c.p;
         if (h.object != c.object || std::abs(c.n.dot(d)) > kCreaseSine * d.norm() + eps_) one_surface = false;
       }
-      double radiance = kAmbient;
+      double radiance = outputs::kAmbient;
       for (std::size_t li = 0; li < lights_.size(); ++li) {
         const LightSetup& l = lights_[li];
         int lit_count = 0;
@@ -279,10 +284,10 @@ class Renderer {
       if (c.hit) {
         const bool lit1 = slot_lit(slots[2 * li], buf.shadow);
         const bool lit4 = slot_lit(slots[2 * li + 1], buf.shadow);
-        img.mask[out] = lit1 ? 255 : 0;
+        img.mask[out] = lit1 ? outputs::kMaskLit : outputs::kMaskShadowed;
         decided = decided && lit1 == lit4 && std::abs(facing(c.p, c.n, lights_[li].centre)) >= kGrazingCosine;
       } else {
-        img.mask[out] = 128;
+        img.mask[out] = outputs::kMaskNoSurface;
       }
       img.visibility[out] = hits > 0 ? static_cast<float>(lit_sum[li] / hits) : -1.0f;
       img.decided[out] = decided ? 255 : 0;
@@ -292,11 +297,7 @@ class Renderer {
     out_.visibility[out] = hits > 0 ? vis_sum / static_cast<float>(lights_.size()) : -1.0f;
     out_.decided[out] = all_decided ? 255 : 0;
     colour /= samples;
-    for (int ch = 0; ch < 3; ++ch) {
-      const double linear = std::clamp(colour[ch], 0.0, 1.0);
-      const double srgb = linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1 / 2.4) - 0.055;
-      out_.shaded[3 * out + static_cast<std::size_t>(ch)] = static_cast<std::uint8_t>(std::lround(srgb * 255));
-    }
+    for (int ch = 0; ch < 3; ++ch) out_.shaded[3 * out + static_cast<std::size_t>(ch)] = outputs::encode_srgb8(colour[ch]);
   }
 
   const scene::Scene& scene_;
@@ -304,6 +305,7 @@ class Renderer {
   Images& out_;
   int n_;
   Mat4<double> inverse_view_proj_;
+  double near_ndc_ = -1, far_ndc_ = 1;  // clip-space z of the near and far planes (convention.hpp)
   std::vector<LightSetup> lights_;
   std::size_t sub_slots_ = 0;
   std::size_t centre_slots_ = 0;
@@ -314,6 +316,11 @@ class Renderer {
 }  // namespace
 
 Images render(const scene::Scene& scene, const Options& options, Stats* stats) {
+  return render(scene::prepare_scene(scene), options, stats);
+}
+
+Images render(const scene::PreparedScene& prepared, const Options& options, Stats* stats) {
+  const scene::Scene& scene = *prepared.scene;
   if (options.samples_per_axis < 1 || options.samples_per_axis > 16) throw std::invalid_argument("samples per axis must be in [1, 16]");
   if (options.threads < 0) throw std::invalid_argument("threads must be >= 0 (0: all cores)");
   Images img;
@@ -322,7 +329,7 @@ Images render(const scene::Scene& scene, const Options& options, Stats* stats) {
   const std::size_t n = static_cast<std::size_t>(scene.width) * static_cast<std::size_t>(scene.height);
   img.lights.resize(scene.lights.size());
   for (auto& l : img.lights) {
-    l.mask.assign(n, 128);
+    l.mask.assign(n, outputs::kMaskNoSurface);
     l.visibility.assign(n, -1.0f);
     l.decided.assign(n, 0);
   }
@@ -341,7 +348,7 @@ Images render(const scene::Scene& scene, const Options& options, Stats* stats) {
     }
     total.seconds_build = seconds_since(t0);
     const auto t1 = Clock::now();
-    const Renderer renderer(scene, options, *embree, img);
+    const Renderer renderer(prepared, options, *embree, img);
     const int tiles_x = (scene.width + kTile - 1) / kTile, tiles_y = (scene.height + kTile - 1) / kTile;
     tbb::enumerable_thread_specific<TileBuffers> buffers;
     tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y, 1), [&](const tbb::blocked_range<int>& r) {

@@ -16,6 +16,7 @@
 #include "shadowref/scene/mesh_file.hpp"
 #include "shadowref/primitives.hpp"
 #include "shadowref/scene/shapes.hpp"
+#include "shadowref/outputs/techniques.hpp"
 
 namespace shadowref::scene {
 namespace {
@@ -227,11 +228,11 @@ void read_expect(const JsonNode& n, Scene& scene) {
   if (!n.value().is_object()) n.fail("must be an object");
   for (const auto& item : n.value().items()) {
     bool known = false;
-    for (const char* t : kTechniques) known = known || item.key() == t;
+    known = outputs::find_technique_name(item.key()) != nullptr;
     const JsonNode e = n.child(item.key().c_str());
     if (!known) {
       std::string list;
-      for (const char* t : kTechniques) list += (list.empty() ? "" : ", ") + std::string(t);
+      for (const auto& t : outputs::kTechniques) list += (list.empty() ? "" : ", ") + std::string(t.name);
       e.fail("unknown technique (known: " + list + ")");
     }
     e.expect_object({"result", "why"});

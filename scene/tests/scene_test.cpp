@@ -6,6 +6,7 @@
 #include "shadowref/projection.hpp"
 #include "shadowref/scene/camera.hpp"
 #include "shadowref/scene/load_scene.hpp"
+#include "shadowref/outputs/techniques.hpp"
 #include "shadowref/view.hpp"
 #include "test_scene_json.hpp"
 
@@ -70,7 +71,7 @@ TEST(Camera, FiniteFarWhenGiven) {
 }
 
 TEST(Camera, PixelCentresToNdc) {
-  // DESIGN.md: ndc.x = 2 (x + 0.5) / W − 1, ndc.y = 1 − 2 (y + 0.5) / H; row 0 is the top.
+  // docs/conventions.md: ndc.x = 2 (x + 0.5) / W − 1, ndc.y = 1 − 2 (y + 0.5) / H; row 0 is the top.
   const Vec2<double> first = pixel_to_ndc<double>(0, 0, 0.5, 0.5, 4, 2);
   EXPECT_EQ(first, Vec2<double>(-0.75, 0.5));
   const Vec2<double> last = pixel_to_ndc<double>(3, 1, 0.5, 0.5, 4, 2);
@@ -117,7 +118,7 @@ TEST(Catalogue, EveryScene) {
     EXPECT_EQ(s.name, entry.path().stem().string()) << "the scene's name is its file name";
     EXPECT_TRUE(names.insert(s.name).second);
     EXPECT_FALSE(s.description.empty());
-    for (const char* t : kTechniques) EXPECT_EQ(s.expect.count(t), 1u) << "no expectation for " << t;
+    for (const auto& t : outputs::kTechniques) EXPECT_EQ(s.expect.count(std::string(t.name)), 1u) << "no expectation for " << t.name;
     if (!s.has_tag("large")) {
       EXPECT_LE(static_cast<long>(s.width) * s.height, 320L * 240L * 2) << "default scenes stay modest";
     }

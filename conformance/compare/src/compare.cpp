@@ -1,6 +1,8 @@
 // compare.cpp — mask comparison on decided pixels, the error image, the verdict (compare.hpp).
 #include "shadowref/compare/compare.hpp"
 
+#include "shadowref/outputs/file_names.hpp"
+
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
@@ -13,7 +15,7 @@ enum Class : std::uint8_t { kShadowed = 0, kNoSurface = 1, kLit = 2 };
 
 // Nearest of 0 / 128 / 255.
 inline Class classify(std::uint8_t v) { return v < 64 ? kShadowed : v < 192 ? kNoSurface : kLit; }
-inline bool exact(std::uint8_t v) { return v == 0 || v == 128 || v == 255; }
+inline bool exact(std::uint8_t v) { return outputs::is_mask_value(v); }
 
 // Wrong-pixel codes in the scratch image.
 enum Wrong : std::uint8_t { kRight = 0, kFalseShadow = 1, kFalseLight = 2, kCoverage = 3 };
@@ -176,42 +178,22 @@ Judgement judge(const MaskMetrics& m, const Threshold& t) {
   return j;
 }
 
-std::vector<std::string> mask_names(const std::filesystem::path& dir) {
-  std::error_code ec;
-  if (!std::filesystem::is_directory(dir, ec))
-    throw CompareError(CompareError::Kind::BadInput, dir.string() + ": not a folder");
-  const bool single = std::filesystem::exists(dir / "mask.png", ec);
-  std::vector<std::string> names;
-  for (int i = 0;; ++i) {
-    const std::string name = "mask_" + std::to_string(i) + ".png";
-    if (!std::filesystem::exists(dir / name, ec)) break;
-    names.push_back(name);
-  }
-  if (single && !names.empty())
-    throw CompareError(CompareError::Kind::BadInput,
-                       dir.string() + ": has both mask.png and mask_0.png (one light or several?)");
-  if (single) return {"mask.png"};
-  if (names.empty())
-    throw CompareError(CompareError::Kind::BadInput, dir.string() + ": no mask.png (or mask_0.png, ...) in it");
-  return names;
-}
-
 FolderComparison compare_folders(const std::filesystem::path& reference_dir,
                                  const std::filesystem::path& candidate_dir, const Threshold& threshold) {
   FolderComparison out;
   out.threshold = &threshold;
-  out.masks = mask_names(reference_dir);
+  out.masks = outputs::find_mask_names(reference_dir);
   std::error_code ec;
   if (!std::filesystem::is_directory(candidate_dir, ec))
     throw CompareError(CompareError::Kind::BadInput, candidate_dir.string() + ": not a folder");
   for (std::size_t i = 0; i < out.masks.size(); ++i) {
     const std::string& name = out.masks[i];
-    const std::string decided_name = out.masks.size() == 1 ? "decided.png" : "decided_" + std::to_string(i) + ".png";
+    const std::string decided_name = outputs::decided_name(i, out.masks.size());
     if (!std::filesystem::exists(candidate_dir / name, ec))
       throw CompareError(CompareError::Kind::BadInput,
                          (candidate_dir / name).string() + ": no such file (the reference has " +
                              std::to_string(out.masks.size()) + " light mask(s): " +
-                             (out.masks.size() == 1 ? std::string("mask.png") : "mask_0.png ... mask_" + std::to_string(out.masks.size() - 1) + ".png") + ")");
+                             (out.masks.size() == 1 ? out.masks[0] : out.masks.front() + " ... " + out.masks.back()) + ")");
     const Image8 ref = read_image8(reference_dir / name, 1);
     const Image8 dec = read_image8(reference_dir / decided_name, 1);
     const Image8 cand = read_image8(candidate_dir / name, 1);
@@ -219,7 +201,7 @@ FolderComparison compare_folders(const std::filesystem::path& reference_dir,
     out.total += out.per_light.back().metrics;
   }
   // One light beyond what the reference has is a wrong producer, not a detail.
-  const std::string extra = "mask_" + std::to_string(out.masks.size()) + ".png";
+  const std::string extra = outputs::mask_name(out.masks.size(), out.masks.size() + 1);
   if (out.masks.size() > 1 && std::filesystem::exists(candidate_dir / extra, ec))
     throw CompareError(CompareError::Kind::BadInput, (candidate_dir / extra).string() + ": the reference has only " +
                                                          std::to_string(out.masks.size()) + " lights");
@@ -231,8 +213,8 @@ std::vector<std::string> write_error_images(const FolderComparison& c, const std
   std::filesystem::create_directories(dir);
   std::vector<std::string> names;
   for (std::size_t i = 0; i < c.per_light.size(); ++i) {
-    const std::string name = c.per_light.size() == 1 ? "error.png" : "error_" + std::to_string(i) + ".png";
-    write_image8(c.per_light[i].error, dir / name);
+    const std::string name = outputs::per_light_name("error", "png", i, c.per_light.size());
+    outputs::write_png(c.per_light[i].error, dir / name);
     names.push_back(name);
   }
   return names;

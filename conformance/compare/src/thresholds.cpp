@@ -1,5 +1,8 @@
-// thresholds.cpp — which technique is judged by which threshold (the numbers are in thresholds.hpp).
+// thresholds.cpp — which technique is judged by which threshold (the numbers are in thresholds.hpp):
+// by the family the contract's technique list gives it.
 #include "shadowref/compare/thresholds.hpp"
+
+#include "shadowref/outputs/techniques.hpp"
 
 namespace shadowref::compare {
 namespace {
@@ -9,9 +12,13 @@ constexpr const Threshold* kAll[] = {&kExactGeometry, &kShadowMap, &kShadowMapPc
 }  // namespace
 
 const Threshold& threshold_for(std::string_view technique) {
-  if (technique == "shadowmap-pcf") return kShadowMapPcf;
-  if (technique == "shadowmap" || technique == "shadowmap-rgba8") return kShadowMap;
-  // planar, volume-* and anything unknown: the exact-geometry bound.
+  const outputs::TechniqueName* t = outputs::find_technique_name(technique);
+  if (!t) return kExactGeometry;  // an engine team's own technique: the strictest bound
+  switch (t->family) {
+    case outputs::TechniqueFamily::ExactGeometry: return kExactGeometry;
+    case outputs::TechniqueFamily::ShadowMap: return kShadowMap;
+    case outputs::TechniqueFamily::ShadowMapPcf: return kShadowMapPcf;
+  }
   return kExactGeometry;
 }
 

@@ -144,9 +144,9 @@ class Folders : public ::testing::Test {
 TEST_F(Folders, ComparesAndWritesErrorImages) {
   Image8 ref = grey(16, 8, 255);
   set(ref, 3, 3, 0);
-  write_image8(ref, root / "ref" / "mask.png");
-  write_image8(grey(16, 8, 255), root / "ref" / "decided.png");
-  write_image8(grey(16, 8, 255), root / "cand" / "mask.png");
+  outputs::write_png(ref, root / "ref" / "mask.png");
+  outputs::write_png(grey(16, 8, 255), root / "ref" / "decided.png");
+  outputs::write_png(grey(16, 8, 255), root / "cand" / "mask.png");
   const FolderComparison c = compare_folders(root / "ref", root / "cand", kExactGeometry);
   EXPECT_EQ(c.total.false_light, 1u);
   EXPECT_EQ(c.masks, std::vector<std::string>{"mask.png"});
@@ -157,12 +157,12 @@ TEST_F(Folders, ComparesAndWritesErrorImages) {
 
 TEST_F(Folders, SeveralLightsAreSummedAndAMissingOneRefused) {
   for (int i = 0; i < 2; ++i) {
-    write_image8(grey(4, 4, 255), root / "ref" / ("mask_" + std::to_string(i) + ".png"));
-    write_image8(grey(4, 4, 255), root / "ref" / ("decided_" + std::to_string(i) + ".png"));
+    outputs::write_png(grey(4, 4, 255), root / "ref" / ("mask_" + std::to_string(i) + ".png"));
+    outputs::write_png(grey(4, 4, 255), root / "ref" / ("decided_" + std::to_string(i) + ".png"));
   }
-  write_image8(grey(4, 4, 0), root / "cand" / "mask_0.png");
+  outputs::write_png(grey(4, 4, 0), root / "cand" / "mask_0.png");
   EXPECT_THROW(compare_folders(root / "ref", root / "cand", kExactGeometry), CompareError);
-  write_image8(grey(4, 4, 255), root / "cand" / "mask_1.png");
+  outputs::write_png(grey(4, 4, 255), root / "cand" / "mask_1.png");
   const FolderComparison c = compare_folders(root / "ref", root / "cand", kExactGeometry);
   EXPECT_EQ(c.total.false_shadow, 16u);
   EXPECT_EQ(c.total.decided_surface, 32u);
@@ -170,8 +170,8 @@ TEST_F(Folders, SeveralLightsAreSummedAndAMissingOneRefused) {
 }
 
 TEST_F(Folders, RefusesBadFiles) {
-  write_image8(grey(4, 4, 255), root / "ref" / "mask.png");
-  write_image8(grey(4, 4, 255), root / "ref" / "decided.png");
+  outputs::write_png(grey(4, 4, 255), root / "ref" / "mask.png");
+  outputs::write_png(grey(4, 4, 255), root / "ref" / "decided.png");
   const auto kind_of = [&] {
     try {
       compare_folders(root / "ref", root / "cand", kExactGeometry);
@@ -183,9 +183,9 @@ TEST_F(Folders, RefusesBadFiles) {
   };
   EXPECT_EQ(kind_of(), CompareError::Kind::BadInput);  // missing candidate
   Image8 rgb{4, 4, 3, std::vector<std::uint8_t>(48, 255)};
-  write_image8(rgb, root / "cand" / "mask.png");
+  outputs::write_png(rgb, root / "cand" / "mask.png");
   EXPECT_EQ(kind_of(), CompareError::Kind::BadInput);  // three channels
-  write_image8(grey(64, 64, 255), root / "cand" / "mask.png");
+  outputs::write_png(grey(64, 64, 255), root / "cand" / "mask.png");
   {
     // Truncate a valid PNG to half its bytes.
     const auto size = std::filesystem::file_size(root / "cand" / "mask.png");
@@ -197,7 +197,7 @@ TEST_F(Folders, RefusesBadFiles) {
     f << "not a png";
   }
   EXPECT_EQ(kind_of(), CompareError::Kind::BadInput);  // garbage
-  write_image8(grey(5, 4, 255), root / "cand" / "mask.png");
+  outputs::write_png(grey(5, 4, 255), root / "cand" / "mask.png");
   EXPECT_EQ(kind_of(), CompareError::Kind::SizeMismatch);
 }
 

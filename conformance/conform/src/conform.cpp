@@ -13,7 +13,9 @@
 
 #include "report_writer.hpp"
 #include "shadowref/renderer/renderer.hpp"
+#include "shadowref/convention.hpp"
 #include "shadowref/scene/load_scene.hpp"
+#include "shadowref/scene/prepared_scene.hpp"
 
 namespace shadowref::conform {
 namespace {
@@ -103,12 +105,26 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
     driver = renderer::parse_driver(o.backend);
   }
   if (o.scenes.empty()) throw std::invalid_argument("no scenes selected");
+  const RunConvention* convention = find_run_convention(o.convention);
+  if (!convention) {
+    std::string known;
+    for (const RunConvention& c : kRunConventions) known += (known.empty() ? "" : ", ") + std::string(c.name);
+    throw std::invalid_argument("--convention '" + o.convention + "': unknown (one of " + known + ")");
+  }
+  if (o.shadow_map_size != 0 && (o.shadow_map_size < 16 || o.shadow_map_size > 16384))
+    throw std::invalid_argument("--shadow-map-size " + std::to_string(o.shadow_map_size) + ": must be 0 (automatic) or in [16, 16384]");
+  result.convention = std::string(convention->name);
 
   std::vector<scene::Scene> scenes;
   for (const auto& f : o.scenes) {
     scenes.push_back(scene::load_scene(f));
     result.scenes.push_back(scenes.back().name);
   }
+  // Everything that depends on the scene alone, once (scenes[] no longer moves).
+  std::vector<scene::PreparedScene> prepared;
+  scene::PrepareOptions prepare;
+  prepare.shadow_map_size = o.shadow_map_size;
+  for (const scene::Scene& s : scenes) prepared.push_back(scene::prepare_scene(s, *convention, prepare));
 
   // References, once per scene (the cache makes a second run free).
   const std::filesystem::path cache = o.cache.empty() ? o.out / "reference-cache" : o.cache;
@@ -116,8 +132,9 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
   settings.threads = o.jobs;
   std::vector<std::filesystem::path> reference_dirs;
   const auto ref_start = Clock::now();
-  for (const scene::Scene& s : scenes) {
-    const CachedReference r = ensure_reference(s, cache, settings);
+  for (const scene::PreparedScene& p : prepared) {
+    const scene::Scene& s = *p.scene;
+    const CachedReference r = ensure_reference(p, cache, settings);
     reference_dirs.push_back(r.dir);
     char buf[64];
     std::snprintf(buf, sizeof buf, "computed in %.1f s", r.seconds);
@@ -165,7 +182,7 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
       try {
         if (gl) {
           c.candidate_dir = std::filesystem::absolute(o.out / "renders" / s.name / technique);
-          const renderer::RenderResult r = extra ? gl->render(s, *extra) : gl->render(s, technique);
+          const renderer::RenderResult r = extra ? gl->render(prepared[si], *extra) : gl->render(prepared[si], technique);
           renderer::write_outputs(r, gl->info(), s, c.candidate_dir);
           c.notes = r.notes;
           c.frame_ms = r.median_frame_ms();

@@ -1,7 +1,6 @@
 // reference_cache.cpp — the hashed reference cache (reference_cache.hpp).
 #include "shadowref/conform/reference_cache.hpp"
 
-#include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
@@ -12,6 +11,7 @@
 #include <system_error>
 #include <vector>
 
+#include "shadowref/outputs/staged_folder.hpp"
 #include "shadowref/reference/render.hpp"
 #include "shadowref/reference/write_images.hpp"
 
@@ -74,7 +74,8 @@ std::string hex(std::uint64_t v) {
 
 }  // namespace
 
-std::string reference_key(const scene::Scene& scene, const ReferenceSettings& settings) {
+std::string reference_key(const scene::PreparedScene& prepared, const ReferenceSettings& settings) {
+  const scene::Scene& scene = *prepared.scene;
   Fnv1a f;
   const std::string text = read_bytes(scene.file);
   f.add(text);
@@ -83,12 +84,15 @@ std::string reference_key(const scene::Scene& scene, const ReferenceSettings& se
     f.add(read_bytes(m));
   }
   f.add("samples_per_axis=" + std::to_string(settings.samples_per_axis));
+  f.add("convention=" + std::string(prepared.convention->name));
   const std::uint64_t exe = executable_hash();
   f.add(&exe, sizeof exe);
   return hex(f.h);
 }
 
-void render_reference_to(const scene::Scene& scene, const std::filesystem::path& dir, const ReferenceSettings& settings) {
+namespace {
+
+void render_into(const scene::PreparedScene& scene, const std::filesystem::path& dir, const ReferenceSettings& settings) {
   reference::Options options;
   options.samples_per_axis = settings.samples_per_axis;
   options.threads = settings.threads;
@@ -96,37 +100,40 @@ void render_reference_to(const scene::Scene& scene, const std::filesystem::path&
   reference::write_images(images, dir);
 }
 
-CachedReference ensure_reference(const scene::Scene& scene, const std::filesystem::path& cache,
+}  // namespace
+
+void render_reference_to(const scene::PreparedScene& scene, const std::filesystem::path& dir, const ReferenceSettings& settings) {
+  outputs::StagedFolder folder(dir);
+  render_into(scene, folder.path(), settings);
+  folder.commit();
+}
+
+CachedReference ensure_reference(const scene::PreparedScene& prepared, const std::filesystem::path& cache,
                                  const ReferenceSettings& settings) {
-  const std::string key = reference_key(scene, settings);
+  const scene::Scene& scene = *prepared.scene;
+  const std::string key = reference_key(prepared, settings);
   CachedReference out;
   out.dir = std::filesystem::absolute(cache / (scene.name + "-" + key));
   std::error_code ec;
   if (std::filesystem::is_regular_file(out.dir / "key.json", ec)) return out;  // key.json is written last
   const auto start = std::chrono::steady_clock::now();
-  std::filesystem::create_directories(cache);
-  const std::filesystem::path tmp =
-      out.dir.parent_path() / (out.dir.filename().string() + ".tmp-" + std::to_string(::getpid()));
-  std::filesystem::remove_all(tmp, ec);
-  render_reference_to(scene, tmp, settings);
+  outputs::StagedFolder folder(out.dir);
+  const std::filesystem::path& tmp = folder.path();
+  render_into(prepared, tmp, settings);
   {
     nlohmann::json k;
     k["scene"] = scene.name;
     k["scene_file"] = std::filesystem::absolute(scene.file).string();
     k["samples_per_axis"] = settings.samples_per_axis;
+    k["convention"] = prepared.convention->name;
     k["key"] = key;
-    k["key_inputs"] = "FNV-1a 64 of the scene file, its mesh files, the settings and the shadowref executable";
+    k["key_inputs"] = "FNV-1a 64 of the scene file, its mesh files, the settings, the convention and the shadowref executable";
     std::ofstream f(tmp / "key.json");
     f << k.dump(2) << "\n";
     if (!f) throw std::runtime_error("cannot write " + (tmp / "key.json").string());
   }
-  std::filesystem::rename(tmp, out.dir, ec);
-  if (ec) {
-    // Another process finished the same key first: theirs is as good as ours.
-    std::filesystem::remove_all(tmp, ec);
-    if (!std::filesystem::is_regular_file(out.dir / "key.json", ec))
-      throw std::runtime_error("cannot move the reference into the cache at " + out.dir.string());
-  }
+  // Another process may have finished the same key first: theirs is as good as ours.
+  folder.commit(outputs::StagedFolder::IfExists::KeepExisting);
   out.computed = true;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

@@ -53,6 +53,7 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
   j["backend"] = o.candidate_dir ? json() : json(o.backend);
   j["gl_api"] = o.candidate_dir ? json() : json(o.gl);
   j["gl"] = {{"vendor", r.gl_vendor}, {"renderer", r.gl_renderer}, {"version", r.gl_version}};
+  j["convention"] = r.convention;
   j["reference"] = {{"producer", "shadowref reference (Embree 3)"},
                     {"samples_per_axis", o.reference.samples_per_axis},
                     {"cache", fs::absolute(cache).string()}};

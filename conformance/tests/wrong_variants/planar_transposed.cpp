@@ -54,7 +54,7 @@ void render_planar_transposed(Frame& frame) {
     // The same attached-shadow rule as the right technique, so the transposition is the only bug.
     Image8 mask = frame.read_stencil_mask(2, /*value_is_lit=*/false);
     for (std::size_t px = 0; px < mask.pixels.size(); ++px)
-      if (mask.pixels[px] == kMaskLit && facing[i].pixels[px] == kMaskShadowed) mask.pixels[px] = kMaskShadowed;
+      if (mask.pixels[px] == outputs::kMaskLit && facing[i].pixels[px] == outputs::kMaskShadowed) mask.pixels[px] = outputs::kMaskShadowed;
     frame.result.masks.push_back(std::move(mask));
   }
   frame.result.shaded = frame.read_rgb();

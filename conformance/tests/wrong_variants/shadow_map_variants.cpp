@@ -102,7 +102,7 @@ void shadow_map(Frame& frame, bool bias_matrix, GLenum compare) {
 
     // THE BUG when bias_matrix is false: no B, so NDC −1..1 is read as texture coordinates.
     const Mat4<double> shadow_from_world = bias_matrix ? Mat4<double>(shadow_bias_matrix<double>(DepthRange::NegOneToOne) * lc) : lc;
-    frame.bind_target(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, static_cast<float>(kMaskNoSurface) / 255.0f);
+    frame.bind_target(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, static_cast<float>(outputs::kMaskNoSurface) / 255.0f);
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(GL_LESS);
     gl.ActiveTexture(GL_TEXTURE0);

@@ -1,5 +1,5 @@
 // wrong_variants.hpp — deliberately wrong shadow techniques, each a classic bug, that the
-// conformance suite must catch (issue 7, "teeth"): a threshold or a catalogue that lets one of
+// conformance suite must catch (its "teeth"): a threshold or a catalogue that lets one of
 // them pass is a bug of the suite.
 //
 // They are separate renderers built from the renderer library's own pieces (frame.hpp: the

@@ -1,7 +1,7 @@
 // shadowref/silhouette.hpp — which faces a homogeneous light lights, and the silhouette edges
 // that a shadow volume extrudes.
 //
-// The model (Doom 3's, see PITFALLS.md): the shadow volume is the sum of the shadow prisms of the
+// The model (Doom 3's, see docs/dependencies.md): the shadow volume is the sum of the shadow prisms of the
 // LIT faces, each prism bounded by its face (the light cap), the face extruded away from the light
 // (the dark cap) and one side quad per face edge. Where two lit faces share an edge walked in
 // opposite directions, their side quads cancel; what remains are the silhouette edges. So:

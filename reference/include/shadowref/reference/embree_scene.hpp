@@ -2,13 +2,14 @@
 // every ray epsilon of the reference derives from.
 //
 // One Embree device and one scene per EmbreeScene (RAII). Built with RTC_SCENE_FLAG_ROBUST (no
-// misses through shared edges, PITFALLS.md) and high build quality; geometry IDs equal object
+// misses through shared edges, docs/dependencies.md) and high build quality; geometry IDs equal object
 // indices, so a hit's geomID indexes Scene::objects.
 #pragma once
 
 #include <embree3/rtcore.h>
 
 #include <cstdint>
+#include <stdexcept>
 
 #include "shadowref/scene/scene.hpp"
 
@@ -19,10 +20,16 @@ namespace shadowref::reference {
 // the extent; 1e-5 is 100 times that and still far below any feature of the catalogue's scenes.
 inline constexpr double kRelativeEpsilon = 1e-5;
 
+// Embree refused (no device, a failed build): an internal failure, never the user's input.
+class EmbreeError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 class EmbreeScene {
  public:
   // Uploads every object's mesh and commits the BVH (in the calling TBB arena). Throws
-  // std::runtime_error when Embree refuses (the message carries Embree's error code).
+  // EmbreeError when Embree refuses (the message carries Embree's error code).
   explicit EmbreeScene(const scene::Scene& scene);
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;

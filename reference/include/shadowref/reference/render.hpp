@@ -1,9 +1,9 @@
-// shadowref/reference/render.hpp — the ray-traced ground truth of a scene (DESIGN.md "Outputs").
+// shadowref/reference/render.hpp — the ray-traced ground truth of a scene (docs/output-contract.md).
 //
 // For each pixel: one primary ray through the pixel centre and samples_per_axis² through the
 // centres of a regular sub-pixel grid, each traced with rtcIntersect1M from the near plane (and
 // to the far plane when the camera has one), unprojected through inverse(P · V) with P and V
-// from scene/camera.hpp — the matrices the OpenGL renderer uses. At each hit, the visibility rule
+// from the prepared scene — the matrices the OpenGL renderer uses, in the same run convention. At each hit, the visibility rule
 // of shadow_ray.hpp for every light, traced with rtcOccluded1M streams.
 //
 //   mask      the pixel-centre answer toward the light's homogeneous point (scene::homogeneous:
@@ -33,6 +33,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "shadowref/scene/prepared_scene.hpp"
 #include "shadowref/scene/scene.hpp"
 
 namespace shadowref::reference {
@@ -76,8 +77,11 @@ struct Stats {
   double seconds_shadow_phase = 0;     // summed over threads: building, tracing and reading shadow rays
 };
 
-// Renders the reference of `scene`. Throws std::invalid_argument for options out of range and
-// std::runtime_error when Embree fails.
+// Renders the reference of the prepared scene (its camera matrices, in its run convention: rays
+// start on the near plane and, with a far plane, stop at it). Throws std::invalid_argument for
+// options out of range and EmbreeError when Embree fails.
+Images render(const scene::PreparedScene& scene, const Options& options = {}, Stats* stats = nullptr);
+// The same in the default convention (gl).
 Images render(const scene::Scene& scene, const Options& options = {}, Stats* stats = nullptr);
 
 }  // namespace shadowref::reference

@@ -1,11 +1,12 @@
-// shadowref/scene/camera.hpp — the camera's view and projection matrices, from mathlib only.
+// shadowref/scene/camera.hpp — a scene camera's view and projection matrices in a run convention,
+// from mathlib only: the one place a scene camera becomes matrices.
 //
-// The one place that turns a scene camera into matrices: the reference renderer and the OpenGL
-// renderer both call these, so each pixel sees the same surface in both (DESIGN.md "Images").
-// Convention: OpenGL (right-handed view looking down −z, clip depth −1..1, canonical column
-// vectors). The projection is perspective_infinite unless the camera has a `far`; `epsilon` is
-// Lengyel's tweak for the infinite far plane (ignored with a finite far), 0 by default — x and y
-// of clip space do not depend on it, so the pixel → surface mapping is the same for any epsilon.
+// The reference and the OpenGL renderer both get their camera through the prepared scene, which
+// calls these, so each pixel sees the same surface in both. The convention (convention.hpp: gl,
+// gl-zo, reversed-z, d3d) decides handedness, clip depth and the d3d world mirror; x and y of clip
+// space, hence the pixel → surface mapping, are the same in every convention. The projection is
+// infinite unless the camera has a `far`; `epsilon` is Lengyel's tweak for the infinite far plane
+// (ignored with a finite far).
 //
 // Pixel (x, y) of a W × H image (row 0 at the top) has its centre at
 //   ndc.x = 2 (x + 0.5) / W − 1,   ndc.y = 1 − 2 (y + 0.5) / H.
@@ -15,30 +16,31 @@
 #pragma once
 
 #include <numbers>
+#include <optional>
 
-#include "shadowref/projection.hpp"
+#include "shadowref/convention.hpp"
 #include "shadowref/result.hpp"
 #include "shadowref/scene/scene.hpp"
-#include "shadowref/view.hpp"
 
 namespace shadowref::scene {
 
-// World → view space: look_at(position, target, up), right-handed.
+// Scene → view space: look_at(position, target, up) in the convention (view_from_scene).
 template <class T>
-Result<Mat4<T>> view_matrix(const Camera& camera) {
-  return look_at<T>(camera.position.cast<T>(), camera.target.cast<T>(), camera.up.cast<T>(),
-                    Handedness::Right);
+Result<Mat4<T>> view_matrix(const Camera& camera, const RunConvention& conv = kDefaultConvention) {
+  return view_from_scene<T>(conv, camera.position.cast<T>(), camera.target.cast<T>(), camera.up.cast<T>());
 }
 
-// View → clip space for a width × height image, OpenGL convention (RH, −1..1).
+// View → clip space for a width × height image: vertical field of view fovy_deg, aspect
+// width / height, near, and `far` (the camera's own when absent; still absent: infinite).
 template <class T>
-Result<Mat4<T>> projection_matrix(const Camera& camera, int width, int height, T epsilon = T(0)) {
+Result<Mat4<T>> projection_matrix(const Camera& camera, int width, int height,
+                                  const RunConvention& conv = kDefaultConvention, T epsilon = T(0),
+                                  std::optional<double> far_override = std::nullopt) {
   const T fovy = static_cast<T>(camera.fovy_deg * std::numbers::pi / 180.0);
   const T aspect = static_cast<T>(width) / static_cast<T>(height);
-  if (camera.far) {
-    return perspective<T>(fovy, aspect, static_cast<T>(camera.near), static_cast<T>(*camera.far), kOpenGL);
-  }
-  return perspective_infinite<T>(fovy, aspect, static_cast<T>(camera.near), kOpenGL, epsilon);
+  const std::optional<double> far = far_override ? far_override : camera.far;
+  return perspective_for<T>(conv, fovy, aspect, static_cast<T>(camera.near),
+                            far ? std::optional<T>(static_cast<T>(*far)) : std::nullopt, epsilon);
 }
 
 // The normalised device coordinates (x, y) of pixel (px, py)'s sample at sub-pixel offset

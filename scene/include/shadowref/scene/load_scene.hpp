@@ -3,7 +3,7 @@
 // The format, key by key (every other key is an error, so a typo never goes unnoticed):
 //   name (string, required), description (string), resolution ([W, H], integers in [1, 16384],
 //   default [256, 256]), tags (array of strings), expect ({technique: {result: "pass"|"fail",
-//   why: string (required for fail)}}, technique names from kTechniques),
+//   why: string (required for fail)}}, technique names from outputs::kTechniques),
 //   camera {position, target, up (default [0,1,0]), fovy_deg (default 45), near (default 0.1), far},
 //   lights [{type: point, position} | {type: directional, direction} |
 //           {type: spot, position, direction, cone_deg} |

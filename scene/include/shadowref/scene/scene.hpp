@@ -1,6 +1,6 @@
 // shadowref/scene/scene.hpp — a loaded scene: camera, lights, world-space meshes, expectations.
 //
-// This is the in-memory form of one scene file (DESIGN.md "Scene files"); load_scene.hpp fills it
+// This is the in-memory form of one scene file (load_scene.hpp says the format key by key); load_scene.hpp fills it
 // and validates everything, so every field here is finite and within its documented range.
 // Units are whatever the scene file uses (metres for most of the catalogue, millimetres for the
 // Cornell box); nothing in shadowref assumes a unit, epsilons scale with the scene's extent.
@@ -74,11 +74,6 @@ struct Expectation {
   bool pass = true;
   std::string why;                    // non-empty when pass == false
 };
-
-// The technique names a scene's `expect` may use (the closed list: a typo is an error).
-inline constexpr std::array<const char*, 9> kTechniques{
-    "planar",        "volume-zpass", "volume-zfail",  "volume-zfail-clamp", "volume-robust",
-    "volume-finite", "shadowmap",    "shadowmap-pcf", "shadowmap-rgba8"};
 
 struct Scene {
   std::filesystem::path file;         // the scene file it was loaded from

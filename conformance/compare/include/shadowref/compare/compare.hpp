@@ -1,9 +1,9 @@
 // shadowref/compare/compare.hpp — a candidate mask against the reference, on decided pixels only
-// (DESIGN.md "Comparing"), in the spirit of the VK-GL-CTS rasterization verifier: a pixel the
+// (docs/tolerance-model.md), in the spirit of the VK-GL-CTS rasterization verifier: a pixel the
 // reference marks undecided (its sub-pixel samples disagree, or a nudge of the shadow ray flips
 // it) may honestly go either way and is never counted; every decided pixel must match.
 //
-// Pixel classes (mask values, DESIGN.md "Outputs"): 255 lit, 0 shadowed, 128 no surface. A
+// Pixel classes (mask values, outputs/image.hpp): 255 lit, 0 shadowed, 128 no surface. A
 // candidate value that is none of the three is classified by the nearest of them (below 64
 // shadowed, 64..191 no surface, 192 and up lit) and counted in `off_values`, so a sloppy writer
 // is visible without being judged twice.
@@ -24,10 +24,16 @@
 #include <string>
 #include <vector>
 
-#include "shadowref/compare/mask_image.hpp"
+#include "shadowref/outputs/errors.hpp"
+#include "shadowref/outputs/image_io.hpp"
 #include "shadowref/compare/thresholds.hpp"
 
 namespace shadowref::compare {
+
+// The contract's image type and input errors (outputs/), under the names the comparison uses.
+using outputs::Image8;
+using outputs::read_image8;
+using CompareError = outputs::InputError;
 
 struct MaskMetrics {
   int width = 0;
@@ -90,10 +96,6 @@ struct FolderComparison {
   Judgement judgement;
   const Threshold* threshold = nullptr;
 };
-
-// The mask file names of a producer's folder: {"mask.png"} or {"mask_0.png", "mask_1.png", …}.
-// Throws CompareError(BadInput) when there is neither, or both.
-std::vector<std::string> mask_names(const std::filesystem::path& dir);
 
 // Throws CompareError: BadInput for missing or unreadable files, a candidate lacking a mask the
 // reference has; SizeMismatch when a candidate mask is not the reference's size.

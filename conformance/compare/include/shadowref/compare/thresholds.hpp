@@ -1,5 +1,5 @@
 // shadowref/compare/thresholds.hpp — every threshold the comparison judges by, in one place,
-// each with its reason (STYLE.md: "a tolerance always with its reason").
+// each with its reason.
 //
 // A verdict looks at two numbers of a comparison (compare.hpp), both on decided pixels only:
 //   wrong fraction  wrong / decided surface pixels (all lights together);
@@ -62,7 +62,7 @@ inline constexpr Threshold kShadowMapPcf{
     "the 3x3 percentage-closer box widens the uncertain band along boundaries by a texel on each side "
     "(measured <= 0.088 %, regions <= 15 px): a little more than a single tap, pass <= 0.3 % and regions <= 32 px"};
 
-// The threshold of a technique (the renderer's names, scene::kTechniques); an unknown name
+// The threshold of a technique (outputs::kTechniques); an unknown name
 // (an engine team's own technique) gets the strictest, kExactGeometry.
 const Threshold& threshold_for(std::string_view technique);
 

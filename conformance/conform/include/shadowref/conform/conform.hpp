@@ -9,7 +9,7 @@
 //   XFAIL  expected to fail (the catalogue's `why`), verdict fail: the limitation is detected
 //   XPASS  expected to fail, verdict pass or warning: a broken expectation, counted as a failure
 //   ERROR  the case could not be judged (GL error, missing or unreadable candidate file)
-// Exit (DESIGN.md): 2 when any FAIL, XPASS or ERROR; else 1 when any WARN; else 0.
+// Exit (docs/output-contract.md): 2 when any FAIL, XPASS or ERROR; else 1 when any WARN; else 0.
 #pragma once
 
 #include <filesystem>
@@ -45,6 +45,8 @@ Status status_of(compare::Verdict verdict, bool expected_pass);
 struct ConformOptions {
   std::vector<std::filesystem::path> scenes;    // scene files (catalogue.hpp selects them)
   std::vector<std::string> techniques;          // renderer technique names; empty: all
+  std::string convention = "gl";                // the run convention (mathlib/convention.hpp): gl, gl-zo, reversed-z, d3d
+  int shadow_map_size = 0;                      // texels per side of our shadow maps; 0: automatic
   std::string backend = "llvmpipe";             // llvmpipe | softpipe | native
   std::string gl = "osmesa";                    // osmesa | egl
   std::filesystem::path out = "conformance-out";
@@ -80,6 +82,7 @@ struct ConformResult {
   std::vector<CaseResult> cases;
   std::vector<std::string> scenes, techniques;  // table order
   std::string gl_vendor, gl_renderer, gl_version;
+  std::string convention;
   double seconds = 0, reference_seconds = 0;
   std::filesystem::path report_json, report_html;
   int exit_code() const;

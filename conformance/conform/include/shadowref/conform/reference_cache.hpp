@@ -1,7 +1,7 @@
 // shadowref/conform/reference_cache.hpp — reference images computed once per scene and reused.
 //
 // The key is a 64-bit FNV-1a hash of: the scene file's bytes, the bytes of every mesh file it
-// names, the reference settings, and the bytes of the running executable (so that a rebuilt
+// names, the reference settings, the run convention, and the bytes of the running executable (so that a rebuilt
 // reference renderer never reads a stale picture: a cache that can lie is worse than none).
 // An entry is a folder <cache>/<scene name>-<16 hex digits>/ holding what `shadowref reference`
 // writes plus key.json (the inputs of the key, for people). It is written into a temporary
@@ -13,7 +13,7 @@
 #include <filesystem>
 #include <string>
 
-#include "shadowref/scene/scene.hpp"
+#include "shadowref/scene/prepared_scene.hpp"
 
 namespace shadowref::conform {
 
@@ -22,8 +22,9 @@ struct ReferenceSettings {
   int threads = 0;           // not part of the key: the images do not depend on it (tested bit for bit)
 };
 
-// The key of `scene` (loaded from scene.file) under `settings`, as 16 hex digits.
-std::string reference_key(const scene::Scene& scene, const ReferenceSettings& settings);
+// The key of the prepared scene (loaded from scene.file, in its convention) under `settings`, as 16
+// hex digits.
+std::string reference_key(const scene::PreparedScene& scene, const ReferenceSettings& settings);
 
 struct CachedReference {
   std::filesystem::path dir;  // the entry folder: mask(_<i>).png, decided(_<i>).png, visibility.exr, shaded.png
@@ -33,10 +34,10 @@ struct CachedReference {
 
 // The entry of `scene`, computed with the Embree reference when missing. Throws
 // std::runtime_error on file-system or Embree failures.
-CachedReference ensure_reference(const scene::Scene& scene, const std::filesystem::path& cache,
+CachedReference ensure_reference(const scene::PreparedScene& scene, const std::filesystem::path& cache,
                                  const ReferenceSettings& settings);
 
 // The same, written to `dir` with no caching (goldens --check / --update).
-void render_reference_to(const scene::Scene& scene, const std::filesystem::path& dir, const ReferenceSettings& settings);
+void render_reference_to(const scene::PreparedScene& scene, const std::filesystem::path& dir, const ReferenceSettings& settings);
 
 }  // namespace shadowref::conform

@@ -1,0 +1,136 @@
+// compare_command.cpp — `shadowref compare`: one candidate folder against one reference folder.
+//
+// Any producer's folder works (docs/output-contract.md): the reference's (mask, decided) against the
+// renderer's or an engine team's mask(s). The threshold is the technique's (thresholds.hpp):
+// --technique, else the candidate's render.json "technique", else the strictest. Prints the
+// numbers per mask and the verdict, or one JSON object with --json; writes the error image(s)
+// with --out. Exit: 0 pass, 1 quality warning, 2 fail, 3 size mismatch, 4 bad input.
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "command.hpp"
+#include "shadowref/outputs/techniques.hpp"
+#include "shadowref/scene/scene.hpp"
+#include "shadowref/compare/compare.hpp"
+#include "shadowref/report/comparison_json.hpp"
+
+namespace shadowref::cli {
+namespace {
+
+struct CompareArgs {
+  std::string reference;
+  std::string candidate;
+  std::string technique;
+  std::string out;
+  bool json = false;
+};
+
+// The technique named in the candidate's render.json, or "".
+std::string technique_from_render_json(const std::filesystem::path& dir) {
+  std::ifstream in(dir / "render.json");
+  if (!in) return "";
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (j.is_object() && j.contains("technique") && j["technique"].is_string()) return j["technique"].get<std::string>();
+  return "";
+}
+
+void print_metrics(const std::string& name, const compare::MaskMetrics& m) {
+  std::printf("  %-12s %dx%d, %zu decided pixels with a surface: wrong %zu (%.4g %%) = %zu false shadow + %zu false light + "
+              "%zu coverage; %zu region(s), largest %zu px%s\n",
+              name.c_str(), m.width, m.height, m.decided_surface, m.wrong, m.wrong_percent(), m.false_shadow,
+              m.false_light, m.coverage, m.regions, m.largest_region,
+              m.off_values ? (", " + std::to_string(m.off_values) + " candidate values not 0/128/255").c_str() : "");
+}
+
+int run_compare(const CompareArgs& a) {
+  std::string technique = a.technique;
+  std::string technique_source = "--technique";
+  if (!technique.empty() &&
+      !outputs::find_technique_name(technique)) {
+    std::string known;
+    for (const auto& t : outputs::kTechniques) known += (known.empty() ? "" : ", ") + std::string(t.name);
+    throw BadInput("--technique '" + technique + "': unknown technique (expected one of " + known + ")");
+  }
+  if (technique.empty()) {
+    technique = technique_from_render_json(a.candidate);
+    technique_source = "render.json";
+  }
+  if (technique.empty()) technique_source = "none given: the strictest";
+  const compare::Threshold& threshold = compare::threshold_for(technique);
+  compare::FolderComparison c;
+  try {
+    c = compare::compare_folders(a.reference, a.candidate, threshold);
+  } catch (const compare::CompareError& e) {
+    if (e.kind() == compare::CompareError::Kind::SizeMismatch) {
+      std::cerr << "shadowref compare: size mismatch: " << e.what() << "\n";
+      return kExitSizeMismatch;
+    }
+    throw BadInput(e.what());
+  }
+  std::vector<std::string> errors;
+  if (!a.out.empty()) {
+    try {
+      errors = compare::write_error_images(c, a.out);
+    } catch (const std::exception& e) {
+      throw BadInput(e.what());
+    }
+  }
+  const int code = c.judgement.verdict == compare::Verdict::Pass             ? kExitPass
+                   : c.judgement.verdict == compare::Verdict::QualityWarning ? kExitWarnings
+                                                                             : kExitFailures;
+  if (a.json) {
+    nlohmann::json j = report::to_json(c);
+    j["reference"] = a.reference;
+    j["candidate"] = a.candidate;
+    j["technique"] = technique;
+    j["error_images"] = errors;
+    j["exit_code"] = code;
+    std::cout << j.dump(2) << "\n";
+    return code;
+  }
+  std::printf("shadowref compare: %s against %s\n", a.candidate.c_str(), a.reference.c_str());
+  std::printf("  technique %s (%s), threshold %s: pass <= %.4g %% wrong and regions <= %zu px, fail > %.4g %% or > %zu px\n",
+              technique.empty() ? "-" : technique.c_str(), technique_source.c_str(), std::string(threshold.name).c_str(),
+              100 * threshold.pass_fraction, threshold.pass_region, 100 * threshold.fail_fraction, threshold.fail_region);
+  for (std::size_t i = 0; i < c.masks.size(); ++i) print_metrics(c.masks[i], c.per_light[i].metrics);
+  if (c.masks.size() > 1) print_metrics("all lights", c.total);
+  for (const std::string& e : errors) std::printf("  error image: %s\n", (std::filesystem::path(a.out) / e).string().c_str());
+  std::string verdict = c.judgement.verdict == compare::Verdict::Pass             ? "PASS"
+                        : c.judgement.verdict == compare::Verdict::QualityWarning ? "QUALITY WARNING"
+                                                                                  : "FAIL";
+  std::printf("verdict: %s\n", verdict.c_str());
+  for (const std::string& r : c.judgement.reasons) std::printf("  %s\n", r.c_str());
+  return code;
+}
+
+}  // namespace
+
+void register_compare_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<CompareArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "compare",
+      "Compare a candidate's mask(s) with the reference's on decided pixels: wrong pixels by kind, an error "
+      "image, and the verdict against the technique's threshold.");
+  cmd->add_option("--reference", args->reference, "the reference folder (mask.png or mask_<i>.png, decided.png or decided_<i>.png)")
+      ->required();
+  cmd->add_option("--candidate", args->candidate, "the candidate folder (the same mask names)")->required();
+  cmd->add_option("--technique", args->technique,
+                  "whose threshold judges (default: render.json's technique in the candidate folder, else the strictest)");
+  cmd->add_option("--out", args->out, "write error.png (error_<i>.png per light) into this folder");
+  cmd->add_flag("--json", args->json, "print one JSON object instead of text");
+  cmd->footer(
+      "Error image: red = false shadow (reference lit), blue = false light (reference shadowed), magenta = "
+      "coverage (surface vs no surface), green = undecided (not judged), grey = the dimmed reference.\n"
+      "Exit: 0 pass, 1 quality warning, 2 fail, 3 size mismatch, 4 bad input.");
+  cmd->callback([args, &exit_code] { exit_code = run_compare(*args); });
+}
+
+}  // namespace shadowref::cli

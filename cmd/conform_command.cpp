@@ -1,0 +1,179 @@
+// conform_command.cpp — `shadowref conform`: the catalogue on one backend (or an engine team's
+// renders) against the reference, a progress line per case, the scene × technique table, and
+// report.json + report/index.html. Exit: 0 all PASS/XFAIL, 1 quality warnings, 2 any FAIL, XPASS
+// or ERROR, 4 bad input.
+#include <CLI/CLI.hpp>
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "command.hpp"
+#include "shadowref/conform/catalogue.hpp"
+#include "shadowref/conform/conform.hpp"
+#include "shadowref/renderer/gl_context.hpp"
+#include "shadowref/scene/load_scene.hpp"
+
+namespace shadowref::cli {
+namespace {
+
+struct ConformArgs {
+  std::string scenes;
+  std::string techniques;
+  std::string technique;
+  std::string convention = "gl";
+  int shadow_map_size = 0;
+  std::string backend = "llvmpipe";
+  std::string gl = "osmesa";
+  std::string out = "conformance-out";
+  std::string cache;
+  std::string catalogue;
+  std::string candidate_dir;
+  int jobs = 0;
+  int spp = 16;
+  bool references_only = false;
+  bool quiet = false;
+  std::vector<std::string> argv;
+};
+
+int run_conform_command(const ConformArgs& a) {
+  conform::ConformOptions o;
+  const std::filesystem::path catalogue = a.catalogue.empty() ? conform::default_catalogue() : std::filesystem::path(a.catalogue);
+  try {
+    o.scenes = conform::select_scenes(catalogue, conform::split_list(a.scenes));
+  } catch (const std::invalid_argument& e) {
+    throw BadInput(e.what());
+  }
+  o.techniques = conform::split_list(a.techniques);
+  if (!a.technique.empty()) o.techniques.push_back(a.technique);
+  o.convention = std::string(parse_convention(a.convention).name);
+  o.shadow_map_size = a.shadow_map_size;
+  o.backend = a.backend;
+  o.gl = a.gl;
+  o.out = a.out;
+  o.cache = a.cache;
+  o.jobs = a.jobs;
+  o.references_only = a.references_only;
+  int n = 1;
+  while (n * n < a.spp) ++n;
+  if (n * n != a.spp || n > 16) throw BadInput("--spp " + std::to_string(a.spp) + ": must be a square number in [1, 256]");
+  o.reference.samples_per_axis = n;
+  if (!a.candidate_dir.empty()) {
+    if (!std::filesystem::is_directory(a.candidate_dir)) throw BadInput("--candidate-dir " + a.candidate_dir + ": not a folder");
+    o.candidate_dir = a.candidate_dir;
+  }
+  for (const std::string& s : a.argv) o.command_line += (o.command_line.empty() ? "" : " ") + s;
+
+  const bool tty = ::isatty(2);
+  const auto progress = [&](std::size_t done, std::size_t total, const conform::CaseResult& c) {
+    if (a.quiet) return;
+    std::string detail;
+    if (c.comparison) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "%zu wrong (%.3g %%)", c.comparison->total.wrong, c.comparison->total.wrong_percent());
+      detail = buf;
+    } else {
+      detail = c.error;
+    }
+    char head[64];
+    std::snprintf(head, sizeof head, "[%3zu/%zu] ", done, total);
+    std::cerr << (tty ? "\r\033[K" : "") << head << c.scene << " x " << c.technique << ": " << conform::to_string(c.status)
+              << "  " << detail << " (" << static_cast<int>(c.seconds * 1000) << " ms)" << (tty && done < total ? "" : "\n")
+              << std::flush;
+  };
+  const auto log = [&](const std::string& line) {
+    if (!a.quiet) std::cerr << "shadowref conform: " << line << "\n";
+  };
+  conform::ConformResult r;
+  try {
+    r = conform::run_conform(o, progress, log);
+  } catch (const scene::SceneError& e) {
+    throw BadInput(e.what());
+  } catch (const std::invalid_argument& e) {
+    throw BadInput(e.what());
+  }
+  if (a.references_only) {
+    std::printf("references of %zu scene(s) ready in %s (%.1f s)\n", r.scenes.size(),
+                (a.cache.empty() ? (std::filesystem::path(a.out) / "reference-cache").string() : a.cache).c_str(),
+                r.reference_seconds);
+    return kExitPass;
+  }
+  std::printf("\n%s\n", conform::table_text(r).c_str());
+  // Expected failures and failures with their why, so the table is never read without it.
+  for (const conform::CaseResult& c : r.cases) {
+    if (c.status == conform::Status::Pass) continue;
+    std::printf("%-6s %s x %s", conform::to_string(c.status), c.scene.c_str(), c.technique.c_str());
+    if (c.status == conform::Status::XFail || c.status == conform::Status::XPass) std::printf(": expected to fail: %s", c.why.c_str());
+    if (c.comparison && c.status == conform::Status::XFail)
+      std::printf(" (wrong %.3g %%, largest region %zu px)", c.comparison->total.wrong_percent(), c.comparison->total.largest_region);
+    if (c.comparison && !c.comparison->judgement.reasons.empty() && c.status != conform::Status::XFail) {
+      std::string reasons;
+      for (const std::string& reason : c.comparison->judgement.reasons) reasons += (reasons.empty() ? "" : "; ") + reason;
+      std::printf("%s%s", c.status == conform::Status::XPass ? "; but only " : ": ", reasons.c_str());
+    }
+    if (c.comparison && c.status == conform::Status::XPass && c.comparison->judgement.reasons.empty())
+      std::printf("; but it passed (wrong %.3g %%)", c.comparison->total.wrong_percent());
+    if (!c.error.empty()) std::printf(": %s", c.error.c_str());
+    std::printf("\n");
+  }
+  std::printf("\n%zu cases: %zu PASS, %zu XFAIL, %zu FAIL, %zu XPASS, %zu WARN, %zu ERROR in %.1f s (references %.1f s)%s%s\n",
+              r.cases.size(), r.count(conform::Status::Pass), r.count(conform::Status::XFail),
+              r.count(conform::Status::Fail), r.count(conform::Status::XPass), r.count(conform::Status::Warn),
+              r.count(conform::Status::Error), r.seconds, r.reference_seconds,
+              r.gl_renderer.empty() ? "" : ", ", r.gl_renderer.c_str());
+  std::printf("report: %s\n        %s\n", r.report_html.string().c_str(), r.report_json.string().c_str());
+  return r.exit_code();
+}
+
+}  // namespace
+
+void register_conform_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<ConformArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "conform",
+      "Render the scene catalogue with every technique (or judge an engine team's renders), compare each with "
+      "the reference, print the scene x technique table and write report.json and report/index.html.");
+  cmd->add_option("--scenes", args->scenes,
+                  "comma-separated globs over the catalogue's scene names, or scene files (default: every scene not "
+                  "tagged 'large')");
+  cmd->add_option("--techniques", args->techniques, "comma-separated technique names (default: all)");
+  cmd->add_option("--technique", args->technique, "one technique (the name an engine team's renders are judged as)");
+  add_convention_option(*cmd, args->convention);
+  cmd->add_option("--shadow-map-size", args->shadow_map_size,
+                  "texels per side of our shadow maps; 0: automatic (3 texels per camera pixel at the view centres)")
+      ->check(CLI::Range(0, 16384))
+      ->capture_default_str();
+  cmd->add_option("--backend", args->backend, "Mesa driver: llvmpipe, softpipe, or native (a GPU's EGL)")->capture_default_str();
+  cmd->add_option("--gl", args->gl, "context: osmesa or egl")->capture_default_str();
+  cmd->add_option("--out", args->out, "output folder: renders/, report.json, report/index.html")->capture_default_str();
+  cmd->add_option("--cache", args->cache, "reference cache folder (default: OUT/reference-cache)");
+  cmd->add_option("--catalogue", args->catalogue, "scene folder (default: the source tree's conformance/scenes)");
+  cmd->add_option("--candidate-dir", args->candidate_dir,
+                  "judge these renders instead of ours: DIR/<scene>/mask.png (or DIR/<scene>/<technique>/mask.png), "
+                  "as `shadowref export` describes");
+  cmd->add_option("--jobs", args->jobs, "threads for the reference and llvmpipe (0: all cores)")
+      ->check(CLI::Range(0, 256))
+      ->capture_default_str();
+  cmd->add_option("--spp", args->spp, "reference samples per pixel (a square number)")->capture_default_str();
+  cmd->add_flag("--references-only", args->references_only, "compute the references into the cache and stop");
+  cmd->add_flag("--quiet", args->quiet, "no progress lines");
+  cmd->footer(
+      "Status: PASS, WARN (quality warning), FAIL, XFAIL (an expected failure that failed: the catalogue's why),\n"
+      "XPASS (an expected failure that passed: a broken expectation, counted as a failure), ERROR.\n"
+      "Exit: 0 when every case is PASS or XFAIL, 1 with warnings, 2 with any FAIL, XPASS or ERROR, 4 bad input.");
+  cmd->callback([args, &exit_code] {
+    // The effective command line, for report.json.
+    ConformArgs& a = *args;
+    a.argv = {"shadowref", "conform", "--backend", a.backend, "--gl", a.gl, "--out", a.out};
+    if (!a.scenes.empty()) a.argv.insert(a.argv.end(), {"--scenes", a.scenes});
+    if (!a.techniques.empty()) a.argv.insert(a.argv.end(), {"--techniques", a.techniques});
+    if (!a.technique.empty()) a.argv.insert(a.argv.end(), {"--technique", a.technique});
+    if (!a.candidate_dir.empty()) a.argv.insert(a.argv.end(), {"--candidate-dir", a.candidate_dir});
+    exit_code = run_conform_command(a);
+  });
+}
+
+}  // namespace shadowref::cli

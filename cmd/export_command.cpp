@@ -1,0 +1,403 @@
+// export_command.cpp — `shadowref export`: the scene pack an engine team renders with its own
+// engine and hands back to `shadowref conform --candidate-dir`.
+//
+// The pack (OUT/):
+//   README.md                    what to render, how to name the files, how to get a verdict
+//   manifest.json                scenes, resolutions, lights, techniques with the expectations
+//   scenes/<scene>.json          the scene files as the catalogue has them (+ scenes/meshes/)
+//   <scene>/meshes/<object>.obj  every object in world space (the transform applied), CCW outside
+//   <scene>/meshes/<object>.gltf the same as glTF 2.0 (one embedded buffer)
+//   <scene>/matrices.json        per run convention (gl, gl-zo, reversed-z, d3d): the camera's view,
+//                                projection (infinite, and a finite one), view-projection, the world
+//                                mirror, the bias matrix and every light's shadow-map views; per light
+//                                its parameters, homogeneous point and planar shadow matrix — every
+//                                matrix in canonical (column vectors) and D3DX (row vectors) layout
+//   <scene>/reference/           mask(_<i>).png, decided(_<i>).png, shaded.png, visibility.exr
+// Every matrix comes from mathlib (view.hpp, projection.hpp, shadow_matrix.hpp, shadow_map.hpp,
+// d3dx.hpp) through scene/camera.hpp: the ones our renderer and the reference use.
+#include <CLI/CLI.hpp>
+#include <unistd.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <system_error>
+
+#include "command.hpp"
+#include "shadowref/outputs/file_names.hpp"
+#include "shadowref/outputs/image.hpp"
+#include "shadowref/conform/catalogue.hpp"
+#include "shadowref/conform/reference_cache.hpp"
+#include "shadowref/d3dx.hpp"
+#include "shadowref/projection.hpp"
+#include "shadowref/convention.hpp"
+#include "shadowref/scene/camera.hpp"
+#include "shadowref/scene/prepared_scene.hpp"
+#include "shadowref/scene/load_scene.hpp"
+#include "shadowref/shadow_map.hpp"
+#include "shadowref/shadow_matrix.hpp"
+
+namespace shadowref::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct ExportArgs {
+  std::string out;
+  std::string scenes;
+  std::string catalogue;
+  std::string cache = "conformance-out/reference-cache";
+  int jobs = 0;
+};
+
+json rows(const Mat4<double>& m) {
+  json a = json::array();
+  for (int r = 0; r < 4; ++r) a.push_back({m(r, 0), m(r, 1), m(r, 2), m(r, 3)});
+  return a;
+}
+
+// {"canonical": rows of M (v' = M v), "d3dx": fields _11.._44 row by row (v' = v M)}
+json both_layouts(const Mat4<double>& m) {
+  const D3dxMatrix<double> d = to_d3dx(m);
+  json a = json::array();
+  for (int r = 0; r < 4; ++r) a.push_back({d.m[r][0], d.m[r][1], d.m[r][2], d.m[r][3]});
+  return {{"canonical", rows(m)}, {"d3dx", a}};
+}
+
+void write_text(const fs::path& file, const std::string& text) {
+  std::ofstream f(file, std::ios::binary);
+  f << text;
+  if (!f) throw BadInput("cannot write " + file.string());
+}
+
+std::string safe_name(std::string s) {
+  for (char& c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_')) c = '_';
+  return s;
+}
+
+void write_obj(const scene::Object& o, const fs::path& file) {
+  std::string t = "# shadowref export: " + o.name + " in world space, counter-clockwise = outside\no " + o.name + "\n";
+  char buf[128];
+  for (const auto& p : o.mesh.positions) {
+    std::snprintf(buf, sizeof buf, "v %.9g %.9g %.9g\n", static_cast<double>(p.x()), static_cast<double>(p.y()),
+                  static_cast<double>(p.z()));
+    t += buf;
+  }
+  for (const auto& tri : o.mesh.triangles) {
+    std::snprintf(buf, sizeof buf, "f %u %u %u\n", tri[0] + 1, tri[1] + 1, tri[2] + 1);
+    t += buf;
+  }
+  write_text(file, t);
+}
+
+std::string base64(const std::string& bytes) {
+  static constexpr char k[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  std::size_t i = 0;
+  for (; i + 2 < bytes.size(); i += 3) {
+    const unsigned v = (static_cast<unsigned char>(bytes[i]) << 16) | (static_cast<unsigned char>(bytes[i + 1]) << 8) |
+                       static_cast<unsigned char>(bytes[i + 2]);
+    out += {k[(v >> 18) & 63], k[(v >> 12) & 63], k[(v >> 6) & 63], k[v & 63]};
+  }
+  if (i + 1 == bytes.size()) {
+    const unsigned v = static_cast<unsigned char>(bytes[i]) << 16;
+    out += {k[(v >> 18) & 63], k[(v >> 12) & 63], '=', '='};
+  } else if (i + 2 == bytes.size()) {
+    const unsigned v = (static_cast<unsigned char>(bytes[i]) << 16) | (static_cast<unsigned char>(bytes[i + 1]) << 8);
+    out += {k[(v >> 18) & 63], k[(v >> 12) & 63], k[(v >> 6) & 63], '='};
+  }
+  return out;
+}
+
+// glTF 2.0: one mesh, float positions and uint32 indices in one embedded base64 buffer.
+void write_gltf(const scene::Object& o, const fs::path& file) {
+  std::string buffer;
+  Vec3<float> lo = o.mesh.positions.front(), hi = lo;
+  for (const auto& p : o.mesh.positions) {
+    buffer.append(reinterpret_cast<const char*>(p.data()), 3 * sizeof(float));
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const std::size_t index_offset = buffer.size();
+  for (const auto& tri : o.mesh.triangles) buffer.append(reinterpret_cast<const char*>(tri.data()), 3 * sizeof(std::uint32_t));
+  json g;
+  g["asset"] = {{"version", "2.0"}, {"generator", "shadowref export"}};
+  g["scene"] = 0;
+  g["scenes"] = {{{"nodes", {0}}}};
+  g["nodes"] = {{{"name", o.name}, {"mesh", 0}}};
+  g["meshes"] = {{{"name", o.name}, {"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}, {"mode", 4}}}}}};
+  g["buffers"] = {{{"byteLength", buffer.size()}, {"uri", "data:application/octet-stream;base64," + base64(buffer)}}};
+  g["bufferViews"] = {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", index_offset}, {"target", 34962}},
+                      {{"buffer", 0}, {"byteOffset", index_offset}, {"byteLength", buffer.size() - index_offset}, {"target", 34963}}};
+  g["accessors"] = {{{"bufferView", 0}, {"componentType", 5126}, {"count", o.mesh.positions.size()}, {"type", "VEC3"},
+                     {"min", {lo.x(), lo.y(), lo.z()}}, {"max", {hi.x(), hi.y(), hi.z()}}},
+                    {{"bufferView", 1}, {"componentType", 5125}, {"count", 3 * o.mesh.triangles.size()}, {"type", "SCALAR"}}};
+  write_text(file, g.dump() + "\n");
+}
+
+// The matrices of one run convention (convention.hpp), from the prepared scene: the very ones our
+// renderer and the reference use when run with --convention NAME.
+json convention_matrices(const scene::PreparedScene& p) {
+  const RunConvention& c = *p.convention;
+  json j;
+  j["summary"] = c.summary;
+  j["handedness"] = to_string(c.clip.hand);
+  j["clip_depth"] = c.clip.order == DepthOrder::Reversed ? "one-to-zero (reversed)" : to_string(c.clip.depth);
+  j["depth_buffer"] = c.float_depth ? "32-bit float" : "24-bit fixed point";
+  j["depth_test"] = c.clip.order == DepthOrder::Reversed ? "GREATER" : "LESS";
+  j["depth_clear"] = far_depth(c);
+  j["shadow_compare_lit_when"] = c.clip.order == DepthOrder::Reversed ? "GEQUAL" : "LEQUAL";
+  j["polygon_offset_sign"] = polygon_offset_sign(c);
+  j["world_from_scene"] = both_layouts(world_from_scene<double>(c));
+  j["view"] = both_layouts(p.camera.view);
+  j["projection"] = both_layouts(p.camera.projection);
+  j["view_projection"] = both_layouts(p.camera.clip_from_scene);
+  j["projection_finite"] = both_layouts(p.camera_finite_for_clamp.projection);
+  j["shadow_map_bias"] = both_layouts(shadow_bias<double>(c));
+  json lights = json::array();
+  for (const LightFit& fit : p.light_fits) {
+    json l;
+    l["kind"] = fit.cube ? "cube (6 views: +x, -x, +y, -y, +z, -z of scene space)" : "single view";
+    l["map_size"] = fit.size;
+    json views = json::array();
+    for (const LightView& v : fit.views) {
+      views.push_back({{"view", both_layouts(v.view)},
+                       {"projection", both_layouts(v.projection)},
+                       {"shadow_from_scene", both_layouts(Mat4<double>(shadow_bias<double>(c) * v.projection * v.view))},
+                       {"empty", v.empty}});
+    }
+    l["views"] = views;
+    lights.push_back(l);
+  }
+  j["light_views"] = lights;
+  return j;
+}
+
+json matrices(const scene::Scene& s) {
+  json j;
+  j["resolution"] = {s.width, s.height};
+  j["pixel_convention"] =
+      "row 0 is the top row; pixel (x, y) has its centre at ndc.x = 2 (x + 0.5) / W - 1, ndc.y = 1 - 2 (y + 0.5) / H "
+      "(Direct3D 10+ and OpenGL both sample at pixel centres; Direct3D 9 needs its half-pixel offset removed)";
+  j["world"] = "right-handed, y up (scene coordinates; the d3d convention mirrors z into a left-handed world: world_from_scene)";
+  j["layouts"] = "canonical: column vectors, v' = M v, rows listed; d3dx: row vectors, v' = v M, fields _11.._44 row "
+                 "by row (the transpose)";
+  json cam;
+  cam["position"] = {s.camera.position.x(), s.camera.position.y(), s.camera.position.z()};
+  cam["target"] = {s.camera.target.x(), s.camera.target.y(), s.camera.target.z()};
+  cam["up"] = {s.camera.up.x(), s.camera.up.y(), s.camera.up.z()};
+  cam["fovy_deg"] = s.camera.fovy_deg;
+  cam["near"] = s.camera.near;
+  cam["far"] = s.camera.far ? json(*s.camera.far) : json("infinite");
+  j["camera"] = cam;
+  json conventions = json::object();
+  for (const RunConvention& c : kRunConventions) conventions[std::string(c.name)] = convention_matrices(scene::prepare_scene(s, c));
+  j["conventions"] = conventions;
+  const std::optional<Plane<double>> plane = scene::receiver_plane(s);
+  if (plane) j["receiver_plane"] = {plane->a(), plane->b(), plane->c(), plane->d()};
+  json lights = json::array();
+  for (std::size_t i = 0; i < s.lights.size(); ++i) {
+    const scene::Light& sl = s.lights[i];
+    const Vec4<double> L = scene::homogeneous(sl);
+    json l;
+    l["type"] = scene::to_string(sl.type);
+    l["homogeneous"] = {L.x(), L.y(), L.z(), L.w()};
+    switch (sl.type) {
+      case scene::LightType::Point: l["position"] = {sl.position.x(), sl.position.y(), sl.position.z()}; break;
+      case scene::LightType::Directional: l["direction_toward_light"] = {sl.direction.x(), sl.direction.y(), sl.direction.z()}; break;
+      case scene::LightType::Spot:
+        l["position"] = {sl.position.x(), sl.position.y(), sl.position.z()};
+        l["direction"] = {sl.direction.x(), sl.direction.y(), sl.direction.z()};
+        l["cone_half_angle_deg"] = sl.cone_deg;
+        l["note"] = "the cone shapes lighting only; the mask is the visibility of the position";
+        break;
+      case scene::LightType::Rect:
+        l["corner"] = {sl.corner.x(), sl.corner.y(), sl.corner.z()};
+        l["edge_u"] = {sl.edge_u.x(), sl.edge_u.y(), sl.edge_u.z()};
+        l["edge_v"] = {sl.edge_v.x(), sl.edge_v.y(), sl.edge_v.z()};
+        l["note"] = "the mask is the visibility of the parallelogram's centre (homogeneous); the reference's visibility.exr is the area light's";
+        break;
+    }
+    l["mask_file"] = outputs::mask_name(i, s.lights.size());
+    if (plane) {
+      const Result<Mat4<double>> sm = shadow_matrix(*plane, L);
+      if (sm) l["planar_shadow_matrix"] = both_layouts(*sm);
+      else l["planar_shadow_matrix"] = sm.message();
+    }
+    lights.push_back(l);
+  }
+  j["lights"] = lights;
+  return j;
+}
+
+std::string readme(const json& manifest) {
+  std::string t =
+      "# shadowref scene pack\n\n"
+      "Render each scene below with your engine and let `shadowref conform` judge the shadows exactly as it judges\n"
+      "ours: pixel by pixel against a ray-traced reference, on the pixels whose answer is certain.\n\n"
+      "## What to render\n\n"
+      "For every scene folder `<scene>/`: the objects in `<scene>/meshes/` (OBJ or glTF, world space, right-handed,\n"
+      "y up, counter-clockwise = outside), seen through the camera of `<scene>/matrices.json` at the scene's resolution,\n"
+      "lit by its lights (homogeneous points: w = 1 a point light at xyz, w = 0 a directional light with xyz pointing\n"
+      "toward the light; spot and rect lights are listed with all their parameters). Faces turned away from a light are\n"
+      "in their own (attached) shadow: shadowed in the mask.\n\n"
+      "`matrices.json` has, under `conventions`, the camera and every light's shadow-map views in each depth convention\n"
+      "we render and judge in: `gl` (right-handed, -1..1), `gl-zo` (right-handed, 0..1), `reversed-z` (0..1 reversed,\n"
+      "float depth, GREATER) and `d3d` (truly left-handed: the world mirrored in z by `world_from_scene`, then a\n"
+      "left-handed look-at and projection, 0..1). Use the one your engine works in; `projection` has an infinite far\n"
+      "plane, `projection_finite` a far plane behind the whole scene. Every matrix is given in canonical (column\n"
+      "vectors) and D3DX (row vectors) layout. Pixel centres: `ndc.x = 2 (x + 0.5) / W - 1`, `ndc.y = 1 - 2 (y + 0.5) / H`,\n"
+      "row 0 at the top (remove Direct3D 9's half-pixel offset).\n\n"
+      "## What to write\n\n"
+      "One folder per scene, named after it, holding the shadow mask your technique computes:\n\n"
+      "```\n"
+      "my-renders/<scene>/mask.png        one light: 8-bit grey PNG, W x H, row 0 at the top\n"
+      "my-renders/<scene>/mask_<i>.png    several lights: one mask per light, in the order of matrices.json\n"
+      "```\n\n"
+      "Each pixel answers \"is the surface seen through this pixel centre lit by this light?\": **255 lit, 0 shadowed,\n"
+      "128 no surface** (background). Shadow only — no shading, no ambient, no spot-cone falloff (a spot light's cone is\n"
+      "lighting, not shadow). `<scene>/reference/mask*.png` shows the expected answer; `decided*.png` marks (255) the\n"
+      "pixels that are judged. Optionally add `shaded.png` (RGB) for the report.\n\n"
+      "## How to get the verdict\n\n"
+      "```sh\n"
+      "shadowref conform --candidate-dir my-renders --technique shadowmap --out my-verdict\n"
+      "```\n\n"
+      "`--technique` picks the threshold (our technique names: planar, volume-*, shadowmap, shadowmap-pcf,\n"
+      "shadowmap-rgba8; any other name gets the strictest) and the catalogue's expectations (a scene where the\n"
+      "technique is known to fail expects a FAIL: see `manifest.json`). The table, `my-verdict/report.json` and\n"
+      "`my-verdict/report/index.html` (reference, your mask and the error image side by side) follow.\n"
+      "Exit code: 0 every case PASS or XFAIL, 1 quality warnings, 2 failures.\n\n"
+      "## Scenes\n\n| scene | resolution | lights | description |\n| --- | --- | --- | --- |\n";
+  for (const json& s : manifest["scenes"])
+    t += "| " + s["name"].get<std::string>() + " | " + std::to_string(s["resolution"][0].get<int>()) + "x" +
+         std::to_string(s["resolution"][1].get<int>()) + " | " + std::to_string(s["lights"].get<int>()) + " | " +
+         s["description"].get<std::string>() + " |\n";
+  return t;
+}
+
+void run_export(const ExportArgs& a) {
+  std::vector<fs::path> files;
+  try {
+    files = conform::select_scenes(a.catalogue.empty() ? conform::default_catalogue() : fs::path(a.catalogue),
+                                   conform::split_list(a.scenes));
+  } catch (const std::invalid_argument& e) {
+    throw BadInput(e.what());
+  }
+  // Every scene is loaded and validated before anything is written: a bad scene leaves no pack.
+  std::vector<scene::Scene> scenes;
+  for (const fs::path& f : files) {
+    try {
+      scenes.push_back(scene::load_scene(f));
+    } catch (const scene::SceneError& e) {
+      throw BadInput(e.what());
+    }
+  }
+  // The pack is written into a staging folder beside --out and renamed into place when complete,
+  // so an interrupted or failed export never leaves a folder that looks like a pack.
+  const fs::path final_out = fs::absolute(fs::path(a.out)).lexically_normal();
+  std::error_code ec;
+  if (fs::exists(final_out, ec)) {
+    const bool is_pack = fs::exists(final_out / "manifest.json", ec);
+    const bool is_empty = fs::is_directory(final_out, ec) && fs::is_empty(final_out, ec);
+    if (!is_pack && !is_empty)
+      throw BadInput("--out " + a.out + ": exists and is not a shadowref pack (no manifest.json): choose another folder");
+  }
+  fs::create_directories(final_out.parent_path(), ec);
+  if (ec) throw BadInput("--out " + a.out + ": " + ec.message());
+  const fs::path out = final_out.parent_path() / ("." + final_out.filename().string() + ".partial-" + std::to_string(::getpid()));
+  fs::remove_all(out, ec);
+  fs::create_directories(out / "scenes", ec);
+  if (ec) throw BadInput("--out " + a.out + ": " + ec.message());
+  struct Staging {
+    fs::path dir;
+    bool done = false;
+    ~Staging() {
+      std::error_code ignored;
+      if (!done) fs::remove_all(dir, ignored);
+    }
+  } staging{out};
+  conform::ReferenceSettings settings;
+  settings.threads = a.jobs;
+  json manifest;
+  manifest["tool"] = "shadowref export";
+  manifest["mask_values"] = {{"lit", outputs::kMaskLit}, {"shadowed", outputs::kMaskShadowed}, {"no_surface", outputs::kMaskNoSurface}};
+  manifest["scenes"] = json::array();
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    const fs::path& f = files[k];
+    const scene::Scene& s = scenes[k];
+    const fs::path dir = out / s.name;
+    fs::create_directories(dir / "meshes");
+    // The scene file, and the mesh files it names next to it (the same relative paths).
+    fs::copy_file(f, out / "scenes" / f.filename(), fs::copy_options::overwrite_existing);
+    {
+      std::ifstream in(f);
+      const json sj = json::parse(in, nullptr, false);
+      if (sj.is_object() && sj.contains("objects"))
+        for (const auto& o : sj["objects"])
+          if (o.contains("shape") && o["shape"].contains("file")) {
+            const fs::path rel = o["shape"]["file"].get<std::string>();
+            fs::create_directories((out / "scenes" / rel).parent_path());
+            fs::copy_file(f.parent_path() / rel, out / "scenes" / rel, fs::copy_options::overwrite_existing);
+          }
+    }
+    json objects = json::array();
+    for (const scene::Object& o : s.objects) {
+      const std::string n = safe_name(o.name);
+      write_obj(o, dir / "meshes" / (n + ".obj"));
+      write_gltf(o, dir / "meshes" / (n + ".gltf"));
+      objects.push_back({{"name", o.name}, {"obj", "meshes/" + n + ".obj"}, {"gltf", "meshes/" + n + ".gltf"},
+                         {"receiver", o.receiver}, {"color", {o.color.x(), o.color.y(), o.color.z()}}});
+    }
+    json m = matrices(s);
+    m["objects"] = objects;
+    write_text(dir / "matrices.json", m.dump(2) + "\n");
+    const conform::CachedReference ref = conform::ensure_reference(scene::prepare_scene(s), a.cache, settings);
+    fs::remove_all(dir / "reference", ec);
+    fs::create_directories(dir / "reference");
+    for (const auto& e : fs::directory_iterator(ref.dir))
+      if (e.path().filename() != "key.json") fs::copy_file(e.path(), dir / "reference" / e.path().filename());
+    json expect = json::object();
+    for (const auto& [t, e] : s.expect) expect[t] = e.pass ? json{{"result", "pass"}} : json{{"result", "fail"}, {"why", e.why}};
+    manifest["scenes"].push_back({{"name", s.name},
+                                  {"description", s.description},
+                                  {"resolution", {s.width, s.height}},
+                                  {"lights", s.lights.size()},
+                                  {"scene_file", "scenes/" + f.filename().string()},
+                                  {"expect", expect}});
+    std::printf("exported %s (%zu objects, %zu light(s), reference %s)\n", s.name.c_str(), s.objects.size(),
+                s.lights.size(), ref.computed ? "computed" : "cached");
+  }
+  write_text(out / "README.md", readme(manifest));
+  write_text(out / "manifest.json", manifest.dump(2) + "\n");  // last: its presence marks a complete pack
+  fs::remove_all(final_out, ec);
+  fs::rename(out, final_out, ec);
+  if (ec) throw BadInput("--out " + a.out + ": cannot move the pack into place: " + ec.message());
+  staging.done = true;
+  std::printf("pack: %s (README.md says what to render and how to name the files)\n", final_out.string().c_str());
+}
+
+}  // namespace
+
+void register_export_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<ExportArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "export",
+      "Write a scene pack for engine teams: scenes, meshes (OBJ, glTF), camera and light matrices in canonical and "
+      "D3DX layout, reference masks, and a README saying what to render and how to name the files.");
+  cmd->add_option("--out", args->out, "the pack folder")->required();
+  cmd->add_option("--scenes", args->scenes, "globs over scene names (default: the default catalogue)");
+  cmd->add_option("--catalogue", args->catalogue, "scene folder (default: the source tree's conformance/scenes)");
+  cmd->add_option("--cache", args->cache, "reference cache (shared with shadowref conform's default)")->capture_default_str();
+  cmd->add_option("--jobs", args->jobs, "reference threads (0: all cores)")->check(CLI::Range(0, 256));
+  cmd->callback([args, &exit_code] {
+    run_export(*args);
+    exit_code = kExitPass;
+  });
+}
+
+}  // namespace shadowref::cli

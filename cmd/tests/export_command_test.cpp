@@ -1,0 +1,75 @@
+// export_command_test.cpp — `shadowref export`: the pack carries the camera and light matrices of
+// every run convention, and they agree on where a scene point lands (independently recomputed here
+// from the matrices in matrices.json, not from mathlib).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "run_command.hpp"
+
+namespace shadowref {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// clip = M · (x, y, z, 1) with M given as canonical rows.
+std::array<double, 4> apply(const json& rows, const std::array<double, 3>& p) {
+  std::array<double, 4> out{};
+  for (int r = 0; r < 4; ++r)
+    out[static_cast<std::size_t>(r)] = rows[r][0].get<double>() * p[0] + rows[r][1].get<double>() * p[1] +
+                                      rows[r][2].get<double>() * p[2] + rows[r][3].get<double>();
+  return out;
+}
+
+double det3(const json& rows) {
+  const auto m = [&](int r, int c) { return rows[r][c].get<double>(); };
+  return m(0, 0) * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1)) - m(0, 1) * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0)) +
+         m(0, 2) * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0));
+}
+
+TEST(ExportCommand, PackHasEveryConventionAndTheyPutPointsOnTheSamePixel) {
+  const fs::path root = fs::temp_directory_path() / ("shadowref_export_test_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  const test::CommandResult r = test::run_command(
+      {SHADOWREF_EXE, "export", "--scenes", "ground_sphere", "--out", (root / "pack").string(), "--cache", (root / "cache").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(root / "pack" / "ground_sphere" / "matrices.json");
+  const json m = json::parse(in);
+  ASSERT_TRUE(m.contains("world"));
+  const json& conv = m["conventions"];
+  for (const char* name : {"gl", "gl-zo", "reversed-z", "d3d"}) ASSERT_TRUE(conv.contains(name)) << name;
+  // Points of the scene (on the ground, on the ball): the same NDC x, y in every convention.
+  const std::array<std::array<double, 3>, 3> points{{{0.0, 1.5, 0.0}, {1.0, 0.0, -1.0}, {-2.0, 0.0, 1.0}}};
+  for (const auto& p : points) {
+    const auto g = apply(conv["gl"]["view_projection"]["canonical"], p);
+    for (const auto& [name, c] : conv.items()) {
+      const auto h = apply(c["view_projection"]["canonical"], p);
+      ASSERT_GT(h[3], 0.0) << name;
+      EXPECT_NEAR(h[0] / h[3], g[0] / g[3], 1e-9) << name;
+      EXPECT_NEAR(h[1] / h[3], g[1] / g[3], 1e-9) << name;
+    }
+  }
+  // d3d is left-handed over scene coordinates (a mirror), gl right-handed; both are rotations.
+  EXPECT_NEAR(det3(conv["d3d"]["view"]["canonical"]), -1.0, 1e-9);
+  EXPECT_NEAR(det3(conv["gl"]["view"]["canonical"]), 1.0, 1e-9);
+  EXPECT_EQ(conv["reversed-z"]["depth_test"], "GREATER");
+  EXPECT_EQ(conv["reversed-z"]["depth_clear"], 0.0);
+  // Every light has shadow-map views in every convention, mapping the ball's centre into the map.
+  for (const auto& [name, c] : conv.items()) {
+    ASSERT_EQ(c["light_views"].size(), m["lights"].size()) << name;
+    const json& view = c["light_views"][0]["views"][0];
+    const auto t = apply(view["shadow_from_scene"]["canonical"], points[0]);
+    EXPECT_GT(t[0] / t[3], 0.0) << name;
+    EXPECT_LT(t[0] / t[3], 1.0) << name;
+    EXPECT_GT(t[2] / t[3], 0.0) << name;
+    EXPECT_LT(t[2] / t[3], 1.0) << name;
+  }
+  fs::remove_all(root);
+}
+
+}  // namespace
+}  // namespace shadowref

@@ -1,0 +1,31 @@
+// shadowref/outputs/image_io.hpp — reading and writing the contract's images with OpenImageIO,
+// row 0 = the top row. The only PNG / EXR reader and writer of the project.
+//
+// Reading refuses, with a one-line InputError(BadInput) naming the file, everything a comparison
+// cannot judge honestly: a missing file, a file OpenImageIO cannot open or decode (a truncated
+// PNG), more than 16384 × 16384 pixels (checked from the header, before any pixel is allocated),
+// a channel count other than the one asked for, a pixel format other than 8-bit unsigned.
+// Nothing is converted behind the caller's back (an RGB "grey" mask is refused, not averaged).
+//
+// Writing: PNG for Image8 (grey or RGB), OpenEXR (zip, one float channel "Y", no wall-clock
+// DateTime so that two runs write identical bytes) for float images. Errors are one-line
+// std::runtime_error naming the file. Callers that need all-or-nothing folders write into a
+// StagedFolder (staged_folder.hpp).
+#pragma once
+
+#include <filesystem>
+
+#include "shadowref/outputs/image.hpp"
+
+namespace shadowref::outputs {
+
+// Reads `file` as an 8-bit image with exactly `channels` channels. Throws InputError(BadInput).
+Image8 read_image8(const std::filesystem::path& file, int channels);
+
+// Writes `image` as PNG.
+void write_png(const Image8& image, const std::filesystem::path& file);
+
+// Writes a width × height single-channel float image (row 0 at the top) as OpenEXR.
+void write_exr(int width, int height, const float* pixels, const std::filesystem::path& file);
+
+}  // namespace shadowref::outputs

@@ -1,0 +1,48 @@
+// shadowref/outputs/techniques.hpp — the technique names of the contract, the one list.
+//
+// A technique name is what a scene's `expect` keys, a candidate's declaration, the renderer's
+// `--technique`, the judge's threshold and the CTest case names all use. The renderer's table
+// (renderer/renderer.cpp) is checked at compile time against this list, entry by entry; the CMake
+// test registration reads the quoted names below (cmake/Techniques.cmake), so keep one entry per
+// line in the form {"name", TechniqueFamily::...}.
+#pragma once
+
+#include <array>
+#include <string_view>
+
+namespace shadowref::outputs {
+
+// How a technique decides a pixel, which fixes how it is judged (conformance/compare/thresholds.hpp).
+enum class TechniqueFamily {
+  ExactGeometry,  // rasterises the very triangles the reference traces: planar, stencil volumes
+  ShadowMap,      // one depth compare per pixel against a map of texels
+  ShadowMapPcf,   // a filtered compare (percentage-closer filtering)
+};
+
+struct TechniqueName {
+  std::string_view name;
+  TechniqueFamily family;
+};
+
+// clang-format off
+inline constexpr std::array<TechniqueName, 9> kTechniques{{
+    {"planar", TechniqueFamily::ExactGeometry},
+    {"volume-zpass", TechniqueFamily::ExactGeometry},
+    {"volume-zfail", TechniqueFamily::ExactGeometry},
+    {"volume-zfail-clamp", TechniqueFamily::ExactGeometry},
+    {"volume-robust", TechniqueFamily::ExactGeometry},
+    {"volume-finite", TechniqueFamily::ExactGeometry},
+    {"shadowmap", TechniqueFamily::ShadowMap},
+    {"shadowmap-pcf", TechniqueFamily::ShadowMapPcf},
+    {"shadowmap-rgba8", TechniqueFamily::ShadowMap},
+}};
+// clang-format on
+
+// The entry called `name`, or nullptr.
+constexpr const TechniqueName* find_technique_name(std::string_view name) {
+  for (const TechniqueName& t : kTechniques)
+    if (t.name == name) return &t;
+  return nullptr;
+}
+
+}  // namespace shadowref::outputs

@@ -1,0 +1,98 @@
+// outputs_test.cpp — the output contract's naming rule, image round trip and staged folder.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "shadowref/outputs/file_names.hpp"
+#include "shadowref/outputs/image_io.hpp"
+#include "shadowref/outputs/errors.hpp"
+#include "shadowref/outputs/staged_folder.hpp"
+#include "shadowref/outputs/techniques.hpp"
+
+namespace shadowref::outputs {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("shadowref_outputs_test_" + std::to_string(::getpid())) / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+TEST(FileNames, OneLightHasNoIndexSeveralDo) {
+  EXPECT_EQ(mask_name(0, 1), "mask.png");
+  EXPECT_EQ(mask_name(0, 2), "mask_0.png");
+  EXPECT_EQ(mask_name(1, 2), "mask_1.png");
+  EXPECT_EQ(decided_name(0, 1), "decided.png");
+  EXPECT_EQ(per_light_name("visibility", "exr", 3, 4), "visibility_3.exr");
+}
+
+TEST(FileNames, FindsTheMasksOfAFolderAndRefusesAmbiguity) {
+  const fs::path d = fresh_dir("names");
+  EXPECT_THROW(find_mask_names(d), InputError);
+  const Image8 m{2, 1, 1, {kMaskLit, kMaskShadowed}};
+  write_png(m, d / "mask_0.png");
+  write_png(m, d / "mask_1.png");
+  EXPECT_EQ(find_mask_names(d), (std::vector<std::string>{"mask_0.png", "mask_1.png"}));
+  write_png(m, d / "mask.png");
+  EXPECT_THROW(find_mask_names(d), InputError);
+}
+
+TEST(ImageIo, PngRoundTripsAndWrongChannelCountIsRefused) {
+  const fs::path d = fresh_dir("io");
+  const Image8 m{3, 2, 1, {kMaskLit, kMaskShadowed, kMaskNoSurface, 0, 255, 128}};
+  write_png(m, d / "m.png");
+  const Image8 back = read_image8(d / "m.png", 1);
+  EXPECT_EQ(back.width, 3);
+  EXPECT_EQ(back.height, 2);
+  EXPECT_EQ(back.pixels, m.pixels);
+  EXPECT_THROW(read_image8(d / "m.png", 3), InputError);
+  EXPECT_THROW(read_image8(d / "missing.png", 1), InputError);
+}
+
+TEST(StagedFolder, CommitReplacesAndAbandonLeavesTheOldFolder) {
+  const fs::path d = fresh_dir("staged");
+  const fs::path target = d / "result";
+  fs::create_directories(target);
+  std::ofstream(target / "old.txt") << "old";
+  {
+    StagedFolder s(target);
+    std::ofstream(s.path() / "new.txt") << "new";
+    EXPECT_TRUE(fs::exists(target / "old.txt"));  // nothing visible before commit
+  }  // abandoned
+  EXPECT_TRUE(fs::exists(target / "old.txt"));
+  EXPECT_FALSE(fs::exists(target / "new.txt"));
+  EXPECT_EQ(std::distance(fs::directory_iterator(d), fs::directory_iterator()), 1) << "the staging folder was left behind";
+  {
+    StagedFolder s(target);
+    std::ofstream(s.path() / "new.txt") << "new";
+    s.commit();
+  }
+  EXPECT_FALSE(fs::exists(target / "old.txt"));
+  EXPECT_TRUE(fs::exists(target / "new.txt"));
+}
+
+TEST(StagedFolder, RefusesToReplaceASymlink) {
+  const fs::path d = fresh_dir("link");
+  fs::create_directories(d / "elsewhere");
+  fs::create_directory_symlink(d / "elsewhere", d / "result");
+  StagedFolder s(d / "result");
+  std::ofstream(s.path() / "new.txt") << "new";
+  EXPECT_THROW(s.commit(), std::runtime_error);
+  EXPECT_TRUE(fs::is_symlink(d / "result"));
+  EXPECT_FALSE(fs::exists(d / "elsewhere" / "new.txt"));
+}
+
+TEST(Techniques, NamesAreUniqueAndFindable) {
+  for (const TechniqueName& t : kTechniques) {
+    EXPECT_EQ(find_technique_name(t.name), &t);
+  }
+  EXPECT_EQ(find_technique_name("no-such-technique"), nullptr);
+}
+
+}  // namespace
+}  // namespace shadowref::outputs

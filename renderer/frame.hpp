@@ -1,0 +1,128 @@
+// frame.hpp — what a technique gets to draw one frame: the GL table, the compiled programs, the
+// scene's meshes on the GPU, the camera matrices, and the passes every technique shares (the
+// ambient pre-pass, one light's additive pass, mask read-back). Private to the renderer library.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "gl_functions.hpp"
+#include "shadowref/conventions.hpp"
+#include "shadowref/renderer/renderer.hpp"
+#include "shadowref/convention.hpp"
+#include "shadowref/scene/prepared_scene.hpp"
+#include "shadowref/scene/scene.hpp"
+
+namespace shadowref::renderer {
+
+// A linked program and the uniform locations the renderer sets (-1 when a program lacks one).
+struct Program {
+  GLuint id = 0;
+  GLint clip_from_world = -1, shadow_from_world = -1, colour = -1, mode = -1, shadow = -1, albedo = -1,
+        ambient = -1, light = -1, light_intensity = -1, spot = -1, shadow_map = -1, packed_map = -1,
+        texel = -1, offset_factor = -1, offset_units = -1, cube = -1, cube_from_world = -1, reversed = -1;
+};
+
+struct Programs {
+  Program flat;           // kSceneVertex + kFlatFragment
+  Program surface;        // kSceneVertex + kSurfaceFragment
+  Program packed_depth;   // kSceneVertex + kPackedDepthFragment
+};
+
+// Homogeneous vertices (vec4) and optional 32-bit triangle indices on the GPU.
+class GpuMesh {
+ public:
+  // `normals`, when not empty, is one per vertex (attribute 1: the face normals of a flat mesh).
+  GpuMesh(const GlFunctions& gl, std::span<const Vec4<float>> vertices, std::span<const std::uint32_t> indices,
+          std::span<const Vec3<float>> normals = {});
+  ~GpuMesh();
+  GpuMesh(GpuMesh&& other) noexcept;
+  GpuMesh(const GpuMesh&) = delete;
+  GpuMesh& operator=(const GpuMesh&) = delete;
+  GpuMesh& operator=(GpuMesh&&) = delete;
+  void draw() const;  // GL_TRIANGLES, indexed when indices were given
+  bool empty() const { return count_ == 0; }
+
+ private:
+  const GlFunctions* gl_;
+  GLuint vao_ = 0, vbo_ = 0, ebo_ = 0, nbo_ = 0;
+  GLsizei count_ = 0;
+  bool indexed_ = false;
+};
+
+// Helpers shared by technique files.
+void set_matrix(const GlFunctions& gl, GLint location, const Mat4<float>& m);
+Mat4<float> to_float(const Mat4<double>& m);
+
+// How the camera's far plane is set up for a technique (x and y rows never change).
+using scene::CameraDepth;
+
+// The GL compare function of a convention's depth comparison (convention.hpp).
+GLenum gl_compare(DepthCompare c);
+
+struct Frame {
+  const GlFunctions& gl;
+  const Programs& programs;
+  const scene::PreparedScene& prepared;       // camera, lights, casters, light fits, convention
+  const scene::Scene& scene;                  // = *prepared.scene
+  const RenderOptions& options;
+  RenderResult& result;
+  const std::vector<GpuMesh>& objects;        // scene.objects, same order
+  GLuint target_fbo = 0;                      // W × H, RGBA8 + depth/stencil (24-bit, or 32F for reversed-z)
+
+  int width() const { return scene.width; }
+  int height() const { return scene.height; }
+  const RunConvention& convention() const { return *prepared.convention; }
+  // Object i is a closed 2-manifold (mathlib adjacency, in the prepared scene).
+  bool closed(std::size_t i) const { return prepared.casters[i].closed; }
+
+  // P · V of the camera (the prepared scene's matrices, multiplied in double), with the chosen far
+  // plane; camera_clip rounds it to float once for GL.
+  Mat4<double> camera_clip_double(CameraDepth depth) const { return prepared.camera_for(depth).clip_from_scene; }
+  Mat4<float> camera_clip(CameraDepth depth) const { return to_float(camera_clip_double(depth)); }
+  // The scene's lights as mathlib homogeneous points.
+  Vec4<double> light(std::size_t i) const { return prepared.lights[i]; }
+  // The depth test that keeps the nearer fragment in this convention (GL_LESS or GL_GREATER).
+  GLenum depth_nearer() const { return gl_compare(nearer(convention())); }
+
+  // Binds the W × H target and its viewport; clears what `mask` says (GL_*_BUFFER_BIT).
+  void bind_target(GLbitfield clear_mask, float clear_grey = 0.0f) const;
+  // Draws every object with the flat program (depth pre-pass etc.) under `clip`.
+  void draw_objects_flat(const Mat4<float>& clip, const float colour[4]) const;
+  // Ambient pre-pass: clears the target, writes depth (depth_nearer) and ambient colour for every object.
+  void ambient_pass(const Mat4<float>& clip) const;
+  // Light i's additive Lambert pass over the surfaces already in the depth buffer (GL_EQUAL),
+  // with the current stencil state left to the caller; `shadow` selects the surface shader's map.
+  void light_pass(const Mat4<float>& clip, std::size_t light, int shadow = 0,
+                  const Mat4<float>* shadow_from_world = nullptr) const;
+
+  // The stencil-derived mask: read stencil and depth; depth at the clear value (far_depth) → no surface;
+  // otherwise, with `value_is_lit`, stencil == value → lit and anything else shadowed, and without
+  // it stencil == value → shadowed and anything else lit. Rows flipped to top-down.
+  Image8 read_stencil_mask(std::uint8_t value, bool value_is_lit) const;
+  // Any mask already drawn into the colour buffer as grey (red channel), rows flipped.
+  Image8 read_grey() const;
+  // Attached shadows: per light, a mask that is shadowed where the visible surface faces away from
+  // the light (n · l <= 0), lit elsewhere, outputs::kMaskNoSurface where there is none. Clears the target:
+  // call before drawing the picture.
+  std::vector<Image8> facing_masks(const Mat4<float>& clip) const;
+  // The colour buffer as RGB, rows flipped, sRGB-encoded (the target holds linear light).
+  Image8 read_rgb() const;
+  // The light intensity each light contributes: lighting adds up, ambient once.
+  float light_intensity() const;
+};
+
+
+// The technique entry points (planar.cpp, stencil_volumes.cpp, shadow_map.cpp).
+void render_planar(Frame& frame);
+void render_volume_zpass(Frame& frame);
+void render_volume_zfail(Frame& frame);
+void render_volume_zfail_clamp(Frame& frame);
+void render_volume_robust(Frame& frame);
+void render_volume_finite(Frame& frame);
+void render_shadowmap(Frame& frame);
+void render_shadowmap_pcf(Frame& frame);
+void render_shadowmap_rgba8(Frame& frame);
+
+}  // namespace shadowref::renderer

@@ -1,0 +1,108 @@
+// shadowref/renderer/renderer.hpp — the OpenGL renderer as a library: one context, every shadow
+// technique, the masks and the shaded picture of docs/output-contract.md, and render.json.
+//
+// Usage:
+//   Renderer r(GlApi::OSMesa, Driver::Llvmpipe);       // one per process and driver
+//   RenderResult res = r.render(scene::prepare_scene(scene, convention), "volume-zfail");
+//   write_outputs(res, r.info(), scene, "out/ground_sphere/volume-zfail");
+// Every matrix comes from the prepared scene (camera, light fits: mathlib through scene/, the very
+// matrices the reference uses), in the run convention it was prepared for; every depth test, clear
+// value, compare function and offset sign comes from mathlib's convention.hpp; shadow volumes come
+// from mathlib's volume construction.
+//
+// Masks: mask i answers "is the surface seen through this pixel centre lit by light i?": 255 lit,
+// 0 shadowed, 128 no surface. The image is the scene's resolution, row 0 at the top; GL renders
+// into a W × H viewport whose fragments sit at the pixel centres, with the scene's own view and
+// projection (the depth rows of the projection may differ per technique: zfail's epsilon,
+// zfail-clamp's finite far; x and y, hence the pixel → surface mapping, never do). Depth buffers are
+// 24-bit fixed point, or 32-bit float where the convention asks (reversed-z); 0..1 clip depth is
+// set with glClipControl.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "shadowref/outputs/image.hpp"
+#include "shadowref/renderer/gl_context.hpp"
+#include "shadowref/convention.hpp"
+#include "shadowref/scene/prepared_scene.hpp"
+#include "shadowref/scene/scene.hpp"
+
+namespace shadowref::renderer {
+
+using outputs::Image8;
+
+struct RenderOptions {
+  // Used by the Scene overload of render(), which prepares the scene itself: the run convention
+  // and the texels per side of each light's shadow map (0: automatic, mathlib's light_fit.hpp).
+  const RunConvention* convention = &kDefaultConvention;
+  int shadow_map_size = 0;
+  int frames = 1;              // frames rendered; frame_ms is their median (the first is output)
+};
+
+struct RenderResult {
+  std::string technique;
+  std::vector<Image8> masks;   // one per light (grey)
+  Image8 shaded;               // RGB
+  std::vector<double> frame_ms;  // the time of each frame, all passes to glFinish and read-back
+  std::vector<std::string> notes;  // what the technique could not do on this scene, and why
+  double median_frame_ms() const;
+};
+
+struct GlInfo {
+  GlApi api = GlApi::OSMesa;
+  Driver driver = Driver::Llvmpipe;
+  std::string vendor, renderer, version;
+};
+
+class Renderer;
+struct Frame;
+
+// One technique: its command-line name, one sentence for --help, and its implementation.
+struct Technique {
+  std::string_view name;
+  std::string_view description;
+  void (*render)(Frame& frame);
+};
+
+// Every technique, in the order --help lists them.
+std::span<const Technique> techniques();
+// The technique called `name`, or nullptr.
+const Technique* find_technique(std::string_view name);
+
+class Renderer {
+ public:
+  // Creates the context (create_gl_context) and compiles the shaders. Throws GlError.
+  Renderer(GlApi api, Driver driver);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  const GlInfo& info() const;
+  // Renders the prepared scene (its convention, its shadow-map fits) with the technique `name`;
+  // only the frames are timed: everything that depends on the scene alone was done by
+  // prepare_scene. Throws std::invalid_argument for an unknown technique, GlError for a GL failure.
+  RenderResult render(const scene::PreparedScene& scene, std::string_view technique, const RenderOptions& options = {});
+  // The same with a technique that is not in the table: the deliberately wrong variants of
+  // conformance/tests/wrong_variants/, which the suite must catch.
+  RenderResult render(const scene::PreparedScene& scene, const Technique& technique, const RenderOptions& options = {});
+  // Prepares `scene` in options.convention with options.shadow_map_size, then renders it.
+  RenderResult render(const scene::Scene& scene, std::string_view technique, const RenderOptions& options = {});
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Writes mask.png (one light) or mask_<i>.png (several), shaded.png and render.json into `dir`:
+// first into a temporary sibling folder, renamed to `dir` when complete, so that a reader never
+// sees half a result. An existing `dir` is replaced. Throws std::runtime_error on file errors.
+void write_outputs(const RenderResult& result, const GlInfo& info, const scene::Scene& scene,
+                   const std::filesystem::path& dir);
+
+}  // namespace shadowref::renderer

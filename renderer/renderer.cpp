@@ -1,0 +1,552 @@
+// renderer.cpp — the Renderer: context, shader programs, the scene's meshes on the GPU, the
+// W × H target, the passes techniques share, and the timed frame loop.
+#include "shadowref/renderer/renderer.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <initializer_list>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "frame.hpp"
+#include "shaders.hpp"
+#include "shadowref/outputs/shading.hpp"
+#include "shadowref/outputs/techniques.hpp"
+#include "shadowref/adjacency.hpp"
+#include "shadowref/projection.hpp"
+#include "shadowref/scene/camera.hpp"
+
+namespace shadowref::renderer {
+
+double RenderResult::median_frame_ms() const {
+  if (frame_ms.empty()) return 0.0;
+  std::vector<double> t = frame_ms;
+  std::sort(t.begin(), t.end());
+  const std::size_t n = t.size();
+  return n % 2 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
+}
+
+// ---------------------------------------------------------------------------------------------
+// GPU meshes
+
+GpuMesh::GpuMesh(const GlFunctions& gl, std::span<const Vec4<float>> vertices,
+                 std::span<const std::uint32_t> indices, std::span<const Vec3<float>> normals)
+    : gl_(&gl) {
+  gl.GenVertexArrays(1, &vao_);
+  gl.BindVertexArray(vao_);
+  gl.GenBuffers(1, &vbo_);
+  gl.BindBuffer(GL_ARRAY_BUFFER, vbo_);
+  // Eigen's Vec4<float> is four packed floats (no padding), so the span is the vertex array.
+  static_assert(sizeof(Vec4<float>) == 4 * sizeof(float));
+  gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size_bytes()), vertices.data(), GL_STATIC_DRAW);
+  gl.VertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 0, nullptr);
+  gl.EnableVertexAttribArray(0);
+  if (!normals.empty()) {
+    static_assert(sizeof(Vec3<float>) == 3 * sizeof(float));
+    gl.GenBuffers(1, &nbo_);
+    gl.BindBuffer(GL_ARRAY_BUFFER, nbo_);
+    gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(normals.size_bytes()), normals.data(), GL_STATIC_DRAW);
+    gl.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+    gl.EnableVertexAttribArray(1);
+  }
+  if (!indices.empty()) {
+    gl.GenBuffers(1, &ebo_);
+    gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
+    gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size_bytes()), indices.data(),
+                  GL_STATIC_DRAW);
+    indexed_ = true;
+    count_ = static_cast<GLsizei>(indices.size());
+  } else {
+    count_ = static_cast<GLsizei>(vertices.size());
+  }
+  gl.BindVertexArray(0);
+}
+
+GpuMesh::GpuMesh(GpuMesh&& o) noexcept
+    : gl_(o.gl_), vao_(o.vao_), vbo_(o.vbo_), ebo_(o.ebo_), nbo_(o.nbo_), count_(o.count_), indexed_(o.indexed_) {
+  o.vao_ = o.vbo_ = o.ebo_ = o.nbo_ = 0;
+  o.count_ = 0;
+}
+
+GpuMesh::~GpuMesh() {
+  if (ebo_) gl_->DeleteBuffers(1, &ebo_);
+  if (nbo_) gl_->DeleteBuffers(1, &nbo_);
+  if (vbo_) gl_->DeleteBuffers(1, &vbo_);
+  if (vao_) gl_->DeleteVertexArrays(1, &vao_);
+}
+
+void GpuMesh::draw() const {
+  if (count_ == 0) return;
+  gl_->BindVertexArray(vao_);
+  if (indexed_) gl_->DrawElements(GL_TRIANGLES, count_, GL_UNSIGNED_INT, nullptr);
+  else gl_->DrawArrays(GL_TRIANGLES, 0, count_);
+  gl_->BindVertexArray(0);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Shared helpers
+
+void set_matrix(const GlFunctions& gl, GLint location, const Mat4<float>& m) {
+  // Eigen's default storage is column-major, which is what GL expects with transpose = GL_FALSE.
+  static_assert(!Mat4<float>::IsRowMajor);
+  gl.UniformMatrix4fv(location, 1, GL_FALSE, m.data());
+}
+
+Mat4<float> to_float(const Mat4<double>& m) { return m.cast<float>(); }
+
+namespace {
+
+GLuint compile(const GlFunctions& gl, GLenum type, std::initializer_list<const char*> sources, const char* what) {
+  const GLuint s = gl.CreateShader(type);
+  gl.ShaderSource(s, static_cast<GLsizei>(sources.size()), sources.begin(), nullptr);
+  gl.CompileShader(s);
+  GLint ok = 0;
+  gl.GetShaderiv(s, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[4096] = {};
+    gl.GetShaderInfoLog(s, sizeof log, nullptr, log);
+    gl.DeleteShader(s);
+    throw GlError(std::string("shader ") + what + " does not compile: " + log);
+  }
+  return s;
+}
+
+Program link(const GlFunctions& gl, std::initializer_list<const char*> fragment, const char* what) {
+  const GLuint vs = compile(gl, GL_VERTEX_SHADER, {shaders::kSceneVertex}, "scene vertex");
+  const GLuint fs = compile(gl, GL_FRAGMENT_SHADER, fragment, what);
+  Program p;
+  p.id = gl.CreateProgram();
+  gl.AttachShader(p.id, vs);
+  gl.AttachShader(p.id, fs);
+  gl.LinkProgram(p.id);
+  gl.DeleteShader(vs);
+  gl.DeleteShader(fs);
+  GLint ok = 0;
+  gl.GetProgramiv(p.id, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[4096] = {};
+    gl.GetProgramInfoLog(p.id, sizeof log, nullptr, log);
+    throw GlError(std::string("program ") + what + " does not link: " + log);
+  }
+  const auto loc = [&](const char* name) { return gl.GetUniformLocation(p.id, name); };
+  p.clip_from_world = loc("u_clip_from_world");
+  p.shadow_from_world = loc("u_shadow_from_world");
+  p.colour = loc("u_colour");
+  p.mode = loc("u_mode");
+  p.shadow = loc("u_shadow");
+  p.albedo = loc("u_albedo");
+  p.ambient = loc("u_ambient");
+  p.light = loc("u_light");
+  p.light_intensity = loc("u_light_intensity");
+  p.spot = loc("u_spot");
+  p.shadow_map = loc("u_shadow_map");
+  p.packed_map = loc("u_packed_map");
+  p.texel = loc("u_texel");
+  p.offset_factor = loc("u_offset_factor");
+  p.offset_units = loc("u_offset_units");
+  p.cube = loc("u_cube");
+  p.cube_from_world = loc("u_cube_from_world[0]");
+  p.reversed = loc("u_reversed");
+  gl.UseProgram(p.id);
+  if (p.shadow_map >= 0) gl.Uniform1i(p.shadow_map, 0);
+  if (p.packed_map >= 0) gl.Uniform1i(p.packed_map, 1);
+  gl.UseProgram(0);
+  return p;
+}
+
+std::vector<std::uint8_t> flip_rows(const std::vector<std::uint8_t>& bottom_up, int w, int h, int channels) {
+  std::vector<std::uint8_t> out(bottom_up.size());
+  const std::size_t row = static_cast<std::size_t>(w) * static_cast<std::size_t>(channels);
+  for (int y = 0; y < h; ++y)
+    std::copy_n(bottom_up.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(h - 1 - y) * row),
+                row, out.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(y) * row));
+  return out;
+}
+
+// The shared lighting model (outputs/shading.hpp): the ambient term is added once, the lights share
+// the direct term so that a several-light scene is not washed out.
+constexpr auto kAmbient = static_cast<float>(outputs::kAmbient);
+constexpr auto kDirect = static_cast<float>(outputs::kDirect);
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Frame
+
+GLenum gl_compare(DepthCompare c) {
+  switch (c) {
+    case DepthCompare::Less: return GL_LESS;
+    case DepthCompare::LessEqual: return GL_LEQUAL;
+    case DepthCompare::Greater: return GL_GREATER;
+    case DepthCompare::GreaterEqual: return GL_GEQUAL;
+    case DepthCompare::Equal: return GL_EQUAL;
+    case DepthCompare::Always: return GL_ALWAYS;
+  }
+  return GL_LESS;
+}
+
+float Frame::light_intensity() const {
+  return kDirect / static_cast<float>(std::max<std::size_t>(1, scene.lights.size()));
+}
+
+void Frame::bind_target(GLbitfield clear_mask, float clear_grey) const {
+  gl.BindFramebuffer(GL_FRAMEBUFFER, target_fbo);
+  gl.Viewport(0, 0, width(), height());
+  gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  gl.DepthMask(GL_TRUE);
+  gl.StencilMask(0xFF);
+  gl.ClearColor(clear_grey, clear_grey, clear_grey, 1.0f);
+  gl.ClearDepth(far_depth(convention()));
+  gl.ClearStencil(0);
+  if (clear_mask) gl.Clear(clear_mask);
+}
+
+void Frame::draw_objects_flat(const Mat4<float>& clip, const float colour[4]) const {
+  gl.UseProgram(programs.flat.id);
+  set_matrix(gl, programs.flat.clip_from_world, clip);
+  gl.Uniform4f(programs.flat.colour, colour[0], colour[1], colour[2], colour[3]);
+  for (const GpuMesh& m : objects) m.draw();
+}
+
+void Frame::ambient_pass(const Mat4<float>& clip) const {
+  bind_target(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  // The picture's background (linear, like everything drawn here; read_rgb encodes sRGB).
+  gl.ClearColor(static_cast<float>(outputs::kBackground[0]), static_cast<float>(outputs::kBackground[1]),
+                static_cast<float>(outputs::kBackground[2]), 1.0f);
+  gl.Clear(GL_COLOR_BUFFER_BIT);
+  gl.Disable(GL_BLEND);
+  gl.Disable(GL_STENCIL_TEST);
+  gl.Disable(GL_CULL_FACE);
+  gl.Enable(GL_DEPTH_TEST);
+  gl.DepthFunc(depth_nearer());
+  gl.UseProgram(programs.surface.id);
+  const Program& p = programs.surface;
+  set_matrix(gl, p.clip_from_world, clip);
+  set_matrix(gl, p.shadow_from_world, Mat4<float>::Identity());
+  gl.Uniform1i(p.mode, 0);
+  gl.Uniform1i(p.shadow, 0);
+  gl.Uniform1f(p.ambient, kAmbient);
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const auto& c = scene.objects[i].color;
+    gl.Uniform3f(p.albedo, c.x(), c.y(), c.z());
+    objects[i].draw();
+  }
+}
+
+void Frame::light_pass(const Mat4<float>& clip, std::size_t light_index, int shadow,
+                       const Mat4<float>* shadow_from_world) const {
+  gl.BindFramebuffer(GL_FRAMEBUFFER, target_fbo);
+  gl.Viewport(0, 0, width(), height());
+  gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  gl.DepthMask(GL_FALSE);
+  gl.Enable(GL_DEPTH_TEST);
+  gl.DepthFunc(GL_EQUAL);  // only the nearest surfaces, laid down by ambient_pass (same shader → same depth)
+  gl.Enable(GL_BLEND);
+  gl.BlendFunc(GL_ONE, GL_ONE);  // lights add up
+  gl.Disable(GL_CULL_FACE);
+  const Program& p = programs.surface;
+  gl.UseProgram(p.id);
+  set_matrix(gl, p.clip_from_world, clip);
+  set_matrix(gl, p.shadow_from_world, shadow_from_world ? *shadow_from_world : Mat4<float>::Identity());
+  gl.Uniform1i(p.mode, 1);
+  gl.Uniform1i(p.shadow, shadow);
+  const scene::Light& l = scene.lights[light_index];
+  const Vec4<float> h = light(light_index).cast<float>();
+  gl.Uniform4f(p.light, h.x(), h.y(), h.z(), h.w());
+  gl.Uniform1f(p.light_intensity, light_intensity());
+  if (l.type == scene::LightType::Spot) {
+    const Vec3<float> axis = l.direction.normalized().cast<float>();
+    gl.Uniform4f(p.spot, axis.x(), axis.y(), axis.z(), static_cast<float>(std::cos(l.cone_deg * std::numbers::pi / 180.0)));
+  } else {
+    gl.Uniform4f(p.spot, 0, 0, 0, -2.0f);
+  }
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const auto& c = scene.objects[i].color;
+    gl.Uniform3f(p.albedo, c.x(), c.y(), c.z());
+    objects[i].draw();
+  }
+  gl.Disable(GL_BLEND);
+  gl.DepthMask(GL_TRUE);
+  gl.DepthFunc(depth_nearer());
+}
+
+Image8 Frame::read_stencil_mask(std::uint8_t value, bool value_is_lit) const {
+  gl.BindFramebuffer(GL_FRAMEBUFFER, target_fbo);
+  gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+  const std::size_t n = static_cast<std::size_t>(width()) * static_cast<std::size_t>(height());
+  std::vector<std::uint8_t> stencil(n);
+  std::vector<float> depth(n);
+  gl.ReadPixels(0, 0, width(), height(), GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, stencil.data());
+  gl.ReadPixels(0, 0, width(), height(), GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+  std::vector<std::uint8_t> mask(n);
+  const auto no_surface = static_cast<float>(far_depth(convention()));
+  for (std::size_t i = 0; i < n; ++i) {
+    // The depth buffer still holds the clear value (the far plane's depth) where no surface was
+    // drawn; a surface maps strictly inside (even with the infinite far plane, up to 0.1 · 2^24
+    // units away in 24 bits, and always in 32-bit float, whose steps near 0 are far finer).
+    if (depth[i] == no_surface) mask[i] = outputs::kMaskNoSurface;
+    else mask[i] = (stencil[i] == value) == value_is_lit ? outputs::kMaskLit : outputs::kMaskShadowed;
+  }
+  return Image8{width(), height(), 1, flip_rows(mask, width(), height(), 1)};
+}
+
+std::vector<Image8> Frame::facing_masks(const Mat4<float>& clip) const {
+  std::vector<Image8> masks;
+  const Program& p = programs.surface;
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+    bind_target(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, static_cast<float>(outputs::kMaskNoSurface) / 255.0f);
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(depth_nearer());
+    gl.Disable(GL_BLEND);
+    gl.Disable(GL_STENCIL_TEST);
+    gl.UseProgram(p.id);
+    set_matrix(gl, p.clip_from_world, clip);
+    set_matrix(gl, p.shadow_from_world, Mat4<float>::Identity());
+    gl.Uniform1i(p.mode, 2);    // the 0/1 mask
+    gl.Uniform1i(p.shadow, 0);  // no map: the facing test alone
+    const Vec4<float> l = light(i).cast<float>();
+    gl.Uniform4f(p.light, l.x(), l.y(), l.z(), l.w());
+    for (const GpuMesh& m : objects) m.draw();
+    masks.push_back(read_grey());
+  }
+  return masks;
+}
+
+Image8 Frame::read_grey() const {
+  gl.BindFramebuffer(GL_FRAMEBUFFER, target_fbo);
+  gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+  std::vector<std::uint8_t> red(static_cast<std::size_t>(width()) * static_cast<std::size_t>(height()));
+  gl.ReadPixels(0, 0, width(), height(), GL_RED, GL_UNSIGNED_BYTE, red.data());
+  return Image8{width(), height(), 1, flip_rows(red, width(), height(), 1)};
+}
+
+Image8 Frame::read_rgb() const {
+  gl.BindFramebuffer(GL_FRAMEBUFFER, target_fbo);
+  gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(width()) * static_cast<std::size_t>(height()) * 3);
+  gl.ReadPixels(0, 0, width(), height(), GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+  // The target holds linear light; shaded.png is sRGB like every producer's (outputs/shading.hpp).
+  const auto& srgb = outputs::srgb8_from_linear8();
+  for (std::uint8_t& v : rgb) v = srgb[v];
+  return Image8{width(), height(), 3, flip_rows(rgb, width(), height(), 3)};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Registry
+
+namespace {
+
+constexpr Technique kTechniqueTable[] = {
+    {"planar",
+     "Blinn 1988: each caster drawn again through the shadow matrix onto the receiver plane, black and "
+     "blended, the stencil buffer letting each receiver pixel darken once (no shadow on other objects, "
+     "false shadows from geometry under the plane or beyond the light).",
+     render_planar},
+    {"volume-zpass",
+     "Heidmann 1991: silhouette edges extruded to infinity (w = 0), no caps, counted by two-sided "
+     "stencil with wrapping increment / decrement where the volume faces pass the depth test.",
+     render_volume_zpass},
+    {"volume-zfail",
+     "Everitt & Kilgard 2002 (Carmack's reverse): closed volumes with light and dark caps, counted where "
+     "they fail the depth test, far plane at infinity with mathlib's epsilon.",
+     render_volume_zfail},
+    {"volume-zfail-clamp",
+     "The same depth-fail volumes with a finite projection and GL_DEPTH_CLAMP, so that the dark cap "
+     "beyond the far plane is clamped rather than clipped.",
+     render_volume_zfail_clamp},
+    {"volume-robust",
+     "Per caster, depth-pass where mathlib says the near-plane clip volume misses it and depth-fail "
+     "with caps elsewhere (Everitt & Kilgard 2002).",
+     render_volume_robust},
+    {"volume-finite",
+     "The older volumes extruded by a finite distance (mathlib's finite extrusion), closed and counted "
+     "depth-fail; they fall short when the light is close to the caster.",
+     render_volume_finite},
+    {"shadowmap",
+     "Williams 1978: depth rendered from the light into a depth texture (front faces culled, polygon "
+     "offset), compared per pixel through B * P_light * V_light with a sampler2DShadow.",
+     render_shadowmap},
+    {"shadowmap-pcf",
+     "The shadow map with percentage-closer filtering: a 3x3 box of nearest depth compares one texel "
+     "apart, lit where at least half pass.",
+     render_shadowmap_pcf},
+    {"shadowmap-rgba8",
+     "The shadow map of hardware without depth textures: depth packed into an RGBA8 colour target "
+     "(24 bits, mathlib's depth_packing) and compared as integers in the shader.",
+     render_shadowmap_rgba8},
+};
+
+// The renderer implements exactly the contract's technique list, in its order.
+constexpr bool table_matches_contract() {
+  if (std::size(kTechniqueTable) != outputs::kTechniques.size()) return false;
+  for (std::size_t i = 0; i < outputs::kTechniques.size(); ++i)
+    if (kTechniqueTable[i].name != outputs::kTechniques[i].name) return false;
+  return true;
+}
+static_assert(table_matches_contract(), "renderer technique table and outputs::kTechniques differ");
+
+}  // namespace
+
+std::span<const Technique> techniques() { return kTechniqueTable; }
+
+const Technique* find_technique(std::string_view name) {
+  for (const Technique& t : kTechniqueTable)
+    if (t.name == name) return &t;
+  return nullptr;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Renderer
+
+struct Renderer::Impl {
+  std::unique_ptr<GlContext> context;
+  GlFunctions gl;
+  Programs programs;
+  GlInfo info;
+
+  Impl(GlApi api, Driver driver) : context(create_gl_context(api, driver)), gl(*context) {
+    info.api = api;
+    info.driver = driver;
+    const auto str = [&](GLenum e) {
+      const auto* s = reinterpret_cast<const char*>(gl.GetString(e));
+      return std::string(s ? s : "");
+    };
+    info.vendor = str(GL_VENDOR);
+    info.renderer = str(GL_RENDERER);
+    info.version = str(GL_VERSION);
+    programs.flat = link(gl, {shaders::kFlatFragment}, "flat");
+    programs.surface = link(gl, {shaders::kVersion, shaders::kDepthPacking, shaders::kSurfaceFragmentBody}, "surface");
+    programs.packed_depth =
+        link(gl, {shaders::kVersion, shaders::kDepthPacking, shaders::kPackedDepthFragmentBody}, "packed depth");
+  }
+  ~Impl() {
+    gl.DeleteProgram(programs.flat.id);
+    gl.DeleteProgram(programs.surface.id);
+    gl.DeleteProgram(programs.packed_depth.id);
+  }
+};
+
+Renderer::Renderer(GlApi api, Driver driver) : impl_(std::make_unique<Impl>(api, driver)) {}
+Renderer::~Renderer() = default;
+const GlInfo& Renderer::info() const { return impl_->info; }
+
+namespace {
+
+// The W × H render target: RGBA8 colour and a packed depth + 8-bit stencil renderbuffer, the depth
+// 24-bit fixed point or, where the convention asks (reversed-z), 32-bit float.
+struct Target {
+  const GlFunctions& gl;
+  GLuint fbo = 0, colour = 0, depth_stencil = 0;
+  Target(const GlFunctions& g, int w, int h, bool float_depth) : gl(g) {
+    gl.GenRenderbuffers(1, &colour);
+    gl.BindRenderbuffer(GL_RENDERBUFFER, colour);
+    gl.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
+    gl.GenRenderbuffers(1, &depth_stencil);
+    gl.BindRenderbuffer(GL_RENDERBUFFER, depth_stencil);
+    gl.RenderbufferStorage(GL_RENDERBUFFER, float_depth ? GL_DEPTH32F_STENCIL8 : GL_DEPTH24_STENCIL8, w, h);
+    gl.GenFramebuffers(1, &fbo);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, depth_stencil);
+    if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw GlError(std::string("the RGBA8 + ") + (float_depth ? "DEPTH32F_STENCIL8" : "DEPTH24_STENCIL8") +
+                    " framebuffer is incomplete");
+  }
+  ~Target() {
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl.DeleteFramebuffers(1, &fbo);
+    gl.DeleteRenderbuffers(1, &colour);
+    gl.DeleteRenderbuffers(1, &depth_stencil);
+  }
+  Target(const Target&) = delete;
+  Target& operator=(const Target&) = delete;
+};
+
+}  // namespace
+
+RenderResult Renderer::render(const scene::Scene& scene, std::string_view technique, const RenderOptions& options) {
+  if (options.shadow_map_size != 0 && (options.shadow_map_size < 16 || options.shadow_map_size > 16384))
+    throw std::invalid_argument("shadow map size must be 0 (automatic) or in [16, 16384]");
+  scene::PrepareOptions prepare;
+  prepare.shadow_map_size = options.shadow_map_size;
+  return render(scene::prepare_scene(scene, options.convention ? *options.convention : kDefaultConvention, prepare),
+                technique, options);
+}
+
+RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_view technique, const RenderOptions& options) {
+  const Technique* found = find_technique(technique);
+  if (!found) throw std::invalid_argument("unknown technique '" + std::string(technique) + "'");
+  return render(prepared, *found, options);
+}
+
+// Any technique, registered or not (the wrong variants of the suite's tests).
+RenderResult Renderer::render(const scene::PreparedScene& prepared, const Technique& technique, const RenderOptions& options) {
+  const Technique* t = &technique;
+  const scene::Scene& scene = *prepared.scene;
+  const RunConvention& convention = *prepared.convention;
+  const GlFunctions& gl = impl_->gl;
+
+  std::vector<GpuMesh> objects;
+  objects.reserve(scene.objects.size());
+  for (const scene::Object& o : scene.objects) {
+    // Flat triangles: three vertices each (the very floats of the mesh, so that shadow-volume
+    // caps built from the indexed mesh get identical depths) and the face normal
+    // (v1 − v0) × (v2 − v0), computed in double as the reference does: a normal from screen-space
+    // derivatives flips sign on nearly edge-on triangles.
+    std::vector<Vec4<float>> v;
+    std::vector<Vec3<float>> n;
+    v.reserve(3 * o.mesh.triangles.size());
+    n.reserve(3 * o.mesh.triangles.size());
+    for (const auto& tri : o.mesh.triangles) {
+      const Vec3<double> a = o.mesh.positions[tri[0]].cast<double>(), b = o.mesh.positions[tri[1]].cast<double>(),
+                         c = o.mesh.positions[tri[2]].cast<double>();
+      const Vec3<double> cr = (b - a).cross(c - a);
+      const Vec3<float> normal = cr.squaredNorm() > 0.0 ? Vec3<float>(cr.normalized().cast<float>()) : Vec3<float>::Zero();
+      for (std::uint32_t k : tri) {
+        const Vec3<float>& p = o.mesh.positions[k];
+        v.emplace_back(p.x(), p.y(), p.z(), 1.0f);
+        n.push_back(normal);
+      }
+    }
+    objects.emplace_back(gl, v, std::span<const std::uint32_t>{}, n);
+  }
+  const Target target(gl, scene.width, scene.height, convention.float_depth);
+  // Clip-space depth 0..1 for the 0..1 conventions (ARB_clip_control, core in 4.5); GL's default
+  // −1..1 is left alone otherwise, so that a 3.3 context without the extension still renders `gl`.
+  const bool zero_to_one = convention.clip.depth == DepthRange::ZeroToOne;
+  if (zero_to_one) {
+    while (gl.GetError() != GL_NO_ERROR) {
+    }
+    gl.ClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    if (gl.GetError() != GL_NO_ERROR)
+      throw GlError("the convention '" + std::string(convention.name) + "' needs glClipControl (ARB_clip_control), which " +
+                    impl_->info.renderer + " (OpenGL " + impl_->info.version + ") lacks");
+  }
+
+  RenderResult result;
+  for (int f = 0; f < std::max(1, options.frames); ++f) {
+    RenderResult frame_result;
+    frame_result.technique = std::string(t->name);
+    Frame frame{gl, impl_->programs, prepared, scene, options, frame_result, objects, target.fbo};
+    const auto start = std::chrono::steady_clock::now();
+    t->render(frame);
+    gl.Finish();
+    const auto stop = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(stop - start).count();
+    if (f == 0) result = std::move(frame_result);
+    result.frame_ms.push_back(ms);
+  }
+  if (const GLenum err = gl.GetError(); err != GL_NO_ERROR) {
+    char buf[16];
+    std::snprintf(buf, sizeof buf, "0x%04X", err);
+    throw GlError(std::string("OpenGL error ") + buf + " while rendering " + std::string(t->name));
+  }
+  gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (zero_to_one) gl.ClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);  // GL's default, for whoever renders next
+  return result;
+}
+
+}  // namespace shadowref::renderer

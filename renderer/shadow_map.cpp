@@ -1,0 +1,243 @@
+// shadow_map.cpp — shadow mapping: Williams 1978, "Casting curved shadows on curved surfaces".
+//
+// Per light, the scene's depth is rendered from the light into a texture; each camera fragment
+// is then mapped through B · P_light · V_light (mathlib's shadow_bias_matrix, projections, look_at)
+// and compared with the stored depth. Three variants:
+//   shadowmap        a GL_DEPTH_COMPONENT24 texture, GL_COMPARE_REF_TO_TEXTURE with GL_LEQUAL
+//                    through a sampler2DArrayShadow (one layer, or six for a cube), one nearest tap;
+//   shadowmap-pcf    percentage-closer filtering (Reeves, Salesin & Cook 1987): a 3 × 3 box of
+//                    nearest compares one texel apart, equal weights; the mask calls a pixel lit
+//                    when at least half of the 9 taps are (shaded.png keeps the fraction);
+//   shadowmap-rgba8  no depth texture: the light pass packs its depth into an RGBA8 colour target
+//                    (mathlib/depth_packing.hpp, mirrored in GLSL) and the camera pass unpacks and
+//                    compares 24-bit integers — the method of hardware without depth textures.
+// Bias: the depth pass culls front faces of closed casters (the map then holds back faces, so a
+// lit surface is never compared against itself) and uses glPolygonOffset(kOffsetFactor,
+// kOffsetUnits); open meshes (a ground quad, a leaf) are drawn two-sided, since culling would
+// drop whichever side faces the light. The RGBA8 pass applies the same offset in its shader.
+// The light's views come from the prepared scene (mathlib's light_fit.hpp: one orthographic view
+// for a directional light, one perspective view or a cube of six for the others, with the map size),
+// one map layer each; a cube's six faces are layers of a 2D array texture, the face picked per
+// fragment by the largest component of (p − light), like a cube-map lookup. Empty faces are cleared,
+// not drawn, and each face draws only the objects that may reach it.
+// Conventions (mathlib's convention.hpp): the light's projection is in the run convention, like the
+// camera's; the map is 24-bit (32-bit float under reversed-Z), cleared to the far depth, drawn with
+// the "nearer" depth test and polygon offset of the convention's sign, compared with the
+// convention's "lit" compare (GL_LEQUAL; GL_GEQUAL under reversed-Z) through its bias matrix; its
+// border holds the far depth, so that nothing occludes outside it.
+// A fragment outside the single map, or behind its light, counts as lit: the map knows of no
+// occluder there (directional maps hold the whole bounding sphere; a point light's single map
+// holds the whole box, so only geometry-free directions fall outside).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <vector>
+
+#include "frame.hpp"
+#include "shadowref/projection.hpp"
+#include "shadowref/scene/scene.hpp"
+#include "shadowref/shadow_map.hpp"
+#include "shadowref/view.hpp"
+
+namespace shadowref::renderer {
+namespace {
+
+// Slope-scaled and constant offset of the depth pass, in glPolygonOffset's units (the constant in
+// steps of the 24-bit depth): large enough for the two-sided ground's self-comparison at grazing
+// light, small enough not to detach shadows visibly at the catalogue's scale. The sign is the
+// convention's (polygon_offset_sign): offset always pushes away from the light.
+constexpr float kOffsetFactor = 2.0f;
+constexpr float kOffsetUnits = 8.0f;
+
+enum class Variant { Depth, Pcf, Rgba8 };
+
+// One light's map: the texture (a 2D array, one layer per view) and the matrices that map world
+// points into it.
+struct LightMap {
+  const GlFunctions* gl = nullptr;
+  GLuint texture = 0;
+  int size = 0;
+  bool cube = false;
+  Mat4<float> shadow_from_world;  // B · P_light · V_light (the single view)
+  std::vector<Mat4<float>> face_from_world;  // the same per cube face
+  LightMap() = default;
+  LightMap(LightMap&& o) noexcept
+      : gl(o.gl), texture(o.texture), size(o.size), cube(o.cube), shadow_from_world(o.shadow_from_world),
+        face_from_world(std::move(o.face_from_world)) {
+    o.texture = 0;
+  }
+  LightMap(const LightMap&) = delete;
+  LightMap& operator=(const LightMap&) = delete;
+  LightMap& operator=(LightMap&&) = delete;
+  ~LightMap() {
+    if (texture) gl->DeleteTextures(1, &texture);
+  }
+};
+
+LightMap render_light_map(const Frame& frame, std::size_t light_index, Variant variant) {
+  const GlFunctions& gl = frame.gl;
+  const RunConvention& conv = frame.convention();
+  const LightFit& lc = frame.prepared.light_fits[light_index];
+  const int size = lc.size;
+  const auto layers = static_cast<GLsizei>(lc.views.size());
+  LightMap map;
+  map.gl = &gl;
+  map.size = size;
+  map.cube = lc.cube;
+  const Mat4<double> bias = shadow_bias<double>(conv);
+  for (const LightView& v : lc.views) map.face_from_world.push_back(to_float(Mat4<double>(bias * v.projection * v.view)));
+  map.shadow_from_world = map.face_from_world[0];
+
+  gl.GenTextures(1, &map.texture);
+  gl.BindTexture(GL_TEXTURE_2D_ARRAY, map.texture);
+  gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+  gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+  // The far depth (1, or 0 under reversed-Z) / its packed form: nothing occludes outside the map.
+  const auto far = static_cast<float>(far_depth(conv));
+  const float far_border[4] = {far, far, far, 1.0f};
+  gl.TexParameterfv(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_BORDER_COLOR, far_border);
+
+  GLuint fbo = 0, depth_rb = 0;
+  gl.GenFramebuffers(1, &fbo);
+  gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+  if (variant == Variant::Rgba8) {
+    gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, size, size, layers, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    // A plain depth buffer still picks the nearest surface; only the colour target is sampled.
+    gl.GenRenderbuffers(1, &depth_rb);
+    gl.BindRenderbuffer(GL_RENDERBUFFER, depth_rb);
+    gl.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, size, size);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_rb);
+    gl.DrawBuffer(GL_COLOR_ATTACHMENT0);
+  } else {
+    if (conv.float_depth)
+      gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_DEPTH_COMPONENT32F, size, size, layers, 0, GL_DEPTH_COMPONENT, GL_FLOAT,
+                    nullptr);
+    else
+      gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_DEPTH_COMPONENT24, size, size, layers, 0, GL_DEPTH_COMPONENT,
+                    GL_UNSIGNED_INT, nullptr);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_FUNC, static_cast<GLint>(gl_compare(lit_when(conv))));
+    gl.DrawBuffer(GL_NONE);
+  }
+  gl.ReadBuffer(GL_NONE);
+
+  gl.Viewport(0, 0, size, size);
+  gl.DepthMask(GL_TRUE);
+  gl.ClearDepth(far);
+  gl.ClearColor(far, far, far, 1.0f);  // = pack_depth_rgba8(far): 0xFFFFFF or 0
+  gl.Enable(GL_DEPTH_TEST);
+  gl.DepthFunc(frame.depth_nearer());
+  gl.Disable(GL_STENCIL_TEST);
+  gl.Disable(GL_BLEND);
+  const Program& p = variant == Variant::Rgba8 ? frame.programs.packed_depth : frame.programs.flat;
+  gl.UseProgram(p.id);
+  if (variant == Variant::Rgba8) {
+    gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    gl.Uniform1f(p.offset_factor, polygon_offset_sign(conv) * kOffsetFactor);
+    gl.Uniform1f(p.offset_units, polygon_offset_sign(conv) * kOffsetUnits);
+  } else {
+    gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    gl.Enable(GL_POLYGON_OFFSET_FILL);
+    gl.PolygonOffset(polygon_offset_sign(conv) * kOffsetFactor, polygon_offset_sign(conv) * kOffsetUnits);
+    gl.Uniform4f(p.colour, 0, 0, 0, 0);
+  }
+  gl.CullFace(GL_FRONT);
+  for (GLsizei layer = 0; layer < layers; ++layer) {
+    const LightView& view = lc.views[static_cast<std::size_t>(layer)];
+    gl.FramebufferTextureLayer(GL_FRAMEBUFFER, variant == Variant::Rgba8 ? GL_COLOR_ATTACHMENT0 : GL_DEPTH_ATTACHMENT,
+                               map.texture, 0, layer);
+    if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw GlError("the shadow-map framebuffer is incomplete");
+    gl.Clear(variant == Variant::Rgba8 ? GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT : GL_DEPTH_BUFFER_BIT);
+    if (view.empty) continue;
+    set_matrix(gl, p.clip_from_world, to_float(Mat4<double>(view.projection * view.view)));
+    for (std::size_t i = 0; i < frame.objects.size(); ++i) {
+      if (!view.draw.empty() && !view.draw[i]) continue;
+      if (frame.closed(i)) gl.Enable(GL_CULL_FACE);
+      else gl.Disable(GL_CULL_FACE);
+      frame.objects[i].draw();
+    }
+  }
+  gl.Disable(GL_CULL_FACE);
+  gl.CullFace(GL_BACK);
+  gl.Disable(GL_POLYGON_OFFSET_FILL);
+  gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl.DeleteFramebuffers(1, &fbo);
+  if (depth_rb) gl.DeleteRenderbuffers(1, &depth_rb);
+  return map;
+}
+
+void bind_map(const Frame& frame, const LightMap& map, Variant variant) {
+  const GlFunctions& gl = frame.gl;
+  gl.ActiveTexture(variant == Variant::Rgba8 ? GL_TEXTURE1 : GL_TEXTURE0);
+  gl.BindTexture(GL_TEXTURE_2D_ARRAY, map.texture);
+  gl.ActiveTexture(GL_TEXTURE0);
+  const Program& p = frame.programs.surface;
+  gl.UseProgram(p.id);
+  const float texel = 1.0f / static_cast<float>(map.size);
+  gl.Uniform2f(p.texel, texel, texel);
+  gl.Uniform1i(p.cube, map.cube ? 1 : 0);
+  gl.Uniform1i(p.reversed, frame.convention().clip.order == DepthOrder::Reversed ? 1 : 0);
+  if (map.cube) {
+    static_assert(!Mat4<float>::IsRowMajor);
+    std::vector<float> m;
+    for (const Mat4<float>& f : map.face_from_world) m.insert(m.end(), f.data(), f.data() + 16);
+    gl.UniformMatrix4fv(p.cube_from_world, static_cast<GLsizei>(map.face_from_world.size()), GL_FALSE, m.data());
+  }
+}
+
+void unbind_maps(const GlFunctions& gl) {
+  gl.ActiveTexture(GL_TEXTURE1);
+  gl.BindTexture(GL_TEXTURE_2D_ARRAY, 0);
+  gl.ActiveTexture(GL_TEXTURE0);
+  gl.BindTexture(GL_TEXTURE_2D_ARRAY, 0);
+}
+
+int shader_mode(Variant v) { return v == Variant::Depth ? 1 : v == Variant::Pcf ? 2 : 3; }
+
+void render_variant(Frame& frame, Variant variant) {
+  const GlFunctions& gl = frame.gl;
+  const Mat4<float> clip = frame.camera_clip(CameraDepth::Scene);
+  std::vector<LightMap> maps;
+  for (std::size_t i = 0; i < frame.scene.lights.size(); ++i) maps.push_back(render_light_map(frame, i, variant));
+
+  // Masks: one camera pass per light writing the 0/1 comparison; the clear colour is "no surface".
+  const Program& p = frame.programs.surface;
+  for (std::size_t i = 0; i < maps.size(); ++i) {
+    frame.bind_target(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, static_cast<float>(outputs::kMaskNoSurface) / 255.0f);
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(frame.depth_nearer());
+    gl.Disable(GL_BLEND);
+    gl.Disable(GL_STENCIL_TEST);
+    bind_map(frame, maps[i], variant);
+    set_matrix(gl, p.clip_from_world, clip);
+    set_matrix(gl, p.shadow_from_world, maps[i].shadow_from_world);
+    gl.Uniform1i(p.mode, 2);
+    gl.Uniform1i(p.shadow, shader_mode(variant));
+    const Vec4<float> l = frame.light(i).cast<float>();
+    gl.Uniform4f(p.light, l.x(), l.y(), l.z(), l.w());
+    for (const GpuMesh& m : frame.objects) m.draw();
+    frame.result.masks.push_back(frame.read_grey());
+  }
+
+  // The shaded picture: ambient once, then each light added where its map says lit.
+  frame.ambient_pass(clip);
+  for (std::size_t i = 0; i < maps.size(); ++i) {
+    bind_map(frame, maps[i], variant);
+    frame.light_pass(clip, i, shader_mode(variant), &maps[i].shadow_from_world);
+  }
+  unbind_maps(gl);
+  frame.result.shaded = frame.read_rgb();
+}
+
+}  // namespace
+
+void render_shadowmap(Frame& frame) { render_variant(frame, Variant::Depth); }
+void render_shadowmap_pcf(Frame& frame) { render_variant(frame, Variant::Pcf); }
+void render_shadowmap_rgba8(Frame& frame) { render_variant(frame, Variant::Rgba8); }
+
+}  // namespace shadowref::renderer
