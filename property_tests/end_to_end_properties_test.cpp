@@ -95,7 +95,7 @@ void assert_no_shadow(const std::vector<std::uint8_t>& mask, const reference::Im
 }
 
 // Techniques this property catches today and whose finding is still open (none): listed ones are
-// counted and printed instead of asserted, unless SHADOWREF_E2E_STRICT=1. History (issue 6 report):
+// counted and printed instead of asserted, unless SHADOWREF_E2E_STRICT=1. History (the first report):
 //   * shadowmap, shadowmap-pcf, shadowmap-rgba8 showed shadowed pixels from the light's position
 //     when the scene's bounds did not fit in one light frustum of at most 160 degrees; fixed by the
 //     cube shadow map for such point lights (conformance/renderer/shadow_map.cpp);

@@ -1,7 +1,7 @@
 // generators.hpp — RapidCheck generators for the geometry of shadows, built on purpose.
 //
 // RapidCheck's floating-point generators never produce NaN, infinities, −0 or subnormals and have
-// no ranges (PITFALLS.md), so every scalar here comes from an INTEGER range mapped onto the wanted
+// no ranges (docs/dependencies.md), so every scalar here comes from an INTEGER range mapped onto the wanted
 // interval (or a power of ten for scales): the values are reproducible from the seed and shrink
 // toward simple ones (0, the low end, scale 1). Geometry is generated in double and cast to the
 // scalar under test by the property. Every case type prints itself (operator<<) so a shrunk
@@ -172,6 +172,66 @@ inline rc::Gen<CameraCase> camera(int conventions) {
 
 inline bool well_posed(const CameraCase& c) {
   return std::abs(c.forward.dot(c.up)) < std::cos(5 * std::numbers::pi / 180);
+}
+
+// ---- view volumes (the clip-space x/y properties) ------------------------------------------------
+
+// A perspective lens: the same ranges as CameraCase (fovy 10..120 degrees, aspect 0.5..2.5, near
+// 1e-2..10, far/near 10..1e6), without the camera's placement.
+struct LensCase {
+  double fovy_deg = 60, aspect = 1, near = 0.1, far_ratio = 1000;
+  double fovy() const { return fovy_deg * std::numbers::pi / 180; }
+  double far() const { return near * far_ratio; }
+  friend std::ostream& operator<<(std::ostream& os, const LensCase& c) {
+    return os << "lens fovy=" << c.fovy_deg << "deg aspect=" << c.aspect << " near=" << c.near << " far=" << c.far();
+  }
+};
+
+inline rc::Gen<LensCase> lens() {
+  return rc::gen::construct<LensCase>(uniform(10, 120), uniform(0.5, 2.5), power_of_ten(-2, 1), power_of_ten(1, 6));
+}
+
+// An off-centre frustum: the near rectangle's centre (cx, cy) and half-extents (hx, hy) in units of
+// near. Centres up to 2 near from the axis and half-extents from 0.05 to 3 near, so that many
+// rectangles do not contain the view axis at all (tiles, stereo eyes, oblique portals).
+struct FrustumCase {
+  double cx = 0, cy = 0, hx = 1, hy = 1, near = 0.1, far_ratio = 1000;
+  double l() const { return near * (cx - hx); }
+  double r() const { return near * (cx + hx); }
+  double b() const { return near * (cy - hy); }
+  double t() const { return near * (cy + hy); }
+  double far() const { return near * far_ratio; }
+  friend std::ostream& operator<<(std::ostream& os, const FrustumCase& c) {
+    return os << "frustum l=" << c.l() << " r=" << c.r() << " b=" << c.b() << " t=" << c.t() << " near=" << c.near
+              << " far=" << c.far();
+  }
+};
+
+inline rc::Gen<FrustumCase> off_centre_frustum() {
+  return rc::gen::construct<FrustumCase>(centered(2), centered(2), power_of_ten(-1.3, 0.5), power_of_ten(-1.3, 0.5),
+                                         power_of_ten(-2, 1), power_of_ten(1, 6));
+}
+
+// An orthographic box: a unit-sized case (centre in [−1, 1]², half-extents and depth 1e-2..1e2,
+// near in [−1, 1], so ≤ 0 too) times a scale 1e-3..1e4. Every extent is at least 1e-2 of the box's
+// distance from the origin, so r − l and far − near stay far from zero in float.
+struct OrthoCase {
+  double cx = 0, cy = 0, hx = 1, hy = 1, near = 0, depth = 1, scale = 1;
+  double l() const { return scale * (cx - hx); }
+  double r() const { return scale * (cx + hx); }
+  double b() const { return scale * (cy - hy); }
+  double t() const { return scale * (cy + hy); }
+  double n() const { return scale * near; }
+  double f() const { return scale * (near + depth); }
+  friend std::ostream& operator<<(std::ostream& os, const OrthoCase& c) {
+    return os << "ortho l=" << c.l() << " r=" << c.r() << " b=" << c.b() << " t=" << c.t() << " near=" << c.n()
+              << " far=" << c.f();
+  }
+};
+
+inline rc::Gen<OrthoCase> ortho_box() {
+  return rc::gen::construct<OrthoCase>(centered(1), centered(1), power_of_ten(-2, 2), power_of_ten(-2, 2), centered(1),
+                                       power_of_ten(-2, 2), power_of_ten(-3, 4));
 }
 
 }  // namespace shadowref::prop::gen

@@ -1,10 +1,11 @@
 // math_adapter.hpp — the small interface the math properties are written against.
 //
 // An adapter gathers the functions under test: the planar shadow matrix in canonical (column-vector)
-// and D3DX (row-vector) layout, and the finite and infinite perspective projections, in float and
-// in double. shadowref's own mathlib is one adapter (adapters/shadowref_adapter.cpp), a GLM-style
-// engine another (adapters/glm_adapter.cpp), and every deliberately wrong variant of teeth_test.cpp
-// a third kind: the very same property code runs on all of them.
+// and D3DX (row-vector) layout, the finite and infinite perspective projections, and (optionally)
+// the off-centre frustum and the orthographic projection, in float and in double. shadowref's own
+// mathlib is one adapter (adapters/shadowref_adapter.cpp), a GLM-style engine another
+// (adapters/glm_adapter.cpp), and every deliberately wrong variant of teeth_test.cpp a third kind:
+// the very same property code runs on all of them.
 //
 // To run the properties on your engine: write one source file that defines
 // `shadowref::prop::math_adapter_under_test()` (copy adapters/glm_adapter.cpp) and add one CMake
@@ -17,6 +18,8 @@
 //     |(a, b, c)| is part of the contract under test (D3DXMatrixShadow does it);
 //   * a light is homogeneous (x, y, z, w): w = 1 point light, w = 0 directional light toward xyz;
 //   * the shadow matrix contract is S = (P·L) I − L Pᵀ with P normalised;
+//   * projections follow the view space of their handedness (RH looks down −z, LH down +z) and
+//     map the view volume onto the NDC square: x right, y up, in both handednesses;
 //   * return std::nullopt when the implementation refuses the input (shadowref refuses a light
 //     on the plane) or does not support a convention listed below as unsupported.
 #pragma once
@@ -41,9 +44,19 @@ struct MathFunctions {
   std::function<Matrix(T fovy, T aspect, T near, T far, ClipConvention conv)> perspective;
   // Infinite perspective (canonical) with Lengyel's epsilon (0 = the exact limit).
   std::function<Matrix(T fovy, T aspect, T near, T epsilon, ClipConvention conv)> perspective_infinite;
-  // The conventions the projections support; properties only ask for these.
+  // Off-centre finite perspective (canonical) from the near rectangle [l, r] × [b, t] at distance
+  // near (glFrustum's arguments, in view-space x and y for both handednesses). Optional.
+  std::function<Matrix(T l, T r, T b, T t, T near, T far, ClipConvention conv)> frustum;
+  // Orthographic projection (canonical) of the box [l, r] × [b, t], near..far in front of the eye
+  // (glOrtho's arguments; near may be ≤ 0). Optional.
+  std::function<Matrix(T l, T r, T b, T t, T near, T far, ClipConvention conv)> ortho;
+  // The conventions the projections support; properties only ask for these. An empty list for
+  // frustum or ortho means the adapter does not have it: the properties of that projection are
+  // skipped (and say so).
   std::vector<ClipConvention> finite_conventions;
   std::vector<ClipConvention> infinite_conventions;
+  std::vector<ClipConvention> frustum_conventions;
+  std::vector<ClipConvention> ortho_conventions;
 };
 
 struct MathAdapter {

@@ -1,5 +1,5 @@
-// math_properties.hpp — the laws of the planar shadow matrix and of perspective projections, as
-// RapidCheck properties over an adapter (math_adapter.hpp). Each property is a function template on
+// math_properties.hpp — the laws of the planar shadow matrix and of projections (depth, and where
+// clip space puts view-space x and y), as RapidCheck properties over an adapter (math_adapter.hpp). Each property is a function template on
 // the scalar T; math_properties_test.cpp runs them all in float and double, and teeth_test.cpp
 // runs the same functions on deliberately wrong adapters.
 //
@@ -12,6 +12,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <limits>
+#include <optional>
+#include <ostream>
+#include <vector>
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
@@ -390,6 +395,307 @@ void near_maps_to_the_conventions_depth(const MathFunctions<T>& f) {
   RC_LOG() << "M = " << str(*m) << "\nnear depth " << static_cast<double>(depth) << " want " << static_cast<double>(want)
            << " tolerance " << static_cast<double>(tol) << "\n";
   RC_ASSERT(std::abs(depth - want) <= tol);
+}
+
+// ---- clip-space x and y -------------------------------------------------------------------------------
+
+// Rounding steps behind an NDC x or y: an x/y entry of a projection takes at most four (a tangent, a
+// product, a sum or difference, a division: 1 / (aspect tan(fovy/2)), (r + l) / (r − l)), and the
+// view-space point one more (the property builds it in Wide and rounds it to T). 8 leaves room for
+// libm's tangent (up to 1 ulp, two rounding steps) and other expression orders (GLM's infinite
+// form builds 2n / (right − left) through range = tan(fovy/2) n: five steps). Measured over
+// 3 × 10^4 cases per property on shadowref and on GLM: the largest error needed between 1 and 2
+// (GLM's infinite form in float), so 8 keeps a factor of 4.
+inline constexpr Wide kClipOps = 8;
+
+// The NDC of the view-space point v under m, evaluated in Wide from the T values (so only the
+// matrix's and the point's rounding are judged), with a bound of that rounding per coordinate:
+// entries and coordinates each off by kClipOps ε (relative) move clip row i by kClipOps ε times the
+// magnitude of its terms, |m_i|·|v|, and ndc_i = c_i / w by (that + |ndc_i| times w's) / |w|.
+// A reversed depth row is row 3 minus row 2, so its terms include w's.
+struct Ndc {
+  Vec3<Wide> at, tol;
+  Wide w = 0;
+};
+
+template <class T>
+Ndc ndc_of(const Mat4<T>& m, const Vec4<T>& v) {
+  const WM mw = m.template cast<Wide>();
+  const W4 vw = v.template cast<Wide>();
+  const W4 c = mw * vw;
+  const W4 mag = mw.cwiseAbs() * vw.cwiseAbs();
+  Ndc n;
+  n.w = c.w();
+  n.at = c.template head<3>() / c.w();
+  for (int i = 0; i < 3; ++i)
+    n.tol[i] = rounding<T>(kClipOps, (mag[i] + std::abs(n.at[i]) * mag[3] + (i == 2 ? mag[3] : 0)) / std::abs(c.w()));
+  return n;
+}
+
+// The projections a view-volume property can ask an adapter for.
+enum class Projection { Perspective, PerspectiveInfinite, Frustum, Ortho };
+
+inline std::ostream& operator<<(std::ostream& os, Projection p) {
+  const char* names[] = {"perspective", "perspective_infinite", "frustum", "ortho"};
+  return os << names[static_cast<int>(p)];
+}
+
+template <class T>
+const std::vector<ClipConvention>& conventions_of(const MathFunctions<T>& f, Projection p) {
+  switch (p) {
+    case Projection::Perspective: return f.finite_conventions;
+    case Projection::PerspectiveInfinite: return f.infinite_conventions;
+    case Projection::Frustum: return f.frustum_conventions;
+    case Projection::Ortho: break;
+  }
+  return f.ortho_conventions;
+}
+
+// The projections the adapter has (in at least one convention).
+template <class T>
+std::vector<Projection> projections_of(const MathFunctions<T>& f) {
+  std::vector<Projection> out;
+  for (Projection p : {Projection::Perspective, Projection::PerspectiveInfinite, Projection::Frustum, Projection::Ortho})
+    if (!conventions_of(f, p).empty()) out.push_back(p);
+  return out;
+}
+
+// One view volume as the scalar T sees it: the projection, its parameters, its convention.
+template <class T>
+struct ViewVolume {
+  Projection kind = Projection::Perspective;
+  T fovy = 0, aspect = 0;         // perspective (finite and infinite)
+  T l = 0, r = 0, b = 0, t = 0;   // frustum: the near rectangle; ortho: the box's sides
+  T near = 0, far = 0;            // (the infinite perspective ignores far)
+  T epsilon = 0;                  // the infinite perspective's
+  ClipConvention conv;
+};
+
+template <class T>
+std::ostream& operator<<(std::ostream& os, const ViewVolume<T>& v) {
+  os << std::setprecision(std::numeric_limits<T>::max_digits10) << v.kind << " " << str(v.conv);
+  if (v.kind == Projection::Perspective || v.kind == Projection::PerspectiveInfinite)
+    os << " fovy=" << v.fovy << " aspect=" << v.aspect;
+  else
+    os << " l=" << v.l << " r=" << v.r << " b=" << v.b << " t=" << v.t;
+  os << " near=" << v.near;
+  if (v.kind == Projection::PerspectiveInfinite) return os << " epsilon=" << v.epsilon;
+  return os << " far=" << v.far;
+}
+
+// A convention of the adapter's list for `kind`, drawn by the property.
+template <class T>
+ClipConvention draw_convention(const MathFunctions<T>& f, Projection kind) {
+  const auto& convs = conventions_of(f, kind);
+  RC_PRE(!convs.empty());
+  return convs[*rc::gen::inRange<std::size_t>(0, convs.size())];
+}
+
+// A generated view volume of the given kind, in a convention the adapter lists for it.
+template <class T>
+ViewVolume<T> draw_volume(const MathFunctions<T>& f, Projection kind) {
+  ViewVolume<T> v;
+  v.kind = kind;
+  v.conv = draw_convention(f, kind);
+  if (kind == Projection::Perspective || kind == Projection::PerspectiveInfinite) {
+    const auto c = *gen::lens();
+    v.fovy = static_cast<T>(c.fovy()), v.aspect = static_cast<T>(c.aspect);
+    v.near = static_cast<T>(c.near), v.far = static_cast<T>(c.far());
+    if (kind == Projection::PerspectiveInfinite)
+      v.epsilon = static_cast<T>(*rc::gen::element(0.0, kSafeInfiniteEpsilonFloat, 1.0 / 64));
+  } else if (kind == Projection::Frustum) {
+    const auto c = *gen::off_centre_frustum();
+    v.l = static_cast<T>(c.l()), v.r = static_cast<T>(c.r()), v.b = static_cast<T>(c.b()), v.t = static_cast<T>(c.t());
+    v.near = static_cast<T>(c.near), v.far = static_cast<T>(c.far());
+  } else {
+    const auto c = *gen::ortho_box();
+    v.l = static_cast<T>(c.l()), v.r = static_cast<T>(c.r()), v.b = static_cast<T>(c.b()), v.t = static_cast<T>(c.t());
+    v.near = static_cast<T>(c.n()), v.far = static_cast<T>(c.f());
+  }
+  return v;
+}
+
+// The adapter's matrix for the volume; a refusal fails the property (every generated volume is
+// well posed in float and double).
+template <class T>
+Mat4<T> projection_of(const MathFunctions<T>& f, const ViewVolume<T>& v) {
+  std::optional<Mat4<T>> m;
+  switch (v.kind) {
+    case Projection::Perspective: m = f.perspective(v.fovy, v.aspect, v.near, v.far, v.conv); break;
+    case Projection::PerspectiveInfinite: m = f.perspective_infinite(v.fovy, v.aspect, v.near, v.epsilon, v.conv); break;
+    case Projection::Frustum: m = f.frustum(v.l, v.r, v.b, v.t, v.near, v.far, v.conv); break;
+    case Projection::Ortho: m = f.ortho(v.l, v.r, v.b, v.t, v.near, v.far, v.conv); break;
+  }
+  RC_LOG() << v << "\n";
+  RC_ASSERT(m.has_value());
+  RC_LOG() << "M = " << str(*m) << "\n";
+  return *m;
+}
+
+// The view-space point the volume should map to NDC (u, v), at distance d in front of the eye
+// (z = −d in RH, +d in LH), computed in Wide and rounded to T:
+//   perspective: x = u d tan(fovy/2) aspect, y = v d tan(fovy/2) (the edges of the VERTICAL field);
+//   frustum:     (x, y) = d / near times the near-rectangle point ((l+r)/2 + u (r−l)/2, (b+t)/2 + v (t−b)/2);
+//   ortho:       (x, y) = that rectangle point itself, whatever d.
+template <class T>
+Vec4<T> point_at(const ViewVolume<T>& vol, Wide u, Wide v, Wide d) {
+  const Wide z = (vol.conv.hand == Handedness::Right ? -1 : 1) * d;
+  Wide x, y;
+  if (vol.kind == Projection::Perspective || vol.kind == Projection::PerspectiveInfinite) {
+    const Wide th = std::tan(static_cast<Wide>(vol.fovy) / 2);
+    x = u * d * th * static_cast<Wide>(vol.aspect);
+    y = v * d * th;
+  } else {
+    const Wide l = vol.l, r = vol.r, b = vol.b, t = vol.t;
+    x = (l + r) / 2 + u * (r - l) / 2;
+    y = (b + t) / 2 + v * (t - b) / 2;
+    if (vol.kind == Projection::Frustum) {
+      x *= d / static_cast<Wide>(vol.near);
+      y *= d / static_cast<Wide>(vol.near);
+    }
+  }
+  return Vec4<T>(static_cast<T>(x), static_cast<T>(y), static_cast<T>(z), T(1));
+}
+
+// A distance in front of the eye inside the volume's depth extent: log-uniform from near to far
+// for perspectives (to near · 10^6 for the infinite one), uniform from near to far for ortho.
+template <class T>
+Wide draw_distance(const ViewVolume<T>& v) {
+  const Wide n = v.near, u = *gen::uniform(0, 1);
+  if (v.kind == Projection::Ortho) return n + (static_cast<Wide>(v.far) - n) * u;
+  const Wide reach = v.kind == Projection::PerspectiveInfinite ? n * Wide(1e6) : static_cast<Wide>(v.far);
+  return n * std::pow(reach / n, u);
+}
+
+// The point for NDC (u, v) at distance d lands in front of the eye (w > 0), at (u, v).
+template <class T>
+void assert_lands_at(const Mat4<T>& m, const ViewVolume<T>& vol, Wide u, Wide v, Wide d) {
+  const Vec4<T> p = point_at(vol, u, v, d);
+  const Ndc n = ndc_of(m, p);
+  RC_LOG() << "view " << str(p) << " should land at (" << static_cast<double>(u) << ", " << static_cast<double>(v)
+           << "): ndc (" << static_cast<double>(n.at.x()) << ", " << static_cast<double>(n.at.y()) << ") w "
+           << static_cast<double>(n.w) << " tolerance (" << static_cast<double>(n.tol.x()) << ", "
+           << static_cast<double>(n.tol.y()) << ")\n";
+  RC_ASSERT(n.w > 0);
+  RC_ASSERT(std::abs(n.at.x() - u) <= n.tol.x());
+  RC_ASSERT(std::abs(n.at.y() - v) <= n.tol.y());
+}
+
+// The volume's edges land on the NDC square's edges at one distance: the top edge (anywhere along
+// it) on ndc.y = +1, the bottom on −1, the right on ndc.x = +1, the left on −1, the four corners
+// on (±1, ±1), the centre on (0, 0), and a point at fractions (u, v) of the half-extents on (u, v).
+template <class T>
+void assert_maps_onto_the_ndc_square(const Mat4<T>& m, const ViewVolume<T>& vol) {
+  const Wide d = draw_distance(vol);
+  const Wide u = *gen::centered(1), v = *gen::centered(1);
+  assert_lands_at(m, vol, u, 1, d);
+  assert_lands_at(m, vol, u, -1, d);
+  assert_lands_at(m, vol, 1, v, d);
+  assert_lands_at(m, vol, -1, v, d);
+  for (Wide cx : {-1, 1})
+    for (Wide cy : {-1, 1}) assert_lands_at(m, vol, cx, cy, d);
+  assert_lands_at(m, vol, 0, 0, d);
+  assert_lands_at(m, vol, u, v, d);
+}
+
+// Perspective, finite and infinite, in every listed convention: a view-space point on the top edge
+// of the VERTICAL field of view (y = |z| tan(fovy/2)) lands on ndc.y = +1, on the right edge
+// (x = |z| tan(fovy/2) aspect) on ndc.x = +1, and so on (assert_maps_onto_the_ndc_square), at
+// any distance. A projection built from the horizontal field of view, or with the aspect
+// inverted, passes every other property here and fails this one.
+template <class T>
+void perspective_maps_the_field_of_view_onto_the_ndc_square(const MathFunctions<T>& f) {
+  const bool infinite = *rc::gen::arbitrary<bool>();
+  const auto vol = draw_volume(f, infinite ? Projection::PerspectiveInfinite : Projection::Perspective);
+  assert_maps_onto_the_ndc_square(projection_of(f, vol), vol);
+}
+
+// The off-centre frustum maps its near rectangle [l, r] × [b, t] onto the NDC square at every
+// depth: the rays through its corners land on (±1, ±1), through its centre on (0, 0), through its
+// edges on the square's edges — rectangles that do not contain the view axis included.
+template <class T>
+void frustum_maps_its_near_rectangle_onto_the_ndc_square(const MathFunctions<T>& f) {
+  const auto vol = draw_volume(f, Projection::Frustum);
+  assert_maps_onto_the_ndc_square(projection_of(f, vol), vol);
+}
+
+// The orthographic projection maps its box's sides onto the NDC square's at every depth: x = l on
+// −1, x = r on +1, y = b on −1, y = t on +1, the centre on (0, 0).
+template <class T>
+void ortho_maps_its_box_onto_the_ndc_square(const MathFunctions<T>& f) {
+  const auto vol = draw_volume(f, Projection::Ortho);
+  assert_maps_onto_the_ndc_square(projection_of(f, vol), vol);
+}
+
+// Handedness: a point in front of the eye (z < 0 in RH, z > 0 in LH) is in front after the
+// projection, w > 0, and the same point mirrored behind the eye has w < 0 (perspectives and
+// frustum; the sign is exact: w = ±z). An orthographic projection has w = 1 everywhere, so there
+// the view direction shows in depth: the box's near face (z = −near in RH, +near in LH) gets the
+// convention's near depth and its far face the far depth.
+template <class T>
+void points_in_front_of_the_eye_are_in_front(const MathFunctions<T>& f) {
+  const auto vol = draw_volume(f, *rc::gen::elementOf(projections_of(f)));
+  const Mat4<T> m = projection_of(f, vol);
+  const Wide u = *gen::centered(2), v = *gen::centered(2);
+  if (vol.kind == Projection::Ortho) {
+    const auto [near_depth, far_depth] = near_far_depth<T>(vol.conv);
+    for (const auto& [d, want] : {std::pair<Wide, Wide>(vol.near, near_depth), std::pair<Wide, Wide>(vol.far, far_depth)}) {
+      const Vec4<T> p = point_at(vol, u, v, d);
+      const Ndc n = ndc_of(m, p);
+      RC_LOG() << "view " << str(p) << " depth " << static_cast<double>(n.at.z()) << " want " << static_cast<double>(want)
+               << " tolerance " << static_cast<double>(n.tol.z()) << "\n";
+      RC_ASSERT(n.w > 0);
+      RC_ASSERT(std::abs(n.at.z() - want) <= n.tol.z());
+    }
+    return;
+  }
+  const Wide d = static_cast<Wide>(vol.near) * *gen::power_of_ten(-3, 6);
+  const Vec4<T> front = point_at(vol, u, v, d);
+  const Vec4<T> behind(front.x(), front.y(), -front.z(), T(1));
+  const W4 cf = m.template cast<Wide>() * front.template cast<Wide>();
+  const W4 cb = m.template cast<Wide>() * behind.template cast<Wide>();
+  RC_LOG() << "in front " << str(front) << " clip " << str(cf) << "; behind " << str(behind) << " clip " << str(cb) << "\n";
+  RC_ASSERT(cf.w() > 0);
+  RC_ASSERT(cb.w() < 0);
+}
+
+// NDC x and y do not depend on the depth parameters: two volumes that differ only in near, far,
+// epsilon, finite or infinite, depth range, depth order and handedness (the point mirrored in z
+// between RH and LH) put the same point at the same ndc.xy, anywhere in view (also beyond the
+// volume's sides). Perspectives share fovy and aspect; frusta their near rectangle (and so their
+// near); ortho boxes their sides.
+template <class T>
+void ndc_xy_do_not_depend_on_the_depth_parameters(const MathFunctions<T>& f) {
+  const auto a = draw_volume(f, *rc::gen::elementOf(projections_of(f)));
+  const bool perspective = a.kind == Projection::Perspective || a.kind == Projection::PerspectiveInfinite;
+  ViewVolume<T> b = a;
+  if (perspective) {
+    std::vector<Projection> kinds;
+    for (Projection p : {Projection::Perspective, Projection::PerspectiveInfinite})
+      if (!conventions_of(f, p).empty()) kinds.push_back(p);
+    const auto other = draw_volume(f, *rc::gen::elementOf(kinds));
+    b.kind = other.kind, b.near = other.near, b.far = other.far, b.epsilon = other.epsilon, b.conv = other.conv;
+  } else if (a.kind == Projection::Frustum) {
+    b.far = static_cast<T>(static_cast<Wide>(a.near) * *gen::power_of_ten(1, 6));
+    b.conv = draw_convention(f, a.kind);
+  } else {
+    // Another near and far at this box's scale (as the generator draws them: near within the
+    // scale of the origin, depth 1e-2..1e2 of it), and another convention.
+    const Wide scale = std::max({std::abs(static_cast<Wide>(a.l)), std::abs(static_cast<Wide>(a.r)),
+                                 std::abs(static_cast<Wide>(a.b)), std::abs(static_cast<Wide>(a.t))});
+    const Wide near = scale * *gen::centered(1);
+    b.near = static_cast<T>(near);
+    b.far = static_cast<T>(near + scale * *gen::power_of_ten(-2, 2));
+    b.conv = draw_convention(f, a.kind);
+  }
+  const Mat4<T> ma = projection_of(f, a), mb = projection_of(f, b);
+  const Wide u = *gen::centered(2), v = *gen::centered(2);
+  const Wide d = a.kind == Projection::Ortho ? draw_distance(a) : static_cast<Wide>(a.near) * *gen::power_of_ten(-3, 6);
+  const Ndc na = ndc_of(ma, point_at(a, u, v, d)), nb = ndc_of(mb, point_at(b, u, v, d));
+  RC_LOG() << "ndc.xy (" << static_cast<double>(na.at.x()) << ", " << static_cast<double>(na.at.y()) << ") vs ("
+           << static_cast<double>(nb.at.x()) << ", " << static_cast<double>(nb.at.y()) << ")\n";
+  RC_ASSERT(std::abs(na.at.x() - nb.at.x()) <= na.tol.x() + nb.tol.x());
+  RC_ASSERT(std::abs(na.at.y() - nb.at.y()) <= na.tol.y() + nb.tol.y());
 }
 
 }  // namespace shadowref::prop

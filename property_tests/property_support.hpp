@@ -3,7 +3,7 @@
 // against a deliberately wrong implementation that it must catch).
 #pragma once
 
-#include <gtest/gtest.h>  // before rapidcheck/gtest.h (PITFALLS.md)
+#include <gtest/gtest.h>  // before rapidcheck/gtest.h (docs/dependencies.md)
 #include <rapidcheck.h>
 #include <rapidcheck/gtest.h>
 

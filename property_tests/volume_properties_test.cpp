@@ -137,7 +137,7 @@ RTCDevice embree_device() {
 class EmbreeMesh {
  public:
   EmbreeMesh(const TriangleMesh<double>& mesh, const std::vector<std::uint8_t>* only) : scene_(rtcNewScene(embree_device())) {
-    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);  // no misses through shared edges (PITFALLS.md)
+    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);  // no misses through shared edges (docs/dependencies.md)
     RTCGeometry g = rtcNewGeometry(embree_device(), RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
                                                           mesh.positions.size()));

@@ -1,5 +1,5 @@
-// bad_input_test.cpp — issue 9, item 1: every `shadowref` subcommand answers bad input with one
-// line naming the file, JSON path or argument, and DESIGN.md's exit code (4 bad input or file
+// bad_input_test.cpp — every `shadowref` subcommand answers bad input with one
+// line naming the file, JSON path or argument, and the documented exit code (docs/output-contract.md) (4 bad input or file
 // error, 3 size mismatch); never a crash, a hang, a partial output folder.
 //
 // The table is generated: each defect (a bad scene, mesh, image or argument) × each subcommand that
@@ -35,17 +35,18 @@ namespace fs = std::filesystem;
 
 // A valid scene, small and fast: a box over a ground plane, 32 × 32 pixels.
 std::string good_scene(const std::string& patch_key = "", const std::string& patch_value = "") {
-  std::string res = "[32, 32]", camera = R"({"position": [0, 4, 8], "target": [0, 0.5, 0], "fovy_deg": 45, "near": 0.1})",
+  std::string name = R"("bad")", res = "[32, 32]", camera = R"({"position": [0, 4, 8], "target": [0, 0.5, 0], "fovy_deg": 45, "near": 0.1})",
               lights = R"([{"type": "point", "position": [2, 6, 1]}])",
               objects = R"([{"name": "ground", "shape": {"type": "plane", "size": [20, 20]}, "receiver": true},
                  {"name": "box", "shape": {"type": "box", "size": [1, 1, 1]}, "transform": {"translate": [0, 1, 0]}}])",
               extra;
-  if (patch_key == "resolution") res = patch_value;
+  if (patch_key == "name") name = patch_value;
+  else if (patch_key == "resolution") res = patch_value;
   else if (patch_key == "camera") camera = patch_value;
   else if (patch_key == "lights") lights = patch_value;
   else if (patch_key == "objects") objects = patch_value;
   else if (!patch_key.empty()) extra = ", \"" + patch_key + "\": " + patch_value;
-  return R"({"name": "bad", "resolution": )" + res + ", \"camera\": " + camera + ", \"lights\": " + lights +
+  return R"({"name": )" + name + R"(, "resolution": )" + res + ", \"camera\": " + camera + ", \"lights\": " + lights +
          ", \"objects\": " + objects + extra + "}";
 }
 
@@ -171,6 +172,19 @@ const std::vector<SceneDefect>& scene_defects() {
       {"missing_mesh", nullptr, good_scene("objects", mesh_object("nowhere.obj")), "nowhere.obj"},
       {"truncated_gltf", [](const fs::path& dir) { write_text(dir / "cut.gltf", R"({"asset": {"version": "2.0"}, "meshes": [)"); },
        good_scene("objects", mesh_object("cut.gltf")), "cut.gltf"},
+      // A scene's name becomes a folder name (renders/<name>/, the reference cache's <name>-<key>/):
+      // only safe identifiers (shadowref/scene/identifier.hpp).
+      {"name_climbs_out", nullptr, good_scene("name", R"("../../escaped_scene")"), "name: must not contain '..'"},
+      {"name_with_slash", nullptr, good_scene("name", R"("a/b")"), "name: must not contain '/'"},
+      {"name_with_drive", nullptr, good_scene("name", R"("C:evil")"), "name: must not contain ':'"},
+      {"name_hidden", nullptr, good_scene("name", R"(".hidden")"), "name: must start with a letter or a digit, not '.'"},
+      {"name_empty", nullptr, good_scene("name", R"("")"), "name: must not be empty"},
+      {"name_too_long", nullptr, good_scene("name", "\"" + std::string(65, 'a') + "\""), "name: must be at most 64 characters, not 65"},
+      // Mesh files lie in the scene's folder or below it.
+      {"mesh_absolute_path", nullptr, good_scene("objects", mesh_object("/etc/passwd")),
+       "objects[1].shape.file: '/etc/passwd' is an absolute path, outside the scene's folder"},
+      {"mesh_climbs_out", nullptr, good_scene("objects", mesh_object("../outside.obj")),
+       "objects[1].shape.file: '../outside.obj' resolves to"},
   };
   return d;
 }
@@ -411,6 +425,34 @@ TEST_P(BadInput, OneLineNamedAndTheDesignExitCode) {
     GTEST_SKIP() << "XFAIL (known bug, reported): " << c.known_bug << "\n" << report;
   }
   EXPECT_TRUE(problems.empty()) << report;
+}
+
+// Confinement: `shadowref conform --scenes FILE --out DIR` with a scene whose name climbs out of
+// DIR ("../../escaped_scene" would put renders/<name>/ beside DIR and the reference cache's
+// <name>-<key>/ above it) writes nothing outside DIR — the whole tree around DIR is unchanged — and
+// nothing inside it either: it is refused before any work, as bad input.
+std::vector<std::string> listing(const fs::path& root) {
+  std::vector<std::string> out;
+  for (const auto& e : fs::recursive_directory_iterator(root))
+    out.push_back(fs::relative(e.path(), root).string() + (e.is_directory() ? "/" : " " + std::to_string(e.file_size())));
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(Confinement, ConformWithAnEscapingSceneNameWritesNothingOutsideOrInsideOut) {
+  const fs::path root = fs::path(::testing::TempDir()) / "shadowref-confinement";
+  fs::remove_all(root);
+  const fs::path scene = root / "scenes" / "escape.json", out = root / "work" / "a" / "out";
+  write_text(scene, good_scene("name", R"("../../escaped_scene")"));
+  fs::create_directories(out.parent_path());
+  const std::vector<std::string> before = listing(root);
+  const CommandResult r = run_command({"/usr/bin/timeout", "120", SHADOWREF_EXE, "conform", "--scenes", scene.string(),
+                                       "--out", out.string(), "--techniques", "planar", "--spp", "1", "--quiet"});
+  EXPECT_EQ(r.exit_code, 4) << r.err;
+  EXPECT_NE(r.err.find(scene.string() + ": name: must not contain '..'"), std::string::npos) << r.err;
+  EXPECT_EQ(listing(root), before) << "conform wrote beside or inside --out";
+  EXPECT_FALSE(fs::exists(out)) << "conform left an output folder";
+  fs::remove_all(root);
 }
 
 INSTANTIATE_TEST_SUITE_P(Table, BadInput, ::testing::ValuesIn(make_cases()),

@@ -58,10 +58,13 @@ TEST(ExportCommand, PackHasEveryConventionAndTheyPutPointsOnTheSamePixel) {
   EXPECT_NEAR(det3(conv["gl"]["view"]["canonical"]), 1.0, 1e-9);
   EXPECT_EQ(conv["reversed-z"]["depth_test"], "GREATER");
   EXPECT_EQ(conv["reversed-z"]["depth_clear"], 0.0);
-  // Every light has shadow-map views in every convention, mapping the ball's centre into the map.
+  // Every light has shadow-map views in every convention, mapping the ball's centre into the map:
+  // the light at (2, 6, 1) is inside the ground's bounds, so it has a cube, and the ball's centre
+  // (0, 1.5, 0) is in the face of the largest component of (p − light) = (−2, −4.5, −1): −y, view 3.
   for (const auto& [name, c] : conv.items()) {
     ASSERT_EQ(c["light_views"].size(), m["lights"].size()) << name;
-    const json& view = c["light_views"][0]["views"][0];
+    ASSERT_EQ(c["light_views"][0]["views"].size(), 6u) << name;
+    const json& view = c["light_views"][0]["views"][3];
     const auto t = apply(view["shadow_from_scene"]["canonical"], points[0]);
     EXPECT_GT(t[0] / t[3], 0.0) << name;
     EXPECT_LT(t[0] / t[3], 1.0) << name;

@@ -6,7 +6,9 @@
 // column by column), so the properties check code that shares nothing with shadowref's mathlib.
 // GLM has no reversed-Z and no 0..1 infinite projection, and its tweaked (epsilon) infinite
 // projection is right-handed −1..1 only: the convention lists below say so, and the properties
-// only ask for those.
+// only ask for those. Its left-handed frustum is left out on purpose: GLM 0.9.9.8's frustumLH_*
+// keep the right-handed sign of (r+l)/(r−l) and (t+b)/(t−b), so an off-centre LH frustum lands
+// beside the NDC square (teeth_test.cpp shows the frustum property catching exactly that).
 #define GLM_FORCE_SILENT_WARNINGS
 #include <glm/ext/matrix_clip_space.hpp>
 #include <glm/glm.hpp>
@@ -47,6 +49,20 @@ std::optional<glm::mat<4, 4, T>> engine_perspective_infinite(T fovy, T aspect, T
 }
 
 template <class T>
+std::optional<glm::mat<4, 4, T>> engine_frustum(T l, T r, T b, T t, T near, T far, Conv c) {
+  if (c.hand != Handedness::Right || c.order != DepthOrder::Standard) return std::nullopt;
+  return c.depth == DepthRange::NegOneToOne ? glm::frustumRH_NO(l, r, b, t, near, far) : glm::frustumRH_ZO(l, r, b, t, near, far);
+}
+
+template <class T>
+std::optional<glm::mat<4, 4, T>> engine_ortho(T l, T r, T b, T t, T near, T far, Conv c) {
+  const bool rh = c.hand == Handedness::Right, no = c.depth == DepthRange::NegOneToOne;
+  if (c.order != DepthOrder::Standard) return std::nullopt;
+  if (rh) return no ? glm::orthoRH_NO(l, r, b, t, near, far) : glm::orthoRH_ZO(l, r, b, t, near, far);
+  return no ? glm::orthoLH_NO(l, r, b, t, near, far) : glm::orthoLH_ZO(l, r, b, t, near, far);
+}
+
+template <class T>
 MathFunctions<T> glm_functions() {
   using M = typename MathFunctions<T>::Matrix;
   const auto g = [](const Vec4<T>& v) { return glm::vec<4, T>(v[0], v[1], v[2], v[3]); };
@@ -65,11 +81,22 @@ MathFunctions<T> glm_functions() {
     const auto m = engine_perspective_infinite(fovy, aspect, near, eps, c);
     return m ? M(from_glm(*m)) : std::nullopt;
   };
+  f.frustum = [](T l, T r, T b, T t, T near, T far, Conv c) -> M {
+    const auto m = engine_frustum(l, r, b, t, near, far, c);
+    return m ? M(from_glm(*m)) : std::nullopt;
+  };
+  f.ortho = [](T l, T r, T b, T t, T near, T far, Conv c) -> M {
+    const auto m = engine_ortho(l, r, b, t, near, far, c);
+    return m ? M(from_glm(*m)) : std::nullopt;
+  };
   f.finite_conventions = {{Handedness::Right, DepthRange::NegOneToOne, DepthOrder::Standard},
                           {Handedness::Right, DepthRange::ZeroToOne, DepthOrder::Standard},
                           {Handedness::Left, DepthRange::NegOneToOne, DepthOrder::Standard},
                           {Handedness::Left, DepthRange::ZeroToOne, DepthOrder::Standard}};
   f.infinite_conventions = {{Handedness::Right, DepthRange::NegOneToOne, DepthOrder::Standard}};
+  f.frustum_conventions = {{Handedness::Right, DepthRange::NegOneToOne, DepthOrder::Standard},
+                           {Handedness::Right, DepthRange::ZeroToOne, DepthOrder::Standard}};
+  f.ortho_conventions = f.finite_conventions;
   return f;
 }
 

@@ -24,8 +24,16 @@ MathFunctions<T> shadowref_math_functions() {
   f.perspective_infinite = [unwrap](T fovy, T aspect, T near, T eps, ClipConvention c) {
     return unwrap(perspective_infinite(fovy, aspect, near, c, eps));
   };
+  f.frustum = [unwrap](T l, T r, T b, T t, T near, T far, ClipConvention c) {
+    return unwrap(frustum(l, r, b, t, near, far, c));
+  };
+  f.ortho = [unwrap](T l, T r, T b, T t, T near, T far, ClipConvention c) {
+    return unwrap(ortho(l, r, b, t, near, far, c));
+  };
   f.finite_conventions = all_conventions();
   f.infinite_conventions = all_conventions();
+  f.frustum_conventions = all_conventions();
+  f.ortho_conventions = all_conventions();
   return f;
 }
 

@@ -10,9 +10,11 @@
 #include <limits>
 #include <numbers>
 #include <sstream>
+#include <system_error>
 
 #include "json_node.hpp"
 #include "shadowref/scene/camera.hpp"
+#include "shadowref/scene/identifier.hpp"
 #include "shadowref/scene/mesh_file.hpp"
 #include "shadowref/primitives.hpp"
 #include "shadowref/scene/shapes.hpp"
@@ -108,7 +110,27 @@ Vec3<double> positive_vec3(const JsonNode& n) {
   return v;
 }
 
-TriangleMesh<double> read_shape(const JsonNode& n, const std::filesystem::path& scene_dir, std::string& type) {
+// The path a mesh file is read from: relative to the scene's folder and, unless the options allow
+// otherwise, inside it once both are canonical (symlinks resolved, "." and ".." folded), compared
+// component by component (so /a/bc is not inside /a/b). Messages show the path as the scene wrote it.
+std::filesystem::path mesh_path(const JsonNode& f, const std::filesystem::path& rel, const std::filesystem::path& scene_dir,
+                                const LoadOptions& options) {
+  namespace fs = std::filesystem;
+  const fs::path path = rel.is_absolute() ? rel : scene_dir / rel;
+  if (options.allow_meshes_outside_scene_folder) return path;
+  std::error_code ec;
+  const fs::path dir = fs::weakly_canonical(scene_dir.empty() ? fs::path(".") : scene_dir, ec);
+  if (ec) f.fail("cannot resolve the scene's folder " + scene_dir.string() + ": " + ec.message());
+  if (rel.has_root_path()) f.fail("'" + rel.string() + "' is an absolute path, outside the scene's folder " + dir.string());
+  const fs::path resolved = fs::weakly_canonical(path, ec);
+  if (ec) f.fail("cannot resolve " + path.string() + ": " + ec.message());
+  if (std::mismatch(dir.begin(), dir.end(), resolved.begin(), resolved.end()).first != dir.end())
+    f.fail("'" + rel.string() + "' resolves to " + resolved.string() + ", outside the scene's folder " + dir.string());
+  return path;
+}
+
+TriangleMesh<double> read_shape(const JsonNode& n, const std::filesystem::path& scene_dir, const LoadOptions& options,
+                                std::string& type) {
   type = n.required("type").string();
   if (type == "plane") {
     n.expect_object({"type", "size"});
@@ -148,7 +170,7 @@ TriangleMesh<double> read_shape(const JsonNode& n, const std::filesystem::path& 
     const JsonNode f = n.required("file");
     const std::filesystem::path rel = f.string();
     if (rel.empty()) f.fail("must not be empty");
-    const std::filesystem::path path = rel.is_absolute() ? rel : scene_dir / rel;
+    const std::filesystem::path path = mesh_path(f, rel, scene_dir, options);
     try {
       return load_mesh_file(path);
     } catch (const MeshFileError& e) {
@@ -180,12 +202,18 @@ Eigen::Matrix4d read_transform(const JsonNode& n) {
   return m.matrix();
 }
 
-void read_object(const JsonNode& n, std::size_t index, const std::filesystem::path& scene_dir, Scene& scene) {
+void read_object(const JsonNode& n, std::size_t index, const std::filesystem::path& scene_dir, const LoadOptions& options,
+                 Scene& scene) {
   n.expect_object({"name", "shape", "transform", "receiver", "color"});
   Object obj;
-  obj.name = n.has("name") ? n.child("name").string() : "objects[" + std::to_string(index) + "]";
+  obj.name = "objects[" + std::to_string(index) + "]";
+  if (n.has("name")) {  // a file name when exported (meshes/<name>.obj)
+    const JsonNode name = n.child("name");
+    obj.name = name.string();
+    if (auto problem = identifier_problem(obj.name)) name.fail(*problem);
+  }
   const JsonNode shape_node = n.required("shape");
-  const TriangleMesh<double> local = read_shape(shape_node, scene_dir, obj.shape);
+  const TriangleMesh<double> local = read_shape(shape_node, scene_dir, options, obj.shape);
   const Eigen::Matrix4d xf = n.has("transform") ? read_transform(n.child("transform")) : Eigen::Matrix4d::Identity();
   const bool mirror = xf.topLeftCorner<3, 3>().determinant() < 0;
   obj.mesh.positions.reserve(local.positions.size());
@@ -249,7 +277,7 @@ void read_expect(const JsonNode& n, Scene& scene) {
 
 }  // namespace
 
-Scene parse_scene(std::string_view json_text, const std::filesystem::path& file) {
+Scene parse_scene(std::string_view json_text, const std::filesystem::path& file, const LoadOptions& options) {
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(json_text.begin(), json_text.end());
@@ -260,8 +288,10 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& file)
   root.expect_object({"name", "description", "resolution", "camera", "lights", "objects", "expect", "tags"});
   Scene scene;
   scene.file = file;
-  scene.name = root.required("name").string();
-  if (scene.name.empty()) root.fail_at("name", "must not be empty");
+  // The name becomes a folder name (renders/<name>/, the reference cache's <name>-<key>/).
+  const JsonNode name = root.required("name");
+  scene.name = name.string();
+  if (auto problem = identifier_problem(scene.name)) name.fail(*problem);
   if (auto d = root.optional("description")) scene.description = d->string();
   if (auto r = root.optional("resolution")) {
     if (r->array_size() != 2) r->fail("must be [width, height]");
@@ -281,18 +311,18 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& file)
   const JsonNode objects = root.required("objects");
   if (objects.array_size() == 0) objects.fail("must hold at least one object");
   const std::filesystem::path dir = file.parent_path();
-  for (std::size_t i = 0; i < objects.array_size(); ++i) read_object(objects.element(i), i, dir, scene);
+  for (std::size_t i = 0; i < objects.array_size(); ++i) read_object(objects.element(i), i, dir, options, scene);
   if (auto e = root.optional("expect")) read_expect(*e, scene);
   return scene;
 }
 
-Scene load_scene(const std::filesystem::path& file) {
+Scene load_scene(const std::filesystem::path& file, const LoadOptions& options) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw SceneError(file.string() + ": cannot open the scene file");
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw SceneError(file.string() + ": cannot read the scene file");
-  return parse_scene(text.str(), file);
+  return parse_scene(text.str(), file, options);
 }
 
 }  // namespace shadowref::scene

@@ -12,6 +12,10 @@ namespace {
 
 using nlohmann::json;
 
+// The rule every name refusal ends with (identifier.hpp).
+#define SHADOWREF_NAME_RULE \
+  " (a name becomes a file or folder name: 1 to 64 of A-Z a-z 0-9 _ . -, starting with a letter or a digit, no '..')"
+
 struct ErrorCase {
   const char* name;
   const char* pointer;   // JSON pointer of the value to set ("" = nothing), or to remove
@@ -24,6 +28,17 @@ const ErrorCase kCases[] = {
     {"UnknownTopLevelKey", "/colour", "1", "colour: unknown key (allowed here: name, description, resolution, camera, lights, objects, expect, tags)"},
     {"MissingName", "/name", nullptr, "name: is required"},
     {"NameNotString", "/name", "3", "name: must be a string, not number"},
+    {"NameClimbsOut", "/name", "\"../../escaped_scene\"", "name: must not contain '..'" SHADOWREF_NAME_RULE},
+    {"NameWithSlash", "/name", "\"a/b\"", "name: must not contain '/'" SHADOWREF_NAME_RULE},
+    {"NameWithBackslash", "/name", R"("a\\b")", "name: must not contain '\\'" SHADOWREF_NAME_RULE},
+    {"NameWithDrive", "/name", "\"C:evil\"", "name: must not contain ':'" SHADOWREF_NAME_RULE},
+    {"NameHidden", "/name", "\".hidden\"", "name: must start with a letter or a digit, not '.'" SHADOWREF_NAME_RULE},
+    {"NameEmpty", "/name", "\"\"", "name: must not be empty" SHADOWREF_NAME_RULE},
+    {"NameTooLong", "/name", "\"aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa\"", "name: must be at most 64 characters, not 65" SHADOWREF_NAME_RULE},
+    {"NameWithSpace", "/name", "\"ground sphere\"", "name: must not contain ' '" SHADOWREF_NAME_RULE},
+    {"NameNotAscii", "/name", "\"caf\u00e9\"", "name: must not contain byte 0xC3" SHADOWREF_NAME_RULE},
+    {"ObjectNameClimbsOut", "/objects/1/name", "\"../ball\"", "objects[1].name: must not contain '..'" SHADOWREF_NAME_RULE},
+    {"ObjectNameWithSlash", "/objects/1/name", "\"a/b\"", "objects[1].name: must not contain '/'" SHADOWREF_NAME_RULE},
     {"ResolutionZero", "/resolution", "[0, 48]", "resolution[0]: must be in [1, 16384]"},
     {"ResolutionAbsurd", "/resolution", "[64, 100000]", "resolution[1]: must be in [1, 16384]"},
     {"ResolutionFraction", "/resolution", "[64.5, 48]", "resolution[0]: must be a whole number"},
@@ -99,6 +114,16 @@ TEST_P(LoadErrors, NamesFileAndJsonPath) {
 INSTANTIATE_TEST_SUITE_P(Scene, LoadErrors, ::testing::ValuesIn(kCases),
                          [](const ::testing::TestParamInfo<ErrorCase>& p) { return std::string(p.param.name); });
 
+TEST(LoadErrors, NamesAtTheLimitsAreValid) {
+  // The other side of the name cases above: 64 characters, a digit first, '.', '-' and '_' inside.
+  for (const std::string& name : {std::string(64, 'a'), std::string("0"), std::string("v1.2-final_b")}) {
+    json doc = test::minimal_scene();
+    doc["name"] = name;
+    doc["objects"][1]["name"] = name;
+    EXPECT_EQ(parse_scene(doc.dump(), std::filesystem::path(SHADOWREF_SCENE_TEST_DATA) / "test.json").name, name);
+  }
+}
+
 TEST(LoadErrors, MinimalSceneIsValid) {
   // The base of every case above must load, or the cases would prove nothing.
   EXPECT_NO_THROW((void)parse_scene(test::minimal_scene().dump(), std::filesystem::path(SHADOWREF_SCENE_TEST_DATA) / "test.json"));
@@ -134,6 +159,104 @@ TEST(LoadErrors, MissingSceneFile) {
   } catch (const SceneError& e) {
     EXPECT_STREQ(e.what(), "/nonexistent/scene.json: cannot open the scene file");
   }
+}
+
+// ---- mesh files must lie in the scene's folder -------------------------------------------------------
+
+namespace fs = std::filesystem;
+
+constexpr std::size_t kTriTriangles = 2;  // data/tri.obj: a quad as two triangles
+
+// A folder of its own for each test, holding a scene folder and files beside it.
+class MeshConfinement : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::path(::testing::TempDir()) / ("shadowref-mesh-confinement-" +
+                                              std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(root_);
+    fs::create_directories(root_ / "scenes");
+    fs::create_directories(root_ / "outside");
+    fs::copy_file(fs::path(SHADOWREF_SCENE_TEST_DATA) / "tri.obj", root_ / "scenes" / "tri.obj");
+    fs::copy_file(fs::path(SHADOWREF_SCENE_TEST_DATA) / "tri.obj", root_ / "outside" / "tri.obj");
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  // The minimal scene with objects[1] a mesh from `file`, loaded as root/<scene_dir>/test.json.
+  Scene load(const std::string& file, const LoadOptions& options = {}, const fs::path& scene_dir = "scenes") const {
+    json doc = test::minimal_scene();
+    doc["objects"][1]["shape"] = {{"type", "mesh"}, {"file", file}};
+    return parse_scene(doc.dump(), root_ / scene_dir / "test.json", options);
+  }
+  // The message load() fails with ("" when it loads).
+  std::string error(const std::string& file, const fs::path& scene_dir = "scenes") const {
+    try {
+      (void)load(file, {}, scene_dir);
+    } catch (const SceneError& e) {
+      return e.what();
+    }
+    return "";
+  }
+  fs::path canonical(const fs::path& p) const { return fs::weakly_canonical(root_ / p); }
+
+  fs::path root_;
+};
+
+TEST_F(MeshConfinement, MeshesInsideTheFolderLoad) {
+  EXPECT_EQ(load("tri.obj").objects[1].mesh.triangles.size(), kTriTriangles);
+  EXPECT_EQ(load("./tri.obj").objects[1].mesh.triangles.size(), kTriTriangles);
+  // Climbing out and back in resolves inside: accepted.
+  EXPECT_EQ(load("../scenes/tri.obj").objects[1].mesh.triangles.size(), kTriTriangles);
+}
+
+TEST_F(MeshConfinement, AbsolutePathIsRefused) {
+  const std::string file = "/etc/passwd";
+  EXPECT_EQ(error(file), (root_ / "scenes" / "test.json").string() + ": objects[1].shape.file: '/etc/passwd' is an absolute path, outside the scene's folder " +
+                             canonical("scenes").string());
+  // Even one that points inside the folder: a scene must not depend on where it was written.
+  const std::string inside = (root_ / "scenes" / "tri.obj").string();
+  EXPECT_NE(error(inside).find("'" + inside + "' is an absolute path, outside the scene's folder"), std::string::npos)
+      << error(inside);
+}
+
+TEST_F(MeshConfinement, ClimbingOutIsRefused) {
+  // The file exists (and is a valid mesh): the path alone is refused, before it is read.
+  EXPECT_EQ(error("../outside/tri.obj"), (root_ / "scenes" / "test.json").string() + ": objects[1].shape.file: '../outside/tri.obj' resolves to " +
+                                             canonical("outside/tri.obj").string() + ", outside the scene's folder " +
+                                             canonical("scenes").string());
+  // A file that does not exist is refused the same way, not reported missing.
+  EXPECT_NE(error("../outside.obj").find("'../outside.obj' resolves to " + canonical("outside.obj").string() + ", outside"),
+            std::string::npos)
+      << error("../outside.obj");
+  // A sibling folder whose name starts with the scene folder's is outside too.
+  fs::create_directories(root_ / "scenes2");
+  fs::copy_file(root_ / "outside" / "tri.obj", root_ / "scenes2" / "tri.obj");
+  EXPECT_NE(error("../scenes2/tri.obj").find("outside the scene's folder"), std::string::npos) << error("../scenes2/tri.obj");
+}
+
+TEST_F(MeshConfinement, SymlinkLeadingOutIsRefused) {
+  fs::create_symlink(root_ / "outside" / "tri.obj", root_ / "scenes" / "link.obj");
+  fs::create_directory_symlink(root_ / "outside", root_ / "scenes" / "linked_folder");
+  EXPECT_NE(error("link.obj").find("'link.obj' resolves to " + canonical("outside/tri.obj").string() + ", outside"),
+            std::string::npos)
+      << error("link.obj");
+  EXPECT_NE(error("linked_folder/tri.obj").find("outside the scene's folder"), std::string::npos) << error("linked_folder/tri.obj");
+}
+
+TEST_F(MeshConfinement, SymlinkedSceneFolderIsResolvedToo) {
+  // The scene folder itself reached through a symlink: both sides are made canonical, so a mesh
+  // inside it is inside.
+  fs::create_directory_symlink(root_ / "scenes", root_ / "scenes_link");
+  EXPECT_EQ(load("tri.obj", {}, "scenes_link").objects[1].mesh.triangles.size(), kTriTriangles);
+  EXPECT_NE(error("../outside/tri.obj", "scenes_link").find("outside the scene's folder"), std::string::npos);
+}
+
+TEST_F(MeshConfinement, TheOptionAllowsMeshesOutside) {
+  LoadOptions allow;
+  allow.allow_meshes_outside_scene_folder = true;
+  fs::create_symlink(root_ / "outside" / "tri.obj", root_ / "scenes" / "link.obj");
+  EXPECT_EQ(load("../outside/tri.obj", allow).objects[1].mesh.triangles.size(), kTriTriangles);
+  EXPECT_EQ(load((root_ / "outside" / "tri.obj").string(), allow).objects[1].mesh.triangles.size(), kTriTriangles);
+  EXPECT_EQ(load("link.obj", allow).objects[1].mesh.triangles.size(), kTriTriangles);
 }
 
 }  // namespace
