@@ -44,9 +44,10 @@ std::string technique_from_render_json(const std::filesystem::path& dir) {
 
 void print_metrics(const std::string& name, const compare::MaskMetrics& m) {
   std::printf("  %-12s %dx%d, %zu decided pixels with a surface: wrong %zu (%.4g %%) = %zu false shadow + %zu false light + "
-              "%zu coverage; %zu region(s), largest %zu px%s\n",
+              "%zu coverage; unexplained %zu (%.4g %% of %zu edge px, core %zu); %zu region(s), largest %zu px%s\n",
               name.c_str(), m.width, m.height, m.decided_surface, m.wrong, m.wrong_percent(), m.false_shadow,
-              m.false_light, m.coverage, m.regions, m.largest_region,
+              m.false_light, m.coverage, m.unexplained, 100 * m.unexplained_ratio(), m.edge_pixels, m.unexplained_core,
+              m.regions, m.largest_region,
               m.off_values ? (", " + std::to_string(m.off_values) + " candidate values not 0/128/255").c_str() : "");
 }
 
@@ -97,9 +98,9 @@ int run_compare(const CompareArgs& a) {
     return code;
   }
   std::printf("shadowref compare: %s against %s\n", a.candidate.c_str(), a.reference.c_str());
-  std::printf("  technique %s (%s), threshold %s: pass <= %.4g %% wrong and regions <= %zu px, fail > %.4g %% or > %zu px\n",
+  std::printf("  technique %s (%s), threshold %s: fail on any unexplained core or unexplained > %.4g %% of edge pixels\n",
               technique.empty() ? "-" : technique.c_str(), technique_source.c_str(), std::string(threshold.name).c_str(),
-              100 * threshold.pass_fraction, threshold.pass_region, 100 * threshold.fail_fraction, threshold.fail_region);
+              100 * threshold.unexplained_fail);
   for (std::size_t i = 0; i < c.masks.size(); ++i) print_metrics(c.masks[i], c.per_light[i].metrics);
   if (c.masks.size() > 1) print_metrics("all lights", c.total);
   for (const std::string& e : errors) std::printf("  error image: %s\n", (std::filesystem::path(a.out) / e).string().c_str());

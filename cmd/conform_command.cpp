@@ -26,6 +26,8 @@ struct ConformArgs {
   std::string technique;
   std::string convention = "gl";
   int shadow_map_size = 0;
+  double resolution_scale = 1.0;
+  std::string resolution;
   std::string backend = "llvmpipe";
   std::string gl = "osmesa";
   std::string out = "conformance-out";
@@ -51,6 +53,15 @@ int run_conform_command(const ConformArgs& a) {
   if (!a.technique.empty()) o.techniques.push_back(a.technique);
   o.convention = std::string(parse_convention(a.convention).name);
   o.shadow_map_size = a.shadow_map_size;
+  o.resolution_scale = a.resolution_scale;
+  if (!a.resolution.empty()) {
+    int w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(a.resolution.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 1 || h < 1 || w > 16384 || h > 16384)
+      throw BadInput("--resolution '" + a.resolution + "': expected WxH with both in [1, 16384], e.g. 1024x768");
+    o.width = w;
+    o.height = h;
+  }
   o.backend = a.backend;
   o.gl = a.gl;
   o.out = a.out;
@@ -108,7 +119,8 @@ int run_conform_command(const ConformArgs& a) {
     std::printf("%-6s %s x %s", conform::to_string(c.status), c.scene.c_str(), c.technique.c_str());
     if (c.status == conform::Status::XFail || c.status == conform::Status::XPass) std::printf(": expected to fail: %s", c.why.c_str());
     if (c.comparison && c.status == conform::Status::XFail)
-      std::printf(" (wrong %.3g %%, largest region %zu px)", c.comparison->total.wrong_percent(), c.comparison->total.largest_region);
+      std::printf(" (wrong %.3g %%, unexplained %zu px = %.3g %% of edges, core %zu px)", c.comparison->total.wrong_percent(),
+                  c.comparison->total.unexplained, 100 * c.comparison->total.unexplained_ratio(), c.comparison->total.unexplained_core);
     if (c.comparison && !c.comparison->judgement.reasons.empty() && c.status != conform::Status::XFail) {
       std::string reasons;
       for (const std::string& reason : c.comparison->judgement.reasons) reasons += (reasons.empty() ? "" : "; ") + reason;
@@ -142,6 +154,11 @@ void register_conform_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--techniques", args->techniques, "comma-separated technique names (default: all)");
   cmd->add_option("--technique", args->technique, "one technique (the name an engine team's renders are judged as)");
   add_convention_option(*cmd, args->convention);
+  cmd->add_option("--resolution", args->resolution, "render and judge every scene at WxH instead of its own resolution");
+  cmd->add_option("--resolution-scale", args->resolution_scale,
+                  "render and judge every scene at its resolution times this (e.g. 4: 256x256 becomes 1024x1024)")
+      ->check(CLI::Range(0.0625, 16.0))
+      ->capture_default_str();
   cmd->add_option("--shadow-map-size", args->shadow_map_size,
                   "texels per side of our shadow maps; 0: automatic (3 texels per camera pixel at the view centres)")
       ->check(CLI::Range(0, 16384))

@@ -55,6 +55,13 @@ class GpuMesh {
 void set_matrix(const GlFunctions& gl, GLint location, const Mat4<float>& m);
 Mat4<float> to_float(const Mat4<double>& m);
 
+// Slope-scaled and constant offset of the shadow maps' depth pass, in glPolygonOffset's units (the
+// constant in steps of the 24-bit depth): large enough for the two-sided ground's self-comparison at
+// grazing light, small enough not to detach shadows visibly at the catalogue's scale. The factor is
+// what candidate.json declares as slope_bias_texels.
+inline constexpr float kShadowMapOffsetFactor = 2.0f;
+inline constexpr float kShadowMapOffsetUnits = 8.0f;
+
 // How the camera's far plane is set up for a technique (x and y rows never change).
 using scene::CameraDepth;
 

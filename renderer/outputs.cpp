@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "shadowref/outputs/candidate.hpp"
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/outputs/image_io.hpp"
 #include "shadowref/outputs/staged_folder.hpp"
@@ -25,6 +26,7 @@ void write_outputs(const RenderResult& result, const GlInfo& info, const scene::
     masks.push_back(name);
   }
   outputs::write_png(result.shaded, tmp / "shaded.png");
+  outputs::write_declaration(result.declaration, tmp);
 
   nlohmann::json j;
   j["producer"] = "shadowref renderer (OpenGL)";

@@ -171,6 +171,7 @@ std::vector<std::uint8_t> flip_rows(const std::vector<std::uint8_t>& bottom_up, 
 constexpr auto kAmbient = static_cast<float>(outputs::kAmbient);
 constexpr auto kDirect = static_cast<float>(outputs::kDirect);
 
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -536,7 +537,17 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, const Techni
     gl.Finish();
     const auto stop = std::chrono::steady_clock::now();
     const double ms = std::chrono::duration<double, std::milli>(stop - start).count();
-    if (f == 0) result = std::move(frame_result);
+    if (f == 0) {
+      result = std::move(frame_result);
+      // What the judge needs to know of this render (outputs/candidate.hpp).
+      result.declaration = outputs::default_declaration(std::string(t->name));
+      result.declaration.producer = "shadowref renderer (OpenGL)";
+      result.declaration.version = SHADOWREF_VERSION;
+      result.declaration.convention = std::string(convention.name);
+      result.declaration.shadow_map_size = prepared.options.shadow_map_size;
+      result.declaration.slope_bias_texels = kShadowMapOffsetFactor;
+      result.declaration.defaulted.clear();
+    }
     result.frame_ms.push_back(ms);
   }
   if (const GLenum err = gl.GetError(); err != GL_NO_ERROR) {

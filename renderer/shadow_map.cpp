@@ -43,12 +43,10 @@
 namespace shadowref::renderer {
 namespace {
 
-// Slope-scaled and constant offset of the depth pass, in glPolygonOffset's units (the constant in
-// steps of the 24-bit depth): large enough for the two-sided ground's self-comparison at grazing
-// light, small enough not to detach shadows visibly at the catalogue's scale. The sign is the
-// convention's (polygon_offset_sign): offset always pushes away from the light.
-constexpr float kOffsetFactor = 2.0f;
-constexpr float kOffsetUnits = 8.0f;
+// The depth pass's polygon offset: frame.hpp's kShadowMapOffsetFactor and kShadowMapOffsetUnits,
+// with the convention's sign (polygon_offset_sign): offset always pushes away from the light.
+constexpr float kOffsetFactor = kShadowMapOffsetFactor;
+constexpr float kOffsetUnits = kShadowMapOffsetUnits;
 
 enum class Variant { Depth, Pcf, Rgba8 };
 

@@ -285,7 +285,7 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& file,
     throw SceneError(file.string() + ": invalid JSON: " + e.what());
   }
   const JsonNode root(doc, "", file);
-  root.expect_object({"name", "description", "resolution", "camera", "lights", "objects", "expect", "tags"});
+  root.expect_object({"name", "description", "resolution", "camera", "lights", "objects", "expect", "tags", "invariants"});
   Scene scene;
   scene.file = file;
   // The name becomes a folder name (renders/<name>/, the reference cache's <name>-<key>/).
@@ -303,6 +303,14 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& file,
   }
   if (auto t = root.optional("tags")) {
     for (std::size_t i = 0; i < t->array_size(); ++i) scene.tags.push_back(t->element(i).string());
+  }
+  if (auto inv = root.optional("invariants")) {
+    for (std::size_t i = 0; i < inv->array_size(); ++i) {
+      const JsonNode item = inv->element(i);
+      const std::string name = item.string();
+      if (name != "no-cast-shadow") item.fail("unknown invariant '" + name + "' (known: no-cast-shadow)");
+      scene.invariant_no_cast_shadow = true;
+    }
   }
   read_camera(root.required("camera"), scene);
   const JsonNode lights = root.required("lights");

@@ -75,31 +75,86 @@ TEST(CompareMask, RegionsAreEightConnected) {
 }
 
 TEST(Judge, EachBoundGivesItsVerdict) {
-  const Threshold t{"test", 0.01, 0.05, 4, 10, "for the test"};
+  const Threshold t{"test", true, 0.02, 0.5, "for the test"};
   MaskMetrics m;
-  m.decided_surface = 1000;
-  m.wrong = 10;
-  m.largest_region = 4;
+  m.edge_pixels = 1000;
+  m.unexplained = 20;  // 2 % of the edges: at the bound
   EXPECT_EQ(judge(m, t).verdict, Verdict::Pass);
-  m.wrong = 11;
-  EXPECT_EQ(judge(m, t).verdict, Verdict::QualityWarning);
-  m.wrong = 51;
-  EXPECT_EQ(judge(m, t).verdict, Verdict::Fail);
-  m.wrong = 5;
-  m.largest_region = 5;
-  EXPECT_EQ(judge(m, t).verdict, Verdict::QualityWarning);
-  m.largest_region = 11;
-  const Judgement j = judge(m, t);
+  m.unexplained = 21;
+  Judgement j = judge(m, t);
   EXPECT_EQ(j.verdict, Verdict::Fail);
   ASSERT_EQ(j.reasons.size(), 1u);
-  EXPECT_NE(j.reasons[0].find("largest wrong region 11 px > 10 px"), std::string::npos) << j.reasons[0];
+  EXPECT_NE(j.reasons[0].find("unexplained wrong 21 px"), std::string::npos) << j.reasons[0];
+  m.unexplained = 0;
+  m.explained_texel = 400;
+  m.explained_bias = 100;  // half the edges: at the quality bound
+  EXPECT_EQ(judge(m, t).verdict, Verdict::Pass);
+  m.explained_bias = 101;
+  EXPECT_EQ(judge(m, t).verdict, Verdict::QualityWarning);
+  m.unexplained_core = 1;  // one thick core is structural, whatever the ratios
+  j = judge(m, t);
+  EXPECT_EQ(j.verdict, Verdict::Fail);
+  EXPECT_NE(j.reasons[0].find("core"), std::string::npos) << j.reasons[0];
 }
 
-TEST(Judge, NothingDecidedButWrongIsAFailure) {
+TEST(Judge, UnexplainedErrorsWithoutAnyBoundaryAreAFailure) {
   MaskMetrics m;
-  m.wrong = 1;
-  m.largest_region = 1;
+  m.wrong = m.unexplained = 1;
   EXPECT_EQ(judge(m, kShadowMap).verdict, Verdict::Fail);
+}
+
+TEST(CompareMask, CountsEdgesAndThickCores) {
+  // Left half lit, right half shadowed: one vertical boundary, two pixels wide in edge pixels.
+  Image8 ref = grey(16, 16, 255);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 8; x < 16; ++x) set(ref, x, y, 0);
+  Image8 cand = ref;
+  for (int y = 2; y < 10; ++y)  // an 8 x 8 swapped tile inside the lit half
+    for (int x = 0; x < 8; ++x) set(cand, x, y, 0);
+  const MaskComparison c = compare_mask(ref, grey(16, 16, 255), cand);
+  EXPECT_EQ(c.metrics.edge_pixels, 32u);
+  EXPECT_EQ(c.metrics.unexplained, 64u);
+  // Core: the whole 5 × 5 block around it inside the image and wrong: x in 2..5 (x < 2 reaches the
+  // border, x > 5 the right half, which is right), y in 4..7: 4 × 4 = 16.
+  EXPECT_EQ(c.metrics.unexplained_core, 16u);
+  EXPECT_EQ(judge(c.metrics, kShadowMap).verdict, Verdict::Fail);
+}
+
+TEST(CompareMask, AnExplainerTakesErrorsOutOfTheUnexplainedAndColoursThem) {
+  Image8 ref = grey(8, 8, 255);
+  Image8 cand = ref;
+  set(cand, 2, 2, 0);
+  set(cand, 5, 5, 0);
+  int asked = 0;
+  const Explainer explain = [&](std::size_t light, int x, int, bool candidate_lit) {
+    ++asked;
+    EXPECT_EQ(light, 3u);
+    EXPECT_FALSE(candidate_lit);
+    return x == 2 ? Cause::TexelFootprint : Cause::DepthBias;
+  };
+  CompareOptions o;
+  o.explain = &explain;
+  const MaskComparison c = compare_mask(ref, grey(8, 8, 255), cand, "mask", 3, o);
+  EXPECT_EQ(asked, 2);
+  EXPECT_EQ(c.metrics.explained_texel, 1u);
+  EXPECT_EQ(c.metrics.explained_bias, 1u);
+  EXPECT_EQ(c.metrics.unexplained, 0u);
+  EXPECT_EQ(c.error.at(2, 2, 0), kErrorColours.texel[0]);
+  EXPECT_EQ(c.error.at(5, 5, 2), kErrorColours.bias[2]);
+}
+
+TEST(CompareMask, TheNoCastShadowInvariantJudgesUndecidedPixelsToo) {
+  const Image8 ref = grey(8, 8, 255);
+  Image8 cand = ref;
+  set(cand, 3, 3, 0);                    // a false shadow on an undecided pixel
+  const Image8 undecided = grey(8, 8, 0);
+  EXPECT_EQ(compare_mask(ref, undecided, cand).metrics.wrong, 0u);
+  CompareOptions o;
+  o.no_cast_shadow_invariant = true;
+  const MaskComparison c = compare_mask(ref, undecided, cand, "mask", 0, o);
+  EXPECT_EQ(c.metrics.wrong, 1u);
+  EXPECT_EQ(c.metrics.invariant_pixels, 1u);
+  EXPECT_EQ(judge(c.metrics, kExactGeometry).verdict, Verdict::Fail);
 }
 
 TEST(Thresholds, EveryRendererTechniqueHasOneAndEachHasAReason) {
@@ -110,10 +165,10 @@ TEST(Thresholds, EveryRendererTechniqueHasOneAndEachHasAReason) {
   EXPECT_EQ(&threshold_for("shadowmap-rgba8"), &kShadowMap);
   EXPECT_EQ(&threshold_for("shadowmap-pcf"), &kShadowMapPcf);
   EXPECT_EQ(&threshold_for("an-engine-technique"), &kExactGeometry);
+  EXPECT_FALSE(kExactGeometry.bands) << "exact techniques get no texel or bias band";
   for (const Threshold* t : all_thresholds()) {
     EXPECT_FALSE(t->why.empty()) << t->name;
-    EXPECT_LE(t->pass_fraction, t->fail_fraction) << t->name;
-    EXPECT_LE(t->pass_region, t->fail_region) << t->name;
+    EXPECT_GT(t->unexplained_fail, 0.0) << t->name;
   }
 }
 

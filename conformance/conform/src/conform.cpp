@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <map>
 #include <memory>
@@ -16,6 +17,8 @@
 #include "shadowref/convention.hpp"
 #include "shadowref/scene/load_scene.hpp"
 #include "shadowref/scene/prepared_scene.hpp"
+#include "shadowref/outputs/candidate.hpp"
+#include "shadowref/reference/causes.hpp"
 
 namespace shadowref::conform {
 namespace {
@@ -115,10 +118,21 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
     throw std::invalid_argument("--shadow-map-size " + std::to_string(o.shadow_map_size) + ": must be 0 (automatic) or in [16, 16384]");
   result.convention = std::string(convention->name);
 
+  if (!(o.resolution_scale > 0) || o.resolution_scale > 16)
+    throw std::invalid_argument("--resolution-scale must be in (0, 16]");
+  if ((o.width != 0) != (o.height != 0) || o.width < 0 || o.height < 0 || o.width > 16384 || o.height > 16384)
+    throw std::invalid_argument("--resolution must be WxH with both in [1, 16384]");
   std::vector<scene::Scene> scenes;
   for (const auto& f : o.scenes) {
     scenes.push_back(scene::load_scene(f));
-    result.scenes.push_back(scenes.back().name);
+    scene::Scene& s = scenes.back();
+    if (o.width) {
+      s.width = o.width;
+      s.height = o.height;
+    }
+    s.width = std::clamp(static_cast<int>(std::lround(s.width * o.resolution_scale)), 1, 16384);
+    s.height = std::clamp(static_cast<int>(std::lround(s.height * o.resolution_scale)), 1, 16384);
+    result.scenes.push_back(s.name);
   }
   // Everything that depends on the scene alone, once (scenes[] no longer moves).
   std::vector<scene::PreparedScene> prepared;
@@ -146,6 +160,8 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
     return result;
   }
 
+  // The cause model of each scene (its BVH), built when a shadow-map case first needs it.
+  std::vector<std::unique_ptr<reference::CauseModel>> causes(prepared.size());
   std::unique_ptr<renderer::Renderer> gl;
   if (!o.candidate_dir) {
     // llvmpipe's rasteriser threads; an explicit LP_NUM_THREADS in the environment wins.
@@ -189,7 +205,22 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
         } else {
           c.candidate_dir = std::filesystem::absolute(candidate_folder(*o.candidate_dir, s.name, technique));
         }
-        c.comparison = compare::compare_folders(c.reference_dir, c.candidate_dir, compare::threshold_for(judged_as));
+        // What the candidate declares (candidate.json, ours written by the renderer), defaults otherwise.
+        c.declaration = outputs::read_declaration(c.candidate_dir, judged_as);
+        const compare::Threshold& threshold = compare::threshold_for(judged_as);
+        compare::Explainer explainer;
+        compare::CompareOptions copt;
+        copt.no_cast_shadow_invariant = s.invariant_no_cast_shadow;
+        if (threshold.bands) {
+          if (!causes[si]) causes[si] = std::make_unique<reference::CauseModel>(prepared[si]);
+          const reference::CauseModel& model = *causes[si];
+          const outputs::CandidateDeclaration& declared = c.declaration;
+          explainer = [&model, &declared](std::size_t light, int x, int y, bool candidate_lit) {
+            return model.explain(light, x, y, declared, candidate_lit);
+          };
+          copt.explain = &explainer;
+        }
+        c.comparison = compare::compare_folders(c.reference_dir, c.candidate_dir, threshold, copt);
         const std::filesystem::path error_dir =
             gl ? c.candidate_dir : std::filesystem::absolute(o.out / "errors" / s.name / technique);
         c.error_images = compare::write_error_images(*c.comparison, error_dir);

@@ -85,6 +85,8 @@ std::string reference_key(const scene::PreparedScene& prepared, const ReferenceS
   }
   f.add("samples_per_axis=" + std::to_string(settings.samples_per_axis));
   f.add("convention=" + std::string(prepared.convention->name));
+  // The resolution may be overridden (conform --resolution, --resolution-scale): not in the file.
+  f.add("resolution=" + std::to_string(scene.width) + "x" + std::to_string(scene.height));
   const std::uint64_t exe = executable_hash();
   f.add(&exe, sizeof exe);
   return hex(f.h);
@@ -126,6 +128,7 @@ CachedReference ensure_reference(const scene::PreparedScene& prepared, const std
     k["scene_file"] = std::filesystem::absolute(scene.file).string();
     k["samples_per_axis"] = settings.samples_per_axis;
     k["convention"] = prepared.convention->name;
+    k["resolution"] = {scene.width, scene.height};
     k["key"] = key;
     k["key_inputs"] = "FNV-1a 64 of the scene file, its mesh files, the settings, the convention and the shadowref executable";
     std::ofstream f(tmp / "key.json");

@@ -84,6 +84,13 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
     k["seconds"] = c.seconds;
     k["notes"] = c.notes;
     if (!c.error.empty()) k["error"] = c.error;
+    {
+      const outputs::CandidateDeclaration& d = c.declaration;
+      k["candidate"] = {{"producer", d.producer}, {"version", d.version}, {"technique", d.technique},
+                        {"convention", d.convention}, {"shadow_map_size", d.shadow_map_size},
+                        {"filter_radius_texels", d.filter_radius_texels}, {"slope_bias_texels", d.slope_bias_texels},
+                        {"constant_bias", d.constant_bias}, {"defaulted", d.defaulted}};
+    }
     if (c.comparison) {
       k["comparison"] = report::to_json(*c.comparison);
       // The images the page shows, per light: reference mask, candidate mask, error, candidate shaded.

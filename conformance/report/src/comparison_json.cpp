@@ -16,15 +16,23 @@ nlohmann::json to_json(const compare::MaskMetrics& m) {
           {"coverage", m.coverage},
           {"off_values", m.off_values},
           {"regions", m.regions},
-          {"largest_region", m.largest_region}};
+          {"largest_region", m.largest_region},
+          {"explained_texel", m.explained_texel},
+          {"explained_bias", m.explained_bias},
+          {"unexplained", m.unexplained},
+          {"unexplained_core", m.unexplained_core},
+          {"edge_pixels", m.edge_pixels},
+          {"unexplained_percent_of_edges", 100.0 * m.unexplained_ratio()},
+          {"explained_percent_of_edges", 100.0 * m.explained_ratio()},
+          {"invariant_pixels", m.invariant_pixels}};
 }
 
 nlohmann::json to_json(const compare::Threshold& t) {
   return {{"name", t.name},
-          {"pass_fraction", t.pass_fraction},
-          {"fail_fraction", t.fail_fraction},
-          {"pass_region", t.pass_region},
-          {"fail_region", t.fail_region},
+          {"bands", t.bands},
+          {"unexplained_fail_percent_of_edges", 100.0 * t.unexplained_fail},
+          {"explained_warn_percent_of_edges", 100.0 * t.explained_warn},
+          {"unexplained_core_fail", 0},
           {"why", t.why}};
 }
 

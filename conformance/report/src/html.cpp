@@ -145,6 +145,10 @@ void metrics_table(std::ostringstream& h, const json& m) {
   row("false shadow", str(m, "false_shadow"));
   row("false light", str(m, "false_light"));
   row("coverage", str(m, "coverage"));
+  row("unexplained", str(m, "unexplained") + " px (" + num(m, "unexplained_percent_of_edges") + " % of " +
+                         str(m, "edge_pixels") + " edge px), core " + str(m, "unexplained_core") + " px");
+  row("explained", str(m, "explained_texel") + " texel footprint + " + str(m, "explained_bias") + " depth bias (" +
+                       num(m, "explained_percent_of_edges") + " % of edge px)");
   row("largest region", str(m, "largest_region") + " px (" + str(m, "regions") + " regions)");
   row("decided surface px", str(m, "decided_surface") + " of " + str(m, "pixels"));
   if (m.contains("off_values") && m["off_values"].is_number() && m["off_values"].get<double>() > 0)
@@ -243,6 +247,8 @@ std::string render_html(const json& r) {
     << "<span><i style=\"background:rgb(235,50,50)\"></i>false shadow (reference lit)</span>"
     << "<span><i style=\"background:rgb(40,120,255)\"></i>false light (reference shadowed)</span>"
     << "<span><i style=\"background:rgb(230,40,230)\"></i>coverage (surface vs none)</span>"
+    << "<span><i style=\"background:rgb(240,170,20)\"></i>explained: texel footprint</span>"
+    << "<span><i style=\"background:rgb(30,200,200)\"></i>explained: depth bias</span>"
     << "<span><i style=\"background:rgb(70,105,70)\"></i>undecided: not judged</span>"
     << "<span><i style=\"background:rgb(150,150,150)\"></i><i style=\"background:rgb(55,55,55)\"></i>"
     << "<i style=\"background:rgb(28,28,42)\"></i>dimmed reference: lit, shadowed, no surface</span></div></section>\n";
@@ -264,6 +270,16 @@ std::string render_html(const json& r) {
       << "</span>";
     if (!str(c, "why", "").empty()) h << "<div class=\"why\"><b>why it is expected to fail:</b> " << escape_html(str(c, "why")) << "</div>";
     if (c.contains("error")) h << "<p class=\"error\">" << escape_html(str(c, "error")) << "</p>";
+    if (c.contains("candidate")) {
+      const json& d = c["candidate"];
+      std::string defaulted;
+      for (const auto& k : d.value("defaulted", json::array())) defaulted += (defaulted.empty() ? "" : ", ") + k.get<std::string>();
+      h << "<div class=\"notes\">candidate: " << escape_html(str(d, "producer")) << " " << escape_html(str(d, "version"))
+        << " · " << escape_html(str(d, "convention")) << " · map " << escape_html(str(d, "shadow_map_size"))
+        << " · filter " << escape_html(str(d, "filter_radius_texels")) << " texel · slope bias "
+        << escape_html(str(d, "slope_bias_texels")) << " · constant bias " << escape_html(str(d, "constant_bias"))
+        << (defaulted.empty() ? std::string() : " (defaulted: " + escape_html(defaulted) + ")") << "</div>";
+    }
     if (cmp.contains("reasons") && !cmp["reasons"].empty()) {
       h << "<ul class=\"reasons\">";
       for (const auto& reason : cmp["reasons"]) h << "<li>" << escape_html(reason.get<std::string>()) << "</li>";
@@ -298,14 +314,16 @@ std::string render_html(const json& r) {
   h << "</tbody></table></section>\n";
 
   // Thresholds with their reasons.
-  h << "<section><h2>Thresholds</h2><table id=\"thresholds\"><thead><tr><th>name</th><th>pass</th><th>fail</th><th>why</th></tr></thead><tbody>";
+  h << "<section><h2>Thresholds</h2><table id=\"thresholds\"><thead><tr><th>name</th><th>bands</th><th>fail</th><th>warn</th><th>why</th></tr></thead><tbody>";
   if (r.contains("thresholds"))
     for (const json& t : r["thresholds"])
-      h << "<tr><td>" << escape_html(str(t, "name")) << "</td><td>≤ " << num(t, "pass_fraction", "%.4g")
-        << " wrong fraction, regions ≤ " << str(t, "pass_region") << " px</td><td>&gt; " << num(t, "fail_fraction", "%.4g")
-        << " or regions &gt; " << str(t, "fail_region") << " px</td><td>" << escape_html(str(t, "why")) << "</td></tr>";
-  h << "</tbody></table><p class=\"notes\">Wrong fraction = wrong decided pixels / decided pixels with a surface "
-       "(all lights together). Between the pass and fail bounds: a quality warning.</p></section>\n";
+      h << "<tr><td>" << escape_html(str(t, "name")) << "</td><td>" << (t.value("bands", false) ? "texel, bias" : "none")
+        << "</td><td>any unexplained core, or unexplained &gt; " << num(t, "unexplained_fail_percent_of_edges", "%.4g")
+        << " % of edge px</td><td>explained &gt; " << num(t, "explained_warn_percent_of_edges", "%.4g") << " % of edge px</td><td>"
+        << escape_html(str(t, "why")) << "</td></tr>";
+  h << "</tbody></table><p class=\"notes\">Every wrong decided pixel is explained by a cause the reference computes "
+       "(texel footprint, depth bias; shadow-map families only) or is unexplained. Edge pixels: the reference's "
+       "boundaries, in pixels; the ratios mean the same at any resolution (docs/tolerance-model.md).</p></section>\n";
   h << "<pre id=\"broken-images\" class=\"notes\"></pre>\n</main>\n<script>" << kScript << "</script>\n</body></html>\n";
   return h.str();
 }

@@ -27,6 +27,7 @@
 #include <string_view>
 #include <vector>
 
+#include "shadowref/outputs/candidate.hpp"
 #include "shadowref/outputs/image.hpp"
 #include "shadowref/renderer/gl_context.hpp"
 #include "shadowref/convention.hpp"
@@ -51,6 +52,7 @@ struct RenderResult {
   Image8 shaded;               // RGB
   std::vector<double> frame_ms;  // the time of each frame, all passes to glFinish and read-back
   std::vector<std::string> notes;  // what the technique could not do on this scene, and why
+  outputs::CandidateDeclaration declaration;  // what write_outputs puts in candidate.json
   double median_frame_ms() const;
 };
 
@@ -99,7 +101,8 @@ class Renderer {
   std::unique_ptr<Impl> impl_;
 };
 
-// Writes mask.png (one light) or mask_<i>.png (several), shaded.png and render.json into `dir`:
+// Writes mask.png (one light) or mask_<i>.png (several), shaded.png, candidate.json (what the judge's
+// tolerance model needs: technique, convention, map size, filter, bias) and render.json into `dir`:
 // first into a temporary sibling folder, renamed to `dir` when complete, so that a reader never
 // sees half a result. An existing `dir` is replaced. Throws std::runtime_error on file errors.
 void write_outputs(const RenderResult& result, const GlInfo& info, const scene::Scene& scene,

@@ -3,7 +3,8 @@
 // The format, key by key (every other key is an error, so a typo never goes unnoticed):
 //   name (string, required, a safe identifier: identifier.hpp), description (string),
 //   resolution ([W, H], integers in [1, 16384], default [256, 256]), tags (array of strings),
-//   expect ({technique: {result: "pass"|"fail", why: string (required for fail)}}, technique
+//   invariants (array of strings: "no-cast-shadow" — no cast shadow is visible anywhere, judged on
+//   every surface pixel), expect ({technique: {result: "pass"|"fail", why: string (required for fail)}}, technique
 //   names from outputs::kTechniques),
 //   camera {position, target, up (default [0,1,0]), fovy_deg (default 45), near (default 0.1), far},
 //   lights [{type: point, position} | {type: directional, direction} |

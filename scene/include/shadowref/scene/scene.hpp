@@ -86,6 +86,9 @@ struct Scene {
   std::vector<Object> objects;        // at least one, each with a non-empty mesh
   std::map<std::string, Expectation> expect;  // technique name -> expectation
   std::vector<std::string> tags;      // e.g. "large": the default conformance run skips it
+  // "invariants": ["no-cast-shadow"]: no cast shadow is visible anywhere (the camera at the light),
+  // so the judge checks every surface pixel for false shadows, not only the decided ones.
+  bool invariant_no_cast_shadow = false;
 
   bool has_tag(const std::string& tag) const;
   // The index of the object marked `receiver`, if any (the loader allows at most one).

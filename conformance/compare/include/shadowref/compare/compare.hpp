@@ -20,10 +20,13 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "shadowref/outputs/cause.hpp"
 #include "shadowref/outputs/errors.hpp"
 #include "shadowref/outputs/image_io.hpp"
 #include "shadowref/compare/thresholds.hpp"
@@ -48,13 +51,33 @@ struct MaskMetrics {
   std::size_t off_values = 0;       // candidate values other than 0, 128, 255
   std::size_t regions = 0;          // 8-connected regions of wrong pixels
   std::size_t largest_region = 0;   // pixels in the largest one
+  // The tolerance model (docs/tolerance-model.md): wrong pixels by cause, and the scale they are
+  // judged against.
+  std::size_t explained_texel = 0;  // wrong, within the declared map's texel footprint of a true boundary
+  std::size_t explained_bias = 0;   // wrong, within the declared bias of a contact or a grazing surface
+  std::size_t unexplained = 0;      // wrong and explained by nothing
+  std::size_t unexplained_core = 0; // unexplained pixels whose (2 kCoreRadius + 1)² neighbourhood is all unexplained
+  std::size_t edge_pixels = 0;      // reference pixels with a 4-neighbour of another class (lit,
+                                    // shadowed, no surface): the length of every boundary, in pixels
+  std::size_t invariant_pixels = 0; // undecided pixels judged because the scene's invariant holds there
 
-  // wrong / decided_surface (0 when nothing is decided): the number thresholds judge.
+  // wrong / decided_surface (0 when nothing is decided).
   double wrong_fraction() const;
+  // unexplained / edge_pixels and (explained_texel + explained_bias) / edge_pixels: the numbers
+  // thresholds judge (a ratio of two lengths, the same at any resolution).
+  double unexplained_ratio() const;
+  double explained_ratio() const;
   double wrong_percent() const { return 100.0 * wrong_fraction(); }
   // Sums the counts, keeps the largest region (for several lights: one verdict over all masks).
   MaskMetrics& operator+=(const MaskMetrics& other);
 };
+
+// A wrong region is structural (a thick core, not a boundary band) where it holds a whole 5 × 5 block
+// of unexplained pixels. Why 5 and not 3: an exact technique's terminator on a faceted sphere, where a
+// face and the shadow volume's side meet at a grazing angle, z-fights inside a wedge a few pixels wide
+// at 1024² (measured: a 3 × 3 block, once, on ground_sphere); a 5 × 5 block is still far inside any
+// blatant error (an 8 × 8 swapped tile holds 16 such cores at any resolution).
+inline constexpr int kCoreRadius = 2;
 
 struct MaskComparison {
   MaskMetrics metrics;
@@ -62,18 +85,34 @@ struct MaskComparison {
 };
 
 // Error-image colours (RGB), for the report's legend.
+// Unexplained errors by kind (false shadow, false light, coverage); explained ones by cause.
 struct ErrorColours {
   unsigned char false_shadow[3] = {235, 50, 50};
   unsigned char false_light[3] = {40, 120, 255};
   unsigned char coverage[3] = {230, 40, 230};
-  unsigned char undecided[3] = {70, 105, 70};  // not judged: the reference's undecided pixels
+  unsigned char texel[3] = {240, 170, 20};      // explained: texel footprint
+  unsigned char bias[3] = {30, 200, 200};       // explained: depth bias
+  unsigned char undecided[3] = {70, 105, 70};   // not judged: the reference's undecided pixels
 };
 inline constexpr ErrorColours kErrorColours{};
+
+// The causes a wrong decided pixel may have (the reference's cause model computes them).
+using outputs::Cause;
+// Asked, when the threshold has bands, for every wrong pixel (x, y) of light `light` that is
+// decided (or judged by the scene's invariant): why may the candidate honestly answer `candidate_lit` there?
+using Explainer = std::function<Cause(std::size_t light, int x, int y, bool candidate_lit)>;
+
+struct CompareOptions {
+  const Explainer* explain = nullptr;  // null: every wrong pixel is unexplained (exact techniques)
+  // The scene's invariant holds on every surface pixel (the camera at the light sees no cast
+  // shadow): undecided pixels where the reference is lit are judged too, for false shadows.
+  bool no_cast_shadow_invariant = false;
+};
 
 // Compares one mask. All three images are 1-channel and of the same size; throws
 // CompareError(SizeMismatch) naming both sizes otherwise (`what` names the files in messages).
 MaskComparison compare_mask(const Image8& reference, const Image8& decided, const Image8& candidate,
-                            const std::string& what = "mask");
+                            const std::string& what = "mask", std::size_t light = 0, const CompareOptions& options = {});
 
 enum class Verdict { Pass, QualityWarning, Fail };
 const char* to_string(Verdict v);  // "pass", "warning", "fail"
@@ -100,7 +139,8 @@ struct FolderComparison {
 // Throws CompareError: BadInput for missing or unreadable files, a candidate lacking a mask the
 // reference has; SizeMismatch when a candidate mask is not the reference's size.
 FolderComparison compare_folders(const std::filesystem::path& reference_dir,
-                                 const std::filesystem::path& candidate_dir, const Threshold& threshold);
+                                 const std::filesystem::path& candidate_dir, const Threshold& threshold,
+                                 const CompareOptions& options = {});
 
 // Writes error.png (one light) or error_<i>.png into `dir`; returns the names written.
 std::vector<std::string> write_error_images(const FolderComparison& c, const std::filesystem::path& dir);

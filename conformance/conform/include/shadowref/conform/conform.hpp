@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "shadowref/compare/compare.hpp"
+#include "shadowref/outputs/candidate.hpp"
 #include "shadowref/conform/reference_cache.hpp"
 
 namespace shadowref::renderer {
@@ -47,6 +48,9 @@ struct ConformOptions {
   std::vector<std::string> techniques;          // renderer technique names; empty: all
   std::string convention = "gl";                // the run convention (mathlib/convention.hpp): gl, gl-zo, reversed-z, d3d
   int shadow_map_size = 0;                      // texels per side of our shadow maps; 0: automatic
+  // Every scene rendered at another resolution (an engine's own): scale factor, or [W, H] (0: keep).
+  double resolution_scale = 1.0;
+  int width = 0, height = 0;
   std::string backend = "llvmpipe";             // llvmpipe | softpipe | native
   std::string gl = "osmesa";                    // osmesa | egl
   std::filesystem::path out = "conformance-out";
@@ -71,6 +75,7 @@ struct CaseResult {
   Status status = Status::Error;
   std::optional<compare::FolderComparison> comparison;
   std::string error;                            // ERROR: what went wrong
+  outputs::CandidateDeclaration declaration;    // candidate.json (or its defaults) of the candidate
   std::filesystem::path reference_dir, candidate_dir;
   std::vector<std::string> error_images;        // in candidate_dir (ours) or out/errors/...
   std::vector<std::string> notes;               // the renderer's notes

@@ -1,0 +1,128 @@
+// blatant_errors_test.cpp — errors no texel footprint or bias explains FAIL (exit 2), never merely
+// warn: our own shadow-map render of a catalogue scene, judged as an engine team's candidate
+// (conform --candidate-dir, with its candidate.json), then with one defect painted into its mask.
+// The unmodified render is the control and must PASS, so each FAIL is the defect's.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <functional>
+
+#include "shadowref/conform/catalogue.hpp"
+#include "shadowref/conform/conform.hpp"
+#include "shadowref/outputs/image.hpp"
+#include "shadowref/outputs/image_io.hpp"
+#include "shadowref/renderer/renderer.hpp"
+#include "shadowref/scene/load_scene.hpp"
+#include "shadowref/scene/prepared_scene.hpp"
+
+namespace shadowref {
+namespace {
+
+namespace fs = std::filesystem;
+using outputs::Image8;
+
+constexpr const char* kScene = "shadow_on_object";  // a box on the ground: a contact shadow in view
+
+struct Fixture {
+  scene::Scene scene = scene::load_scene(conform::default_catalogue() / (std::string(kScene) + ".json"));
+  scene::PreparedScene prepared = scene::prepare_scene(scene);
+  fs::path root = fs::path(SHADOWREF_TEST_OUT);
+};
+
+Fixture& fixture() {
+  static Fixture f;
+  return f;
+}
+
+renderer::Renderer& gl() {
+  static renderer::Renderer r(renderer::GlApi::OSMesa, renderer::Driver::Llvmpipe);
+  return r;
+}
+
+// Renders the scene with `shadowmap`, applies `defect` to the mask, writes the candidate folder
+// and judges it; returns the case.
+conform::CaseResult judge(const std::string& name, const std::function<void(Image8&)>& defect) {
+  Fixture& f = fixture();
+  renderer::RenderResult r = gl().render(f.prepared, "shadowmap");
+  defect(r.masks[0]);
+  const fs::path dir = f.root / name / "candidates";
+  fs::remove_all(dir);
+  renderer::write_outputs(r, gl().info(), f.scene, dir / kScene);
+  conform::ConformOptions o;
+  o.scenes = {f.scene.file};
+  o.techniques = {"shadowmap"};
+  o.candidate_dir = dir;
+  o.out = f.root / name / "verdict";
+  o.cache = SHADOWREF_TEST_CACHE;
+  const conform::ConformResult res = conform::run_conform(o);
+  EXPECT_EQ(res.cases.size(), 1u);
+  return res.cases.at(0);
+}
+
+// The pixel where a scene point lands (row 0 at the top), through the prepared camera.
+std::array<double, 2> pixel_of(const Vec3<double>& p) {
+  const Fixture& f = fixture();
+  const Vec4<double> h = f.prepared.camera.clip_from_scene * Vec4<double>(p.x(), p.y(), p.z(), 1.0);
+  return {(h.x() / h.w() + 1) * 0.5 * f.scene.width - 0.5, (1 - h.y() / h.w()) * 0.5 * f.scene.height - 0.5};
+}
+
+TEST(BlatantErrors, TheUnmodifiedRenderPasses) {
+  const conform::CaseResult c = judge("control", [](Image8&) {});
+  EXPECT_EQ(c.status, conform::Status::Pass) << c.error;
+}
+
+TEST(BlatantErrors, AnEightByEightSwappedTileFails) {
+  const conform::CaseResult c = judge("tile", [](Image8& m) {
+    // In the plain lit ground in front of the box (the bottom eighth of the image, right of centre).
+    const int x0 = m.width * 3 / 4, y0 = m.height * 7 / 8;
+    for (int y = y0; y < y0 + 8; ++y)
+      for (int x = x0; x < x0 + 8; ++x) {
+        std::uint8_t& v = m.pixels[static_cast<std::size_t>(y * m.width + x)];
+        if (v != outputs::kMaskNoSurface) v = v == outputs::kMaskLit ? outputs::kMaskShadowed : outputs::kMaskLit;
+      }
+  });
+  EXPECT_EQ(c.status, conform::Status::Fail);
+  ASSERT_TRUE(c.comparison);
+  EXPECT_GT(c.comparison->total.unexplained_core, 0u);
+}
+
+TEST(BlatantErrors, AWholeShadowShiftedByOnePixelFails) {
+  const conform::CaseResult c = judge("shift", [](Image8& m) {
+    // Every surface pixel takes the shadow answer of its left neighbour (silhouettes stay put).
+    const Image8 was = m;
+    for (int y = 0; y < m.height; ++y)
+      for (int x = 1; x < m.width; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y * m.width + x);
+        if (was.pixels[i] != outputs::kMaskNoSurface && was.pixels[i - 1] != outputs::kMaskNoSurface) m.pixels[i] = was.pixels[i - 1];
+      }
+  });
+  EXPECT_EQ(c.status, conform::Status::Fail);
+}
+
+TEST(BlatantErrors, ALostContactShadowFails) {
+  // The box (x, z in [−1.5, 1.5], y in [0, 1]) sits on the ground; the light at (0.5, 7, 0.5) casts its
+  // shadow 1/6 of a unit beyond the front face (z from 1.5 to 1.667): the contact shadow the camera
+  // sees in front of the box. The defect lights it, as a far too large bias would.
+  std::size_t flipped = 0;
+  const conform::CaseResult c = judge("contact", [&](Image8& m) {
+    const auto a = pixel_of({-1.4, 0, 1.5}), b = pixel_of({1.4, 0, 1.5}), e = pixel_of({0, 0, 1.66});
+    for (int y = 0; y < m.height; ++y)
+      for (int x = 0; x < m.width; ++x) {
+        const bool in_strip = x >= a[0] && x <= b[0] && y >= std::min(a[1], b[1]) && y <= e[1];
+        std::uint8_t& v = m.pixels[static_cast<std::size_t>(y * m.width + x)];
+        if (in_strip && v == outputs::kMaskShadowed) {
+          v = outputs::kMaskLit;
+          ++flipped;
+        }
+      }
+  });
+  ASSERT_TRUE(c.comparison);
+  std::printf("lost contact shadow: %zu pixels, %.2f %% of the decided surface pixels\n", flipped,
+              100.0 * static_cast<double>(flipped) / static_cast<double>(c.comparison->total.decided_surface));
+  EXPECT_GT(flipped, 0u);
+  EXPECT_EQ(c.status, conform::Status::Fail);
+}
+
+}  // namespace
+}  // namespace shadowref

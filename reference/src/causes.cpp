@@ -1,0 +1,187 @@
+// causes.cpp — the per-pixel causes of the tolerance model (causes.hpp), traced with Embree and
+// the reference's own visibility rule (shadow_ray.hpp).
+#include "shadowref/reference/causes.hpp"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "shadowref/reference/embree_scene.hpp"
+#include "shadowref/reference/shadow_ray.hpp"
+#include "shadowref/scene/camera.hpp"
+
+namespace shadowref::reference {
+namespace {
+
+struct Hit {
+  bool hit = false;
+  Vec3<double> p, n;
+};
+
+Vec3<double> unproject(const Mat4<double>& inv, double x, double y, double z) {
+  const Vec4<double> h = inv * Vec4<double>(x, y, z, 1.0);
+  return h.head<3>() / h.w();
+}
+
+}  // namespace
+
+CauseModel::CauseModel(const scene::PreparedScene& scene)
+    : scene_(scene), embree_(std::make_unique<EmbreeScene>(*scene.scene)),
+      inverse_clip_(scene.camera.clip_from_scene.inverse()) {}
+
+CauseModel::~CauseModel() = default;
+
+const LightFit& CauseModel::fit_for(std::size_t light, int size) const {
+  if (size == 0 || size == scene_.light_fits[light].size) return scene_.light_fits[light];
+  const auto key = std::make_pair(light, size);
+  auto it = fits_.find(key);
+  if (it == fits_.end()) {
+    std::vector<const TriangleMesh<float>*> meshes;
+    for (const scene::Object& o : scene_.scene->objects) meshes.push_back(&o.mesh);
+    LightFitOptions o;
+    o.map_size = size;
+    it = fits_.emplace(key, fit_light(*scene_.convention, scene_.lights[light], meshes, o).value()).first;
+  }
+  return it->second;
+}
+
+Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::CandidateDeclaration& d, bool candidate_lit) const {
+  const scene::Scene& s = *scene_.scene;
+  // The pixel centre's surface, as the reference finds it (render.hpp).
+  const Vec2<double> ndc = scene::pixel_to_ndc<double>(x, y, 0.5, 0.5, s.width, s.height);
+  const double zn = near_ndc_z(*scene_.convention), zf = far_ndc_z(*scene_.convention);
+  const Vec3<double> o = unproject(inverse_clip_, ndc.x(), ndc.y(), zn);
+  const Vec3<double> dir = (unproject(inverse_clip_, ndc.x(), ndc.y(), 0.5 * (zn + zf)) - o).normalized();
+  RTCRayHit rh{};
+  rh.ray.org_x = static_cast<float>(o.x());
+  rh.ray.org_y = static_cast<float>(o.y());
+  rh.ray.org_z = static_cast<float>(o.z());
+  rh.ray.dir_x = static_cast<float>(dir.x());
+  rh.ray.dir_y = static_cast<float>(dir.y());
+  rh.ray.dir_z = static_cast<float>(dir.z());
+  rh.ray.tnear = 0.0f;
+  rh.ray.tfar = std::numeric_limits<float>::infinity();
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  rtcIntersect1(embree_->handle(), &ctx, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return Cause::Unexplained;
+  const auto& mesh = s.objects[rh.hit.geomID].mesh;
+  const auto& tri = mesh.triangles[rh.hit.primID];
+  const Vec3<double> v0 = mesh.positions[tri[0]].cast<double>(), v1 = mesh.positions[tri[1]].cast<double>(),
+                     v2 = mesh.positions[tri[2]].cast<double>();
+  const Vec3<double> p = v0 + rh.hit.u * (v1 - v0) + rh.hit.v * (v2 - v0);
+  Vec3<double> n = (v1 - v0).cross(v2 - v0);
+  if (!(n.norm() > 0)) return Cause::Unexplained;
+  n.normalize();
+  if (n.dot(dir) > 0) n = -n;
+
+  const Vec4<double>& L = scene_.lights[light];
+  const double eps = embree_->epsilon();
+  const Vec3<double> to_light = L.w() == 0 ? Vec3<double>(L.head<3>().normalized()) : Vec3<double>((L.head<3>() / L.w() - p).normalized());
+  // Rule 1 of the visibility rule (shadow_ray.hpp): a surface facing away from the light is in its
+  // own shadow whatever a map holds; no footprint or bias lights it.
+  if (!(n.dot(to_light) > 0)) return Cause::Unexplained;
+
+  // The light view that decides p: the cube face of the largest component of (p − light), or the one view.
+  const LightFit& fit = fit_for(light, d.shadow_map_size);
+  std::size_t face = 0;
+  if (fit.cube) {
+    const Vec3<double> dp = p - L.head<3>() / L.w();
+    const Vec3<double> a = dp.cwiseAbs();
+    if (a.x() >= a.y() && a.x() >= a.z()) face = dp.x() >= 0 ? 0 : 1;
+    else if (a.y() >= a.z()) face = dp.y() >= 0 ? 2 : 3;
+    else face = dp.z() >= 0 ? 4 : 5;
+  }
+  const LightView& view = fit.views[face];
+  const Mat4<double> m = view.projection * view.view;
+  const Vec4<double> h = m * Vec4<double>(p.x(), p.y(), p.z(), 1.0);
+  if (!(h.w() > 0)) return Cause::Unexplained;
+  const Vec3<double> q = h.head<3>() / h.w();
+  const Mat4<double> inv = m.inverse();
+  const double texel_ndc = 2.0 / fit.size;
+  // Depth from the light, in world units along its view axis (the light's view looks down −z when
+  // right-handed, +z when left-handed).
+  const double axis_sign = scene_.convention->clip.hand == Handedness::Right ? -1.0 : 1.0;
+  const auto depth = [&](const Vec3<double>& w) { return axis_sign * (view.view * Vec4<double>(w.x(), w.y(), w.z(), 1.0)).z(); };
+  const double depth_p = depth(p);
+  // One texel's width at p, in world units (on the plane of constant light depth through p).
+  const double texel = (unproject(inv, q.x() + texel_ndc, q.y(), q.z()) - unproject(inv, q.x(), q.y(), q.z())).norm();
+  // The bias a map adds to the depth it stores at a surface hit along `dir` with normal `ng`, at
+  // light depth `at`: constant, plus slope-scaled (glPolygonOffset's factor × the stored polygon's
+  // depth slope, i.e. tan of its angle to the light ray, over one texel at that depth).
+  const bool perspective = L.w() != 0;
+  const auto bias_at = [&](const Vec3<double>& ng, const Vec3<double>& along, double at) {
+    const double c = std::abs(ng.normalized().dot(along));
+    const double tan_t = std::min(kMaxBiasSlope, c > 0 ? std::sqrt(std::max(0.0, 1.0 - c * c)) / c : kMaxBiasSlope);
+    const double texel_there = perspective && depth_p > 0 ? texel * std::max(at, 0.0) / depth_p : texel;
+    return d.constant_bias + d.slope_bias_texels * texel_there * tan_t;
+  };
+
+  // What a texel at map offset (dx, dy) may hold: the depth of the first surface along its ray, or,
+  // where the map is drawn with front faces culled (as ours is, and many engines'), the depth where
+  // the ray leaves that first caster (its first back face); a miss holds "nothing": infinitely far.
+  // The shadow map calls p lit through that texel when p is not beyond the stored depth plus its
+  // bias (bias_at, `with_bias`); the texel explains a lit answer when either depth does, a shadowed
+  // one when the first does.
+  const auto lit_through = [&](double dx, double dy, bool with_bias) {
+    const double mx = q.x() + dx * texel_ndc, my = q.y() + dy * texel_ndc;
+    const Vec3<double> a = unproject(inv, mx, my, zn), b = unproject(inv, mx, my, zf);
+    const Vec3<double> ray_dir = (b - a).normalized();
+    RTCRayHit r{};
+    r.ray.org_x = static_cast<float>(a.x());
+    r.ray.org_y = static_cast<float>(a.y());
+    r.ray.org_z = static_cast<float>(a.z());
+    r.ray.dir_x = static_cast<float>(ray_dir.x());
+    r.ray.dir_y = static_cast<float>(ray_dir.y());
+    r.ray.dir_z = static_cast<float>(ray_dir.z());
+    r.ray.tnear = 0.0f;
+    r.ray.tfar = static_cast<float>((b - a).norm());
+    r.ray.mask = 0xFFFFFFFFu;
+    r.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    RTCIntersectContext c;
+    rtcInitIntersectContext(&c);
+    rtcIntersect1(embree_->handle(), &c, &r);
+    if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) return true;
+    const auto biased = [&](double t_hit) {
+      const double at = depth(a + t_hit * ray_dir);
+      return at + (with_bias ? bias_at(Vec3<double>(r.hit.Ng_x, r.hit.Ng_y, r.hit.Ng_z), ray_dir, at) : 0.0);
+    };
+    const double first = biased(static_cast<double>(r.ray.tfar));
+    if (!candidate_lit) return depth_p <= first + eps;
+    if (depth_p <= first + eps) return true;
+    // Front faces culled: walk on to the first face the ray leaves through (normal along the ray).
+    double t = static_cast<double>(r.ray.tfar);
+    for (int step = 0; step < 8; ++step) {
+      const Vec3<double> ng(r.hit.Ng_x, r.hit.Ng_y, r.hit.Ng_z);
+      if (ng.dot(ray_dir) > 0) return depth_p <= biased(t) + eps;
+      RTCRayHit next{};
+      next.ray = r.ray;
+      next.ray.tnear = static_cast<float>(t + eps);
+      next.ray.tfar = static_cast<float>((b - a).norm());
+      next.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(embree_->handle(), &c, &next);
+      if (next.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;  // an open caster: only its front was there
+      r = next;
+      t = static_cast<double>(r.ray.tfar);
+    }
+    return false;
+  };
+
+  // Depth bias: the texel of p itself, compared with the declared bias (a contact within the bias
+  // comes out lit, as peter-panning shows it).
+  if (lit_through(0, 0, true) == candidate_lit && lit_through(0, 0, false) != candidate_lit) return Cause::DepthBias;
+  // Texel footprint: the texels within R = 1 + filter radius texels, with the declared bias.
+  const double radius = 1.0 + d.filter_radius_texels;
+  static constexpr std::array<std::array<double, 2>, 8> kDirs{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {0.7071, 0.7071},
+                                                               {-0.7071, 0.7071}, {0.7071, -0.7071}, {-0.7071, -0.7071}}};
+  for (const double r : {0.5 * radius, radius})
+    for (const auto& dv : kDirs)
+      if (lit_through(dv[0] * r, dv[1] * r, true) == candidate_lit) return Cause::TexelFootprint;
+  return Cause::Unexplained;
+}
+
+}  // namespace shadowref::reference
