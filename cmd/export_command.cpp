@@ -16,7 +16,6 @@
 // Every matrix comes from mathlib (view.hpp, projection.hpp, shadow_matrix.hpp, shadow_map.hpp,
 // d3dx.hpp) through scene/camera.hpp: the ones our renderer and the reference use.
 #include <CLI/CLI.hpp>
-#include <unistd.h>
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
@@ -29,6 +28,7 @@
 #include "command.hpp"
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/outputs/image.hpp"
+#include "shadowref/outputs/staged_folder.hpp"
 #include "shadowref/conform/catalogue.hpp"
 #include "shadowref/conform/reference_cache.hpp"
 #include "shadowref/d3dx.hpp"
@@ -307,20 +307,10 @@ void run_export(const ExportArgs& a) {
     if (!is_pack && !is_empty)
       throw BadInput("--out " + a.out + ": exists and is not a shadowref pack (no manifest.json): choose another folder");
   }
-  fs::create_directories(final_out.parent_path(), ec);
-  if (ec) throw BadInput("--out " + a.out + ": " + ec.message());
-  const fs::path out = final_out.parent_path() / ("." + final_out.filename().string() + ".partial-" + std::to_string(::getpid()));
-  fs::remove_all(out, ec);
+  outputs::StagedFolder staging(final_out);
+  const fs::path& out = staging.path();
   fs::create_directories(out / "scenes", ec);
   if (ec) throw BadInput("--out " + a.out + ": " + ec.message());
-  struct Staging {
-    fs::path dir;
-    bool done = false;
-    ~Staging() {
-      std::error_code ignored;
-      if (!done) fs::remove_all(dir, ignored);
-    }
-  } staging{out};
   conform::ReferenceSettings settings;
   settings.threads = a.jobs;
   json manifest;
@@ -374,10 +364,7 @@ void run_export(const ExportArgs& a) {
   }
   write_text(out / "README.md", readme(manifest));
   write_text(out / "manifest.json", manifest.dump(2) + "\n");  // last: its presence marks a complete pack
-  fs::remove_all(final_out, ec);
-  fs::rename(out, final_out, ec);
-  if (ec) throw BadInput("--out " + a.out + ": cannot move the pack into place: " + ec.message());
-  staging.done = true;
+  staging.commit();
   std::printf("pack: %s (README.md says what to render and how to name the files)\n", final_out.string().c_str());
 }
 

@@ -25,7 +25,8 @@ struct ErrorCase {
 
 // Each case: what it proves is in its name; the expected text pins both the path and the reason.
 const ErrorCase kCases[] = {
-    {"UnknownTopLevelKey", "/colour", "1", "colour: unknown key (allowed here: name, description, resolution, camera, lights, objects, expect, tags)"},
+    {"UnknownTopLevelKey", "/colour", "1", "colour: unknown key (allowed here: name, description, resolution, camera, lights, objects, expect, tags, invariants)"},
+    {"UnknownInvariant", "/invariants", "[\"no-shadow-at-all\"]", "invariants[0]: unknown invariant 'no-shadow-at-all' (known: no-cast-shadow)"},
     {"MissingName", "/name", nullptr, "name: is required"},
     {"NameNotString", "/name", "3", "name: must be a string, not number"},
     {"NameClimbsOut", "/name", "\"../../escaped_scene\"", "name: must not contain '..'" SHADOWREF_NAME_RULE},
