@@ -44,11 +44,10 @@ std::string technique_from_render_json(const std::filesystem::path& dir) {
 
 void print_metrics(const std::string& name, const compare::MaskMetrics& m) {
   std::printf("  %-12s %dx%d, %zu decided pixels with a surface: wrong %zu (%.4g %%) = %zu false shadow + %zu false light + "
-              "%zu coverage; unexplained %zu (%.4g %% of %zu edge px, core %zu); %zu region(s), largest %zu px%s\n",
+              "%zu coverage; unexplained %zu (%.4g %% of %zu edge px, core %zu); %zu region(s), largest %zu px\n",
               name.c_str(), m.width, m.height, m.decided_surface, m.wrong, m.wrong_percent(), m.false_shadow,
               m.false_light, m.coverage, m.unexplained, 100 * m.unexplained_ratio(), m.edge_pixels, m.unexplained_core,
-              m.regions, m.largest_region,
-              m.off_values ? (", " + std::to_string(m.off_values) + " candidate values not 0/128/255").c_str() : "");
+              m.regions, m.largest_region);
 }
 
 int run_compare(const CompareArgs& a) {

@@ -290,6 +290,13 @@ std::vector<Case> make_cases() {
                      write_png(dir / "cand" / "mask.png", 16, 16, 3, 255);
                    },
                    compare, 4, "channel"});
+  // Mask values other than 255 / 0 / 128 are refused, not rounded (a mask written as 10 / 250).
+  cases.push_back({"off_values_mask_compare",
+                   [ref_ok](const fs::path& dir) {
+                     ref_ok(dir);
+                     write_png(dir / "cand" / "mask.png", 16, 16, 1, 250);
+                   },
+                   compare, 4, "256 pixel(s) hold values other than 255 (lit), 0 (shadowed) and 128"});
   cases.push_back({"sixteen_bit_mask_compare",
                    [ref_ok](const fs::path& dir) {
                      ref_ok(dir);

@@ -196,6 +196,16 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
           core = unexplained[static_cast<std::size_t>(y + dy) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x + dx)] != 0;
       m.unexplained_core += core;
     }
+  if (m.off_values) {
+    // The contract allows three values and nothing is rounded: a mask written as 10 / 250 is a
+    // broken writer, not a near miss (docs/output-contract.md).
+    std::size_t first = 0;
+    while (exact(cand[first])) ++first;
+    throw CompareError(CompareError::Kind::BadInput,
+                       what + ": " + std::to_string(m.off_values) + " pixel(s) hold values other than 255 (lit), 0 (shadowed) "
+                       "and 128 (no surface), e.g. " + std::to_string(cand[first]) + " at (" +
+                       std::to_string(first % static_cast<std::size_t>(w)) + ", " + std::to_string(first / static_cast<std::size_t>(w)) + ")");
+  }
   if (m.wrong) regions(codes, w, h, m);
   return out;
 }
@@ -251,7 +261,7 @@ FolderComparison compare_folders(const std::filesystem::path& reference_dir,
     const Image8 cand = read_image8(candidate_dir / name, 1);
     CompareOptions o = options;
     if (!threshold.bands) o.explain = nullptr;  // exact techniques: no texel or bias band
-    out.per_light.push_back(compare_mask(ref, dec, cand, name, i, o));
+    out.per_light.push_back(compare_mask(ref, dec, cand, (candidate_dir / name).string(), i, o));
     out.total += out.per_light.back().metrics;
   }
   // One light beyond what the reference has is a wrong producer, not a detail.

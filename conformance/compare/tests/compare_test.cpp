@@ -55,13 +55,18 @@ TEST(CompareMask, CountsEachKindOnDecidedPixelsOnly) {
   EXPECT_EQ(rgb(3, 3), (std::array<int, 3>{kErrorColours.undecided[0], kErrorColours.undecided[1], kErrorColours.undecided[2]}));
 }
 
-TEST(CompareMask, OffValuesAreClassifiedByNearestAndCounted) {
+TEST(CompareMask, ValuesOtherThanTheThreeAreRefusedNotRounded) {
   const Image8 ref = grey(4, 4, 255);
-  Image8 cand = grey(4, 4, 250);  // "almost lit": right, but sloppy
-  set(cand, 0, 0, 10);            // "almost shadowed": wrong
-  const MaskComparison c = compare_mask(ref, grey(4, 4, 255), cand);
-  EXPECT_EQ(c.metrics.off_values, 16u);
-  EXPECT_EQ(c.metrics.false_shadow, 1u);
+  Image8 cand = grey(4, 4, 250);  // "almost lit": a broken writer, not a near miss
+  set(cand, 0, 0, 10);
+  try {
+    (void)compare_mask(ref, grey(4, 4, 255), cand, "cand/mask.png");
+    FAIL() << "a mask of 10 / 250 was accepted";
+  } catch (const CompareError& e) {
+    EXPECT_EQ(e.kind(), CompareError::Kind::BadInput);
+    EXPECT_EQ(std::string(e.what()), "cand/mask.png: 16 pixel(s) hold values other than 255 (lit), 0 (shadowed) and 128 "
+                                     "(no surface), e.g. 10 at (0, 0)");
+  }
 }
 
 TEST(CompareMask, RegionsAreEightConnected) {

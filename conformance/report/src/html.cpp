@@ -151,8 +151,6 @@ void metrics_table(std::ostringstream& h, const json& m) {
                        num(m, "explained_percent_of_edges") + " % of edge px)");
   row("largest region", str(m, "largest_region") + " px (" + str(m, "regions") + " regions)");
   row("decided surface px", str(m, "decided_surface") + " of " + str(m, "pixels"));
-  if (m.contains("off_values") && m["off_values"].is_number() && m["off_values"].get<double>() > 0)
-    row("values not 0/128/255", str(m, "off_values"));
   h << "</table>";
 }
 

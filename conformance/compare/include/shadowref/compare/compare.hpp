@@ -4,9 +4,8 @@
 // it) may honestly go either way and is never counted; every decided pixel must match.
 //
 // Pixel classes (mask values, outputs/image.hpp): 255 lit, 0 shadowed, 128 no surface. A
-// candidate value that is none of the three is classified by the nearest of them (below 64
-// shadowed, 64..191 no surface, 192 and up lit) and counted in `off_values`, so a sloppy writer
-// is visible without being judged twice.
+// candidate holding any other value is refused (CompareError(BadInput) naming the file, the count
+// and the first such pixel): the contract rounds nothing.
 //
 // Wrong kinds on a decided pixel:
 //   false shadow  reference lit, candidate shadowed        (red in the error image)
@@ -48,7 +47,7 @@ struct MaskMetrics {
   std::size_t false_shadow = 0;
   std::size_t false_light = 0;
   std::size_t coverage = 0;
-  std::size_t off_values = 0;       // candidate values other than 0, 128, 255
+  std::size_t off_values = 0;       // candidate values other than 0, 128, 255 (always 0: refused)
   std::size_t regions = 0;          // 8-connected regions of wrong pixels
   std::size_t largest_region = 0;   // pixels in the largest one
   // The tolerance model (docs/tolerance-model.md): wrong pixels by cause, and the scale they are
