@@ -8,10 +8,12 @@
 // QualityWarning; exit 1). Beyond either fail bound: FAIL.
 //
 // The rule that fixes every number below: a threshold that lets a known-wrong implementation pass
-// is a bug. conformance/tests/wrong_variants/ holds such implementations (z-pass with the eye in
-// the volume, z-fail without caps, no bias matrix, the compare reversed, a half-pixel offset, the
-// planar matrix transposed, a wrapping 8-bit stencil) and a test demands each is a FAIL on at
-// least one catalogue scene; the numbers measured for the right implementations and the wrong ones
+// is a bug. conformance/tests/teeth_table.cpp lists such implementations — the real techniques with
+// fault switches on (renderer/include/shadowref/renderer/faults.hpp): z-pass with the eye in the
+// volume, z-fail without caps, no bias matrix, the compare reversed, reversed-Z mistakes, acne,
+// peter-panning, a half-pixel offset, the planar matrix transposed, a wrapping 8-bit stencil, … —
+// and `ctest -L teeth` demands each is a FAIL on the scenes its row names, where the technique
+// without faults passes; the numbers measured for the right implementations and the wrong ones
 // are in conformance/README.md.
 #pragma once
 
