@@ -37,17 +37,17 @@ constexpr Row kRows[] = {
             "camera at the light) or land elsewhere (the sphere's)"},
     {.name = "planar-double-darkening", .technique = "planar",
      .faults = on([](Faults& f) { f.planar.darken_every_fragment = true; }), .convention = "gl",
-     .scenes = "ground_sphere two_lights",
+     .scenes = "cube_seams ground_sphere",
      .field_class = "planar shadows darkened twice where the caster's projection overlaps itself (no stencil)",
      .why = "every closed caster projects its near and far sides onto the same receiver pixels, so its whole "
             "shadow is darkened twice; the mask reads a shadow where a pixel was darkened exactly once, and "
             "loses all of it"},
     {.name = "planar-directional-as-point", .technique = "planar",
      .faults = on([](Faults& f) { f.planar.directional_as_point = true; }), .convention = "gl",
-     .scenes = "directional_light",
+     .scenes = "directional_light offscreen_caster",
      .field_class = "a light with w = 0 treated as a point",
-     .why = "the direction (-0.5, 1, 0.3) is taken for a point light about a unit above the ground, among the "
-            "casters: their shadows spread from it and grow instead of falling parallel"},
+     .why = "the sun's direction vector is taken for the position of a point light about a unit from the origin, "
+            "low beside or among the casters: their shadows spread from it instead of falling parallel"},
 
     // ---- stencil shadow volumes ---------------------------------------------------------------
     {.name = "zpass-eye-inside-volume", .technique = "volume-robust",
@@ -71,20 +71,25 @@ constexpr Row kRows[] = {
      .judged_as = "volume-exact-count"},
     {.name = "irrlicht-light-position-as-direction", .technique = "volume-zfail",
      .faults = on([](Faults& f) { f.volume.light_position_as_direction = true; }), .convention = "gl",
-     .scenes = "light_near_caster shadow_on_object",
+     .scenes = "cube_seams light_near_caster",
      .field_class = "silhouettes classified with the light position used as a direction (Irrlicht 1.8)",
      .why = "facing is tested against (x, y, z, 0), the direction from the origin to the light, not toward the "
             "light from each face: near a caster that is not at the origin the silhouette is wrong, the volume "
             "is not closed, and shadows fall on the wrong faces"},
     {.name = "saturating-stencil", .technique = "volume-zfail",
      .faults = on([](Faults& f) { f.volume.saturating_stencil = true; }), .convention = "gl",
-     .scenes = "ground_sphere stairs_room",
+     .scenes = "cube_seams ground_sphere",
      .field_class = "saturating stencil ops (GL_INCR / GL_DECR) with two-sided stencil",
      .why = "one pass of two-sided stencil meets a volume's faces in drawing order: where a decrement comes "
             "first it saturates at 0 and the increment leaves +1, a false shadow behind the volume"},
+    {.name = "volume-casters-culled-to-view", .technique = "volume-zfail",
+     .faults = on([](Faults& f) { f.volume.cull_casters_outside_view = true; }), .convention = "gl",
+     .scenes = "offscreen_caster",
+     .field_class = "casters outside the view frustum culled from the shadow pass",
+     .why = "the pole stands out of the camera's view and casts a long shadow across the visible ground"},
     {.name = "half-pixel-offset", .technique = "volume-zfail",
      .faults = on([](Faults& f) { f.camera.half_pixel_offset = true; }), .convention = "gl",
-     .scenes = "shadow_on_object stairs_room",
+     .scenes = "offscreen_caster shadow_on_object",
      .field_class = "a half-pixel offset (Direct3D 9 pixel centres)",
      .why = "every edge moves by half a pixel: along long object and shadow edges whole runs of decided pixels "
             "change side"},
@@ -132,16 +137,22 @@ constexpr Row kRows[] = {
             "stored there: nearly everything is shadowed"},
     {.name = "acne-no-offset", .technique = "shadowmap",
      .faults = on([](Faults& f) { f.shadow_map.no_polygon_offset = true; }), .convention = "gl",
-     .scenes = "directional_light",
+     .scenes = "directional_light grazing_light",
      .field_class = "shadow acne: no slope-scaled bias (polygon offset 0, 0)",
      .why = "the two-sided ground compares against its own depth, sampled at texel centres: without offset about "
-            "half of its lit pixels find their own texel nearer the light, stripes of false shadow"},
+            "half of its lit pixels find their own texel nearer the light, stripes of false shadow (worst under "
+            "the sun 8 degrees up)"},
     {.name = "peter-panning", .technique = "shadowmap",
      .faults = on([](Faults& f) { f.shadow_map.large_constant_offset = true; }), .convention = "gl",
-     .scenes = "cornell_box",
+     .scenes = "contact_shadow cornell_box",
      .field_class = "peter-panning: a large constant bias",
-     .why = "the stored depth of the blocks is pushed so far back that the floor next to their bases compares as "
-            "in front of them: the shadows come loose from the contact"},
+     .why = "the stored depth of the slab and the blocks is pushed so far back that the floor next to their "
+            "bases compares as in front of them: the shadows come loose from the contact"},
+    {.name = "shadowmap-casters-culled-to-view", .technique = "shadowmap",
+     .faults = on([](Faults& f) { f.shadow_map.cull_casters_outside_view = true; }), .convention = "gl",
+     .scenes = "offscreen_caster",
+     .field_class = "casters outside the view frustum culled from the shadow pass",
+     .why = "the pole stands out of the camera's view and casts a long shadow across the visible ground"},
     {.name = "fit-near-too-tight", .technique = "shadowmap",
      .faults = on([](Faults& f) { f.shadow_map.fit = FitFault::NearTooTight; }), .convention = "gl",
      .scenes = "ground_sphere",
@@ -149,22 +160,23 @@ constexpr Row kRows[] = {
      .why = "the near half of the light's depth range is clipped, and with it the sphere: its shadow vanishes"},
     {.name = "fit-far-too-tight", .technique = "shadowmap",
      .faults = on([](Faults& f) { f.shadow_map.fit = FitFault::FarTooTight; }), .convention = "gl",
-     .scenes = "torus_self_shadow",
+     .scenes = "contact_shadow torus_self_shadow",
      .field_class = "a light fit that clips casters (far plane too tight)",
-     .why = "the far half of the light's depth range is clipped, and with it the lower part of the ring: its "
-            "shadow on the ground and part of its self-shadow vanish"},
+     .why = "the far half of the light's depth range is clipped, and with it the lower part of the casters: the "
+            "slab's shadow and the ring's shadow on the ground vanish"},
     {.name = "cube-z-faces-swapped", .technique = "shadowmap",
      .faults = on([](Faults& f) { f.shadow_map.cube = CubeFault::ZFacesSwapped; }), .convention = "gl",
-     .scenes = "stairs_room",
+     .scenes = "cube_seams stairs_room",
      .field_class = "cube-map face seams: the wrong face picked (+z and -z exchanged)",
-     .why = "the light inside the room needs a cube; part of the stairs' shadow lies in a z face, which now "
-            "holds the depths of the opposite one: that shadow vanishes"},
+     .why = "the light among the casters needs a cube; the shadows that fall in its +z and -z faces are looked "
+            "up in the opposite face's depths: they vanish or move"},
     {.name = "cube-y-faces-upside-down", .technique = "shadowmap-pcf",
      .faults = on([](Faults& f) { f.shadow_map.cube = CubeFault::YFacesUpsideDown; }), .convention = "gl",
-     .scenes = "ground_sphere stairs_room",
-     .field_class = "cube-map face seams: a face's orientation wrong (the -y face turned)",
-     .why = "both point lights need a cube (geometry more than 80 degrees off any single view); the shadow under "
-            "the light is in the -y face, which, turned by 180 degrees, puts it on the opposite side of the light"},
+     .scenes = "cube_seams ground_sphere stairs_room",
+     .field_class = "cube-map face seams: a face's orientation wrong (the +y and -y faces turned)",
+     .why = "each scene's point light needs a cube (geometry more than 80 degrees off any single view); the shadows "
+            "under the light lie in the -y face, which, turned by 180 degrees, puts them on the opposite side of the "
+            "light and breaks them where they cross into the side faces"},
     {.name = "half-texel-offset", .technique = "shadowmap",
      .faults = on([](Faults& f) { f.shadow_map.half_texel_offset = true; }), .convention = "gl",
      .scenes = "light_near_caster",
