@@ -32,8 +32,9 @@
 // compare reversed or not flipped for reversed-Z, the map cleared to 1, the offset's sign, no bias
 // matrix or the −1..1 one, no offset (acne) or a large constant one (peter-panning), casters out of
 // the camera's view culled, a light fit that clips casters, cube faces swapped or upside down, and a
-// half-texel offset. There is no border-colour switch: every fit holds every vertex (light_fit.hpp)
-// and the shader answers "lit" outside the map itself, so no catalogue pixel ever reads the border.
+// half-texel offset. There is no border-colour switch: every fit holds every vertex with a margin
+// (light_fit.hpp), so no catalogue fragment maps outside its map or within a PCF tap of its edge
+// (conformance/README.md: a border at the near depth changes no pixel of the catalogue).
 #include <algorithm>
 #include <cmath>
 #include <limits>

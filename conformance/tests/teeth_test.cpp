@@ -13,6 +13,7 @@
 //
 // References come from the cache the CTest fixtures fill (`shadowref conform --references-only`),
 // keyed by the `shadowref` executable built beside this one (ReferenceSettings::key_executable).
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -137,17 +138,25 @@ int survey() {
       std::string text;
       for (const auto& [scene, v] : variant) {
         if (!(v->status == Status::Fail && green(right.at(scene)->status))) continue;
-        char buf[96];
-        std::snprintf(buf, sizeof buf, "%s (%.2g %%)", scene.c_str(), v->comparison->total.wrong_percent());
+        const std::vector<std::string> required = r->scene_list();
+        const bool listed = std::find(required.begin(), required.end(), scene) != required.end();
+        char buf[128];
+        std::snprintf(buf, sizeof buf, listed ? "**%s** %.3g %%" : "%s %.3g %%", scene.c_str(),
+                      v->comparison->total.wrong_percent());
         text += (text.empty() ? "" : ", ") + std::string(buf);
       }
       caught_on[std::string(r->name)] = text.empty() ? "NOT CAUGHT" : text;
     }
   }
-  std::printf("| variant | technique, convention | field class | caught (FAIL, control green) on |\n| --- | --- | --- | --- |\n");
-  for (const Row& r : rows())
-    std::printf("| %s | %s, %s | %s | %s |\n", std::string(r.name).c_str(), std::string(r.technique).c_str(),
-                std::string(r.convention).c_str(), std::string(r.field_class).c_str(), caught_on[std::string(r.name)].c_str());
+  // The README table: the row's own scenes in bold, then every other scene that catches it.
+  std::printf("| variant | field class | technique, convention | caught (FAIL where the control is green) on, wrong %% |\n"
+              "| --- | --- | --- | --- |\n");
+  for (const Row& r : rows()) {
+    std::string run = std::string(r.technique) + ", " + std::string(r.convention);
+    if (r.shadow_map_size) run += ", maps of " + std::to_string(r.shadow_map_size);
+    std::printf("| %s | %s | %s | %s |\n", std::string(r.name).c_str(), std::string(r.field_class).c_str(), run.c_str(),
+                caught_on[std::string(r.name)].c_str());
+  }
   return 0;
 }
 
