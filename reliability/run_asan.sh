@@ -22,8 +22,8 @@
 # can name it without also hiding every std::string leak of ours. The tests that read corrupt PNGs
 # in-process (DWARF_TESTS) therefore run in a second pass with fast_unwind_on_malloc=0, which
 # records whole stacks. Not for the whole suite: at every allocation it costs so much that
-# renderer_test and conformance.wrong_variants (Mesa's shader compiler allocates a lot) pass their
-# 600 s limit.
+# renderer_test (Mesa's shader compiler allocates a lot) passes its 600 s
+# limit.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-$root/build/asan}"

@@ -21,7 +21,8 @@ struct Program {
   GLuint id = 0;
   GLint clip_from_world = -1, shadow_from_world = -1, colour = -1, mode = -1, shadow = -1, albedo = -1,
         ambient = -1, light = -1, light_intensity = -1, spot = -1, shadow_map = -1, packed_map = -1,
-        texel = -1, offset_factor = -1, offset_units = -1, cube = -1, cube_from_world = -1, reversed = -1;
+        texel = -1, offset_factor = -1, offset_units = -1, cube = -1, cube_from_world = -1, reversed = -1,
+        lit_greater = -1;
 };
 
 struct Programs {
@@ -85,9 +86,14 @@ struct Frame {
   bool closed(std::size_t i) const { return prepared.casters[i].closed; }
 
   // P · V of the camera (the prepared scene's matrices, multiplied in double), with the chosen far
-  // plane; camera_clip rounds it to float once for GL.
-  Mat4<double> camera_clip_double(CameraDepth depth) const { return prepared.camera_for(depth).clip_from_scene; }
+  // plane; camera_clip rounds it to float once for GL. (CameraFaults::half_pixel_offset shifts it.)
+  Mat4<double> camera_clip_double(CameraDepth depth) const;
   Mat4<float> camera_clip(CameraDepth depth) const { return to_float(camera_clip_double(depth)); }
+  // The fault switches of this render (faults.hpp); all off in production.
+  const Faults& faults() const { return options.faults; }
+  // Object i's bounding sphere lies wholly outside one of the four side planes of the camera's
+  // frustum (what view-frustum culling tests; only the *_cull_casters_outside_view faults ask).
+  bool outside_camera_view(std::size_t i) const;
   // The scene's lights as mathlib homogeneous points.
   Vec4<double> light(std::size_t i) const { return prepared.lights[i]; }
   // The depth test that keeps the nearer fragment in this convention (GL_LESS or GL_GREATER).

@@ -46,6 +46,7 @@ void write_outputs(const RenderResult& result, const GlInfo& info, const scene::
   j["frame_ms_all"] = result.frame_ms;
   j["frame_ms_note"] = "all passes of one frame to glFinish, mask read-backs included (median of frames)";
   j["notes"] = result.notes;
+  if (!result.faults.empty()) j["faults"] = result.faults;  // a deliberately wrong render (faults.hpp)
   {
     std::ofstream f(tmp / "render.json");
     f << j.dump(2) << "\n";

@@ -14,6 +14,8 @@
 // that faces away from the light (n · l ≤ 0: its attached shadow, which the lit picture shows dark
 // and every other technique and the reference call shadowed) → shadowed; every other surface → lit.
 // Several lights: each darkens the lit picture once more by kShadowAlpha.
+// Fault switches (faults.hpp, PlanarFaults): the matrix transposed, a directional light taken as a
+// point, and no once-per-pixel rule; each is one `if` below.
 #include <string>
 #include <utility>
 #include <vector>
@@ -50,7 +52,9 @@ void render_planar(Frame& frame) {
   for (std::size_t i = 0; i < frame.scene.lights.size(); ++i) {
     frame.bind_target(GL_STENCIL_BUFFER_BIT);
     if (receiver && plane) {
-      const Result<Mat4<double>> s = shadow_matrix(*plane, frame.light(i));
+      Vec4<double> light = frame.light(i);
+      if (frame.faults().planar.directional_as_point) light.w() = 1.0;  // FAULT: w = 0 read as a point
+      const Result<Mat4<double>> s = shadow_matrix(*plane, light);
       if (!s) {
         frame.result.notes.push_back("light " + std::to_string(i) + ": no planar shadow (" + s.message() + ")");
       } else {
@@ -74,7 +78,11 @@ void render_planar(Frame& frame) {
         gl.BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
         gl.StencilFunc(GL_EQUAL, kReceiverMark, 0xFF);
         gl.StencilOp(GL_KEEP, GL_KEEP, GL_INCR);  // 1 → 2: the next fragment here fails EQUAL 1
-        set_matrix(gl, frame.programs.flat.clip_from_world, to_float(Mat4<double>(pv * *s)));
+        // FAULT: any marked pixel (1 <= stencil) takes every fragment: darkened once per fragment.
+        if (frame.faults().planar.darken_every_fragment) gl.StencilFunc(GL_LEQUAL, kReceiverMark, 0xFF);
+        // FAULT: D3DX's row-vector layout used as a column-vector matrix.
+        const Mat4<double> shadow = frame.faults().planar.matrix_transposed ? Mat4<double>(s->transpose()) : *s;
+        set_matrix(gl, frame.programs.flat.clip_from_world, to_float(Mat4<double>(pv * shadow)));
         gl.Uniform4f(frame.programs.flat.colour, black[0], black[1], black[2], black[3]);
         for (std::size_t o = 0; o < frame.objects.size(); ++o)
           if (o != *receiver) frame.objects[o].draw();

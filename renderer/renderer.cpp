@@ -150,6 +150,7 @@ Program link(const GlFunctions& gl, std::initializer_list<const char*> fragment,
   p.cube = loc("u_cube");
   p.cube_from_world = loc("u_cube_from_world[0]");
   p.reversed = loc("u_reversed");
+  p.lit_greater = loc("u_lit_greater");
   gl.UseProgram(p.id);
   if (p.shadow_map >= 0) gl.Uniform1i(p.shadow_map, 0);
   if (p.packed_map >= 0) gl.Uniform1i(p.packed_map, 1);
@@ -187,6 +188,31 @@ GLenum gl_compare(DepthCompare c) {
     case DepthCompare::Always: return GL_ALWAYS;
   }
   return GL_LESS;
+}
+
+Mat4<double> Frame::camera_clip_double(CameraDepth depth) const {
+  const Mat4<double>& pv = prepared.camera_for(depth).clip_from_scene;
+  if (!faults().camera.half_pixel_offset) return pv;
+  // One pixel is 2 / W in NDC: half a pixel right and half a pixel down (row 0 at the top).
+  Mat4<double> shift = Mat4<double>::Identity();
+  shift(0, 3) = 1.0 / width();
+  shift(1, 3) = -1.0 / height();
+  return shift * pv;
+}
+
+bool Frame::outside_camera_view(std::size_t i) const {
+  // Gribb & Hartmann's planes from the rows of P · V: w ± x >= 0 and w ± y >= 0 inside. The x, y
+  // and w rows are the same in every convention and every CameraDepth.
+  const Mat4<double>& m = prepared.camera.clip_from_scene;
+  const BoundingSphere<float>& s = prepared.casters[i].sphere;
+  const Vec4<double> centre(s.center.x(), s.center.y(), s.center.z(), 1.0);
+  for (int row = 0; row < 2; ++row)
+    for (double sign : {1.0, -1.0}) {
+      const Vec4<double> plane = m.row(3).transpose() + sign * m.row(row).transpose();
+      const double n = plane.head<3>().norm();
+      if (n > 0.0 && plane.dot(centre) / n < -static_cast<double>(s.radius)) return true;
+    }
+  return false;
 }
 
 float Frame::light_intensity() const {
@@ -478,14 +504,8 @@ RenderResult Renderer::render(const scene::Scene& scene, std::string_view techni
 }
 
 RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_view technique, const RenderOptions& options) {
-  const Technique* found = find_technique(technique);
-  if (!found) throw std::invalid_argument("unknown technique '" + std::string(technique) + "'");
-  return render(prepared, *found, options);
-}
-
-// Any technique, registered or not (the wrong variants of the suite's tests).
-RenderResult Renderer::render(const scene::PreparedScene& prepared, const Technique& technique, const RenderOptions& options) {
-  const Technique* t = &technique;
+  const Technique* t = find_technique(technique);
+  if (!t) throw std::invalid_argument("unknown technique '" + std::string(technique) + "'");
   const scene::Scene& scene = *prepared.scene;
   const RunConvention& convention = *prepared.convention;
   const GlFunctions& gl = impl_->gl;
@@ -531,6 +551,9 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, const Techni
   for (int f = 0; f < std::max(1, options.frames); ++f) {
     RenderResult frame_result;
     frame_result.technique = std::string(t->name);
+    frame_result.faults = describe(options.faults);
+    if (!frame_result.faults.empty())
+      frame_result.notes.push_back("deliberately wrong: fault switches " + frame_result.faults + " (renderer/faults.hpp)");
     Frame frame{gl, impl_->programs, prepared, scene, options, frame_result, objects, target.fbo};
     const auto start = std::chrono::steady_clock::now();
     t->render(frame);
@@ -546,6 +569,7 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, const Techni
       result.declaration.convention = std::string(convention.name);
       result.declaration.shadow_map_size = prepared.options.shadow_map_size;
       result.declaration.slope_bias_texels = kShadowMapOffsetFactor;
+      result.declaration.light_views_from_pack = true;  // the prepared scene's light fits: the pack's
       result.declaration.defaulted.clear();
     }
     result.frame_ms.push_back(ms);

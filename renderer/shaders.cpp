@@ -85,8 +85,9 @@ uniform sampler2DArray u_packed_map;        // unit 1 (RGBA8 variant), the same 
 uniform vec2 u_texel;                // 1 / shadow-map size
 uniform int u_cube;                  // 0: one map through v_shadow; 1: six faces picked per fragment
 uniform mat4 u_cube_from_world[6];   // B · P_face · V_face for the faces +x, -x, +y, -y, +z, -z
-uniform int u_reversed;              // 1: reversed-Z maps (near 1, far 0); the depth texture's own
-                                     // compare function already says GEQUAL, the RGBA8 compare is here
+uniform int u_reversed;              // 1: reversed-Z maps (near 1, far 0)
+uniform int u_lit_greater;           // the RGBA8 compare: 1 lit when here >= stored (GEQUAL), 0 when
+                                     // here <= stored (LEQUAL); a depth texture has its own compare function
 out vec4 o_colour;
 
 // Light visibility from the shadow map: 1 lit, 0 shadowed (fractions with PCF).
@@ -125,7 +126,7 @@ float shadow_visibility() {
   // RGBA8: unpack the stored 24-bit depth and compare integers (exact, like a depth compare).
   uint stored = unpack_depth_rgba8(texture(u_packed_map, vec3(p.xy, layer)));
   uint here = quantize_depth(p.z);
-  return (u_reversed == 1 ? here >= stored : here <= stored) ? 1.0 : 0.0;
+  return (u_lit_greater == 1 ? here >= stored : here <= stored) ? 1.0 : 0.0;
 }
 
 void main() {

@@ -28,6 +28,13 @@
 // A fragment outside the single map, or behind its light, counts as lit: the map knows of no
 // occluder there (directional maps hold the whole bounding sphere; a point light's single map
 // holds the whole box, so only geometry-free directions fall outside).
+// Fault switches (faults.hpp, ShadowMapFaults), each one `if` below where the bug would be: the
+// compare reversed or not flipped for reversed-Z, the map cleared to 1, the offset's sign, no bias
+// matrix or the −1..1 one, no offset (acne) or a large constant one (peter-panning), casters out of
+// the camera's view culled, a light fit that clips casters, cube faces swapped or upside down, and a
+// half-texel offset. There is no border-colour switch: every fit holds every vertex with a margin
+// (light_fit.hpp), so no catalogue fragment maps outside its map or within a PCF tap of its edge
+// (conformance/README.md: a border at the near depth changes no pixel of the catalogue).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -47,8 +54,47 @@ namespace {
 // with the convention's sign (polygon_offset_sign): offset always pushes away from the light.
 constexpr float kOffsetFactor = kShadowMapOffsetFactor;
 constexpr float kOffsetUnits = kShadowMapOffsetUnits;
+// ShadowMapFaults::large_constant_offset: a constant offset of 2^17 depth steps, about 0.8 % of the
+// 24-bit range (the size of constant bias that hides acne everywhere, grazing light included),
+// which detaches shadows from their contacts.
+constexpr float kPeterPanUnits = 131072.0f;
 
 enum class Variant { Depth, Pcf, Rgba8 };
+
+// The compare that means "lit" in this render: the convention's (lit_when), unless a fault says otherwise.
+DepthCompare lit_compare(const RunConvention& conv, CompareFault fault) {
+  const DepthCompare right = lit_when(conv);
+  switch (fault) {
+    case CompareFault::None: return right;
+    case CompareFault::Reversed:  // FAULT: lit and shadowed swap
+      return right == DepthCompare::LessEqual ? DepthCompare::GreaterEqual : DepthCompare::LessEqual;
+    case CompareFault::ConventionIgnored: return DepthCompare::LessEqual;  // FAULT: reversed-Z not flipped
+  }
+  return right;
+}
+
+// FitFault: the light's projection with its near (or far) plane moved to the middle of its depth
+// range, measured in view space along the view axis. NDC depth is remapped affinely (clip
+// z' = s z + t w), which keeps a perspective a perspective and an orthographic projection
+// orthographic, in any convention: [middle, far] (or [near, middle]) is stretched onto [near, far]
+// and the rest is clipped.
+Mat4<double> fit_with_fault(const RunConvention& conv, const Mat4<double>& projection, FitFault fault) {
+  const Mat4<double> inverse = projection.inverse();
+  const auto view_point = [&](double ndc_z) {
+    const Vec4<double> v = inverse * Vec4<double>(0, 0, ndc_z, 1);
+    return Vec3<double>(v.head<3>() / v.w());
+  };
+  const double zn = near_ndc_z(conv), zf = far_ndc_z(conv);
+  const Vec3<double> middle = 0.5 * (view_point(zn) + view_point(zf));
+  const Vec4<double> c = projection * Vec4<double>(middle.x(), middle.y(), middle.z(), 1.0);
+  const double zm = c.z() / c.w();
+  const double lo = fault == FitFault::NearTooTight ? zm : zn, hi = fault == FitFault::NearTooTight ? zf : zm;
+  const double scale = (zf - zn) / (hi - lo);
+  Mat4<double> remap = Mat4<double>::Identity();
+  remap(2, 2) = scale;
+  remap(2, 3) = zn - scale * lo;
+  return remap * projection;
+}
 
 // One light's map: the texture (a 2D array, one layer per view) and the matrices that map world
 // points into it.
@@ -83,8 +129,22 @@ LightMap render_light_map(const Frame& frame, std::size_t light_index, Variant v
   map.gl = &gl;
   map.size = size;
   map.cube = lc.cube;
-  const Mat4<double> bias = shadow_bias<double>(conv);
-  for (const LightView& v : lc.views) map.face_from_world.push_back(to_float(Mat4<double>(bias * v.projection * v.view)));
+  const ShadowMapFaults& faults = frame.faults().shadow_map;
+  Mat4<double> bias = shadow_bias<double>(conv);
+  // FAULT: the −1..1 bias matrix whatever the clip depth range.
+  if (faults.neg_one_to_one_bias) bias = shadow_bias_matrix<double>(DepthRange::NegOneToOne);
+  if (faults.no_bias_matrix) bias = Mat4<double>::Identity();  // FAULT: clip coordinates read as texture coordinates
+  if (faults.half_texel_offset) {  // FAULT: half a texel added to s and t
+    Mat4<double> shift = Mat4<double>::Identity();
+    shift(0, 3) = shift(1, 3) = 0.5 / size;
+    bias = shift * bias;
+  }
+  // The light's projections (FitFault: with a depth range that clips casters).
+  std::vector<Mat4<double>> projections;
+  for (const LightView& v : lc.views)
+    projections.push_back(faults.fit == FitFault::None ? v.projection : fit_with_fault(conv, v.projection, faults.fit));
+  for (std::size_t k = 0; k < lc.views.size(); ++k)
+    map.face_from_world.push_back(to_float(Mat4<double>(bias * projections[k] * lc.views[k].view)));
   map.shadow_from_world = map.face_from_world[0];
 
   gl.GenTextures(1, &map.texture);
@@ -117,43 +177,60 @@ LightMap render_light_map(const Frame& frame, std::size_t light_index, Variant v
       gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_DEPTH_COMPONENT24, size, size, layers, 0, GL_DEPTH_COMPONENT,
                     GL_UNSIGNED_INT, nullptr);
     gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_FUNC, static_cast<GLint>(gl_compare(lit_when(conv))));
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_FUNC,
+                     static_cast<GLint>(gl_compare(lit_compare(conv, faults.compare))));
     gl.DrawBuffer(GL_NONE);
   }
   gl.ReadBuffer(GL_NONE);
 
   gl.Viewport(0, 0, size, size);
   gl.DepthMask(GL_TRUE);
-  gl.ClearDepth(far);
-  gl.ClearColor(far, far, far, 1.0f);  // = pack_depth_rgba8(far): 0xFFFFFF or 0
+  const float clear = faults.clear_to_one ? 1.0f : far;  // FAULT: 1 whatever the convention
+  gl.ClearDepth(clear);
+  gl.ClearColor(clear, clear, clear, 1.0f);  // = pack_depth_rgba8(clear): 0xFFFFFF or 0
   gl.Enable(GL_DEPTH_TEST);
   gl.DepthFunc(frame.depth_nearer());
   gl.Disable(GL_STENCIL_TEST);
   gl.Disable(GL_BLEND);
   const Program& p = variant == Variant::Rgba8 ? frame.programs.packed_depth : frame.programs.flat;
   gl.UseProgram(p.id);
+  float sign = polygon_offset_sign(conv), factor = kOffsetFactor, units = kOffsetUnits;
+  if (faults.offset_sign_ignored) sign = 1.0f;  // FAULT: + whatever the convention
+  if (faults.no_polygon_offset) factor = units = 0.0f;  // FAULT: acne
+  if (faults.large_constant_offset) units = kPeterPanUnits;  // FAULT: peter-panning
   if (variant == Variant::Rgba8) {
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    gl.Uniform1f(p.offset_factor, polygon_offset_sign(conv) * kOffsetFactor);
-    gl.Uniform1f(p.offset_units, polygon_offset_sign(conv) * kOffsetUnits);
+    gl.Uniform1f(p.offset_factor, sign * factor);
+    gl.Uniform1f(p.offset_units, sign * units);
   } else {
     gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl.Enable(GL_POLYGON_OFFSET_FILL);
-    gl.PolygonOffset(polygon_offset_sign(conv) * kOffsetFactor, polygon_offset_sign(conv) * kOffsetUnits);
+    gl.PolygonOffset(sign * factor, sign * units);
     gl.Uniform4f(p.colour, 0, 0, 0, 0);
   }
   gl.CullFace(GL_FRONT);
-  for (GLsizei layer = 0; layer < layers; ++layer) {
-    const LightView& view = lc.views[static_cast<std::size_t>(layer)];
+  for (GLsizei face = 0; face < layers; ++face) {
+    const auto k = static_cast<std::size_t>(face);
+    const LightView& view = lc.views[k];
+    GLint layer = face;
+    // FAULT: the +z and −z views rendered into each other's layers (a left-handed cube's order).
+    if (lc.cube && faults.cube == CubeFault::ZFacesSwapped && face >= 4) layer = 9 - face;
     gl.FramebufferTextureLayer(GL_FRAMEBUFFER, variant == Variant::Rgba8 ? GL_COLOR_ATTACHMENT0 : GL_DEPTH_ATTACHMENT,
                                map.texture, 0, layer);
     if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw GlError("the shadow-map framebuffer is incomplete");
     gl.Clear(variant == Variant::Rgba8 ? GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT : GL_DEPTH_BUFFER_BIT);
     if (view.empty) continue;
-    set_matrix(gl, p.clip_from_world, to_float(Mat4<double>(view.projection * view.view)));
+    Mat4<double> clip = projections[k] * view.view;
+    // FAULT: the ±y faces rendered with their up vector negated (the picture turned by 180 degrees:
+    // NDC x and y negated), while they are sampled as the face table says.
+    if (lc.cube && faults.cube == CubeFault::YFacesUpsideDown && (face == 2 || face == 3))
+      clip = Vec4<double>(-1, -1, 1, 1).asDiagonal() * clip;
+    set_matrix(gl, p.clip_from_world, to_float(clip));
     for (std::size_t i = 0; i < frame.objects.size(); ++i) {
       if (!view.draw.empty() && !view.draw[i]) continue;
+      // FAULT: an object out of the camera's view culled from the light's pass too.
+      if (faults.cull_casters_outside_view && frame.outside_camera_view(i)) continue;
       if (frame.closed(i)) gl.Enable(GL_CULL_FACE);
       else gl.Disable(GL_CULL_FACE);
       frame.objects[i].draw();
@@ -180,6 +257,8 @@ void bind_map(const Frame& frame, const LightMap& map, Variant variant) {
   gl.Uniform2f(p.texel, texel, texel);
   gl.Uniform1i(p.cube, map.cube ? 1 : 0);
   gl.Uniform1i(p.reversed, frame.convention().clip.order == DepthOrder::Reversed ? 1 : 0);
+  const DepthCompare lit = lit_compare(frame.convention(), frame.faults().shadow_map.compare);
+  gl.Uniform1i(p.lit_greater, lit == DepthCompare::GreaterEqual ? 1 : 0);
   if (map.cube) {
     static_assert(!Mat4<float>::IsRowMajor);
     std::vector<float> m;

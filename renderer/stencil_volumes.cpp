@@ -25,6 +25,9 @@
 // count of a lit surface is (−1 cap) + (+1 exit) = 0, while z-pass does not count it at all.
 // Mask of light i: the stencil after its volumes, 0 → lit, anything else → shadowed; then light
 // i's additive pass where the stencil is 0.
+// Fault switches (faults.hpp, VolumeFaults): no caps, robust always z-pass, the light's position
+// classifying faces as a direction, saturating stencil ops, casters out of view culled; each is one
+// `if` below.
 #include <algorithm>
 #include <string>
 
@@ -42,13 +45,15 @@ constexpr float kFiniteExtrusionRadii = 4.0f;
 
 enum class Mode { ZPass, ZFail, ZFailClamp, Robust, Finite };
 
-void set_stencil_ops(const GlFunctions& gl, StencilMethod method) {
+void set_stencil_ops(const GlFunctions& gl, StencilMethod method, const VolumeFaults& faults) {
+  GLenum incr = GL_INCR_WRAP, decr = GL_DECR_WRAP;
+  if (faults.saturating_stencil) incr = GL_INCR, decr = GL_DECR;  // FAULT: 0 − 1 stays 0
   if (method == StencilMethod::ZPass) {
-    gl.StencilOpSeparate(GL_FRONT, GL_KEEP, GL_KEEP, GL_INCR_WRAP);
-    gl.StencilOpSeparate(GL_BACK, GL_KEEP, GL_KEEP, GL_DECR_WRAP);
+    gl.StencilOpSeparate(GL_FRONT, GL_KEEP, GL_KEEP, incr);
+    gl.StencilOpSeparate(GL_BACK, GL_KEEP, GL_KEEP, decr);
   } else {
-    gl.StencilOpSeparate(GL_BACK, GL_KEEP, GL_INCR_WRAP, GL_KEEP);
-    gl.StencilOpSeparate(GL_FRONT, GL_KEEP, GL_DECR_WRAP, GL_KEEP);
+    gl.StencilOpSeparate(GL_BACK, GL_KEEP, incr, GL_KEEP);
+    gl.StencilOpSeparate(GL_FRONT, GL_KEEP, decr, GL_KEEP);
   }
 }
 
@@ -59,6 +64,7 @@ void render_volumes(Frame& frame, Mode mode) {
                                                        : CameraDepth::InfiniteEpsilon;
   const Mat4<double> pv = frame.camera_clip_double(depth);
   const Mat4<float> clip = to_float(pv);
+  const VolumeFaults& faults = frame.faults().volume;
 
   // Casters (mesh, adjacency, face planes, bounding sphere): built once, in the prepared scene.
   const std::vector<scene::PreparedCaster>& casters = frame.prepared.casters;
@@ -94,14 +100,21 @@ void render_volumes(Frame& frame, Mode mode) {
       const ShadowCaster<float>& caster = *casters[c].caster;
       const BoundingSphere<float>& bsphere = casters[c].sphere;
       const std::string& name = frame.scene.objects[c].name;
-      const Result<std::size_t> edges = find_silhouette(caster, light, sil);
+      // FAULT: a caster out of the camera's view culled as if it could cast nothing into it.
+      if (faults.cull_casters_outside_view && frame.outside_camera_view(c)) continue;
+      // FAULT: faces classified against the light's position read as a direction (w = 0).
+      const Vec4<float> classify = faults.light_position_as_direction ? Vec4<float>(light.x(), light.y(), light.z(), 0.0f) : light;
+      const Result<std::size_t> edges = find_silhouette(caster, classify, sil);
       if (!edges) {
         frame.result.notes.push_back("light " + std::to_string(i) + ", " + name + ": " + edges.message());
         continue;
       }
+      sil.light = light;  // extruded from the light itself (the same light unless the fault is on)
       if (sil.lit_count == 0) continue;  // no lit face: no prism, nothing to draw
       StencilMethod method = mode == Mode::ZPass ? StencilMethod::ZPass : StencilMethod::ZFail;
-      if (mode == Mode::Robust && near) {
+      if (mode == Mode::Robust && faults.robust_always_zpass) {
+        method = StencilMethod::ZPass;  // FAULT: the near-plane test skipped, depth-pass everywhere
+      } else if (mode == Mode::Robust && near) {
         const BoundingSphere<double> sphere{bsphere.center.cast<double>(),
                                             // a float radius rounded down could miss a vertex: widen
                                             // it by a few float ulps of the sphere's scale
@@ -112,7 +125,7 @@ void render_volumes(Frame& frame, Mode mode) {
         robust_choice += (robust_choice.empty() ? "" : ", ") + name + " " + to_string(method);
       }
       VolumeOptions<float> options;
-      options.light_cap = options.dark_cap = method == StencilMethod::ZFail;
+      options.light_cap = options.dark_cap = method == StencilMethod::ZFail && !faults.no_caps;  // FAULT: open volumes
       if (mode == Mode::Finite) options.finite_distance = kFiniteExtrusionRadii * bsphere.radius;
       const Result<VolumeRanges> ranges = build_shadow_volume(caster, sil, options, volume);
       if (!ranges) {
@@ -122,7 +135,7 @@ void render_volumes(Frame& frame, Mode mode) {
       }
       if (volume.indices.empty()) continue;
       const GpuMesh mesh(gl, volume.vertices, volume.indices);
-      set_stencil_ops(gl, method);
+      set_stencil_ops(gl, method, faults);
       mesh.draw();
     }
     if (!robust_choice.empty()) frame.result.notes.push_back("light " + std::to_string(i) + ": " + robust_choice);

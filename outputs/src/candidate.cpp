@@ -18,7 +18,7 @@ CandidateDeclaration default_declaration(const std::string& technique) {
   const TechniqueName* t = find_technique_name(technique);
   d.filter_radius_texels = t && t->family == TechniqueFamily::ShadowMapPcf ? 1.0 : 0.0;
   d.defaulted = {"producer", "version", "technique", "convention", "shadow_map_size", "filter_radius_texels",
-                 "slope_bias_texels", "constant_bias"};
+                 "slope_bias_texels", "constant_bias", "light_views"};
   return d;
 }
 
@@ -34,7 +34,7 @@ CandidateDeclaration read_declaration(const std::filesystem::path& dir, const st
   if (j.is_discarded()) throw bad("not valid JSON");
   if (!j.is_object()) throw bad("must be a JSON object");
   static const std::set<std::string> known{"producer", "version", "technique", "convention", "shadow_map_size",
-                                           "filter_radius_texels", "slope_bias_texels", "constant_bias"};
+                                           "filter_radius_texels", "slope_bias_texels", "constant_bias", "light_views"};
   for (const auto& item : j.items())
     if (!known.count(item.key())) throw bad(item.key() + ": unknown key");
   std::set<std::string> given;
@@ -70,6 +70,12 @@ CandidateDeclaration read_declaration(const std::filesystem::path& dir, const st
   number_key("filter_radius_texels", d.filter_radius_texels, 64.0);
   number_key("slope_bias_texels", d.slope_bias_texels, 64.0);
   number_key("constant_bias", d.constant_bias, 1e6);
+  if (j.contains("light_views")) {
+    if (!j["light_views"].is_string() || (j["light_views"] != "pack" && j["light_views"] != "own"))
+      throw bad("light_views: must be \"pack\" or \"own\"");
+    d.light_views_from_pack = j["light_views"] == "pack";
+    given.insert("light_views");
+  }
   d.defaulted.clear();
   for (const std::string& k : known)
     if (!given.count(k)) d.defaulted.push_back(k);
@@ -86,6 +92,7 @@ void write_declaration(const CandidateDeclaration& d, const std::filesystem::pat
   j["filter_radius_texels"] = d.filter_radius_texels;
   j["slope_bias_texels"] = d.slope_bias_texels;
   j["constant_bias"] = d.constant_bias;
+  j["light_views"] = d.light_views_from_pack ? "pack" : "own";
   std::ofstream f(dir / kCandidateFile, std::ios::binary);
   f << j.dump(2) << "\n";
   if (!f) throw FileError((dir / kCandidateFile).string() + ": cannot write");

@@ -174,10 +174,14 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
   // Depth bias: the texel of p itself, compared with the declared bias (a contact within the bias
   // comes out lit, as peter-panning shows it).
   if (lit_through(0, 0, true) == candidate_lit && lit_through(0, 0, false) != candidate_lit) return Cause::DepthBias;
-  // Texel footprint: the texels within R = 1 + filter radius texels, with the declared bias.
-  const double radius = 1.0 + d.filter_radius_texels;
-  static constexpr std::array<std::array<double, 2>, 8> kDirs{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {0.7071, 0.7071},
-                                                               {-0.7071, 0.7071}, {0.7071, -0.7071}, {-0.7071, -0.7071}}};
+  // Texel footprint: the texels whose centres lie within the square of half-width h texels around
+  // p's point (probed at h and h / 2 along the axes and the diagonals), with the declared bias.
+  // A nearest lookup on our own grid (light views from the pack) reads a texel whose centre is within
+  // half a texel per axis: h = 0.5; on a grid of unknown phase (the candidate's own fit) the centre
+  // may be a whole texel away: h = 1; a filter widens either by its radius.
+  const double radius = (d.light_views_from_pack ? 0.5 : 1.0) + d.filter_radius_texels;
+  static constexpr std::array<std::array<double, 2>, 8> kDirs{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, 1},
+                                                               {1, -1}, {-1, -1}}};
   for (const double r : {0.5 * radius, radius})
     for (const auto& dv : kDirs)
       if (lit_through(dv[0] * r, dv[1] * r, true) == candidate_lit) return Cause::TexelFootprint;

@@ -94,7 +94,7 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
   } else {
     for (const std::string& t : o.techniques) {
       const bool extra = std::any_of(o.extra_techniques.begin(), o.extra_techniques.end(),
-                                     [&](const ExtraTechnique& e) { return e.technique->name == t; });
+                                     [&](const ExtraTechnique& e) { return e.name == t; });
       if (!o.candidate_dir && !extra && !renderer::find_technique(t))
         throw std::invalid_argument("unknown technique '" + t + "' (shadowref render --help lists them)");
       if (std::find(result.techniques.begin(), result.techniques.end(), t) == result.techniques.end())
@@ -107,6 +107,9 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
     api = renderer::parse_gl_api(o.gl);
     driver = renderer::parse_driver(o.backend);
   }
+  for (const ExtraTechnique& e : o.extra_techniques)
+    if (!renderer::find_technique(e.renders))
+      throw std::invalid_argument("variant '" + e.name + "' renders unknown technique '" + e.renders + "'");
   if (o.scenes.empty()) throw std::invalid_argument("no scenes selected");
   const RunConvention* convention = find_run_convention(o.convention);
   if (!convention) {
@@ -184,11 +187,11 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
       c.scene_file = s.file;
       c.technique = technique;
       c.reference_dir = reference_dirs[si];
-      const renderer::Technique* extra = nullptr;
+      const ExtraTechnique* extra = nullptr;
       std::string judged_as = technique;
       for (const ExtraTechnique& e : o.extra_techniques)
-        if (e.technique->name == technique) {
-          extra = e.technique;
+        if (e.name == technique) {
+          extra = &e;
           judged_as = e.judged_as;
         }
       if (const auto e = s.expect.find(judged_as); e != s.expect.end()) {
@@ -198,7 +201,9 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
       try {
         if (gl) {
           c.candidate_dir = std::filesystem::absolute(o.out / "renders" / s.name / technique);
-          const renderer::RenderResult r = extra ? gl->render(prepared[si], *extra) : gl->render(prepared[si], technique);
+          renderer::RenderOptions render_options;
+          if (extra) render_options.faults = extra->faults;
+          const renderer::RenderResult r = gl->render(prepared[si], extra ? extra->renders : technique, render_options);
           renderer::write_outputs(r, gl->info(), s, c.candidate_dir);
           c.notes = r.notes;
           c.frame_ms = r.median_frame_ms();

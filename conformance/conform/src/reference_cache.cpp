@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <system_error>
@@ -54,6 +55,18 @@ std::uint64_t executable_hash() {
   return value;
 }
 
+// The hash of another executable's bytes, computed once per path and process.
+std::uint64_t file_hash(const std::filesystem::path& file) {
+  static std::mutex mutex;
+  static std::map<std::filesystem::path, std::uint64_t> known;
+  const std::lock_guard<std::mutex> lock(mutex);
+  const auto it = known.find(file);
+  if (it != known.end()) return it->second;
+  Fnv1a f;
+  f.add(read_bytes(file));
+  return known[file] = f.h;
+}
+
 // Mesh files named by the scene file (objects[].shape.file, relative to the scene).
 std::vector<std::filesystem::path> mesh_files(const std::filesystem::path& scene_file, const std::string& text) {
   std::vector<std::filesystem::path> out;
@@ -87,7 +100,7 @@ std::string reference_key(const scene::PreparedScene& prepared, const ReferenceS
   f.add("convention=" + std::string(prepared.convention->name));
   // The resolution may be overridden (conform --resolution, --resolution-scale): not in the file.
   f.add("resolution=" + std::to_string(scene.width) + "x" + std::to_string(scene.height));
-  const std::uint64_t exe = executable_hash();
+  const std::uint64_t exe = settings.key_executable.empty() ? executable_hash() : file_hash(settings.key_executable);
   f.add(&exe, sizeof exe);
   return hex(f.h);
 }

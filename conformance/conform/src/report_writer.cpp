@@ -89,7 +89,8 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
       k["candidate"] = {{"producer", d.producer}, {"version", d.version}, {"technique", d.technique},
                         {"convention", d.convention}, {"shadow_map_size", d.shadow_map_size},
                         {"filter_radius_texels", d.filter_radius_texels}, {"slope_bias_texels", d.slope_bias_texels},
-                        {"constant_bias", d.constant_bias}, {"defaulted", d.defaulted}};
+                        {"constant_bias", d.constant_bias}, {"light_views", d.light_views_from_pack ? "pack" : "own"},
+                        {"defaulted", d.defaulted}};
     }
     if (c.comparison) {
       k["comparison"] = report::to_json(*c.comparison);

@@ -14,7 +14,10 @@
 //                                         texel (0 one tap, 1 a 3x3 PCF box, ...)
 //     "slope_bias_texels": 2,             number >= 0: slope-scaled bias, as the depth change of the
 //                                         surface across this many texels (glPolygonOffset's factor)
-//     "constant_bias": 0.0                number >= 0: constant bias, in world units along the light ray
+//     "constant_bias": 0.0,               number >= 0: constant bias, in world units along the light ray
+//     "light_views": "own"                "pack": the shadow maps use the pack's light view and
+//                                         projection matrices (matrices.json), so their texel grid is
+//                                         known; "own": the engine fits its own (grid phase unknown)
 //   }
 // Every key is optional. Absent keys take the defaults below (for a known technique: its family's
 // defaults), and `defaulted` lists them, so the report can say which values were assumed.
@@ -38,6 +41,7 @@ struct CandidateDeclaration {
   double filter_radius_texels = 0.0;   // shadowmap-pcf's default: 1 (3 × 3)
   double slope_bias_texels = 2.0;      // our renderer's glPolygonOffset factor
   double constant_bias = 0.0;
+  bool light_views_from_pack = false;  // "light_views": "pack"
   std::vector<std::string> defaulted;  // keys that were absent
 };
 

@@ -29,6 +29,7 @@
 
 #include "shadowref/outputs/candidate.hpp"
 #include "shadowref/outputs/image.hpp"
+#include "shadowref/renderer/faults.hpp"
 #include "shadowref/renderer/gl_context.hpp"
 #include "shadowref/convention.hpp"
 #include "shadowref/scene/prepared_scene.hpp"
@@ -44,6 +45,8 @@ struct RenderOptions {
   const RunConvention* convention = &kDefaultConvention;
   int shadow_map_size = 0;
   int frames = 1;              // frames rendered; frame_ms is their median (the first is output)
+  // Deliberate bugs for the conformance suite's teeth (faults.hpp); all off: production.
+  Faults faults;
 };
 
 struct RenderResult {
@@ -53,6 +56,7 @@ struct RenderResult {
   std::vector<double> frame_ms;  // the time of each frame, all passes to glFinish and read-back
   std::vector<std::string> notes;  // what the technique could not do on this scene, and why
   outputs::CandidateDeclaration declaration;  // what write_outputs puts in candidate.json
+  std::string faults;              // describe(options.faults): the fault switches on, "" in production
   double median_frame_ms() const;
 };
 
@@ -90,9 +94,6 @@ class Renderer {
   // only the frames are timed: everything that depends on the scene alone was done by
   // prepare_scene. Throws std::invalid_argument for an unknown technique, GlError for a GL failure.
   RenderResult render(const scene::PreparedScene& scene, std::string_view technique, const RenderOptions& options = {});
-  // The same with a technique that is not in the table: the deliberately wrong variants of
-  // conformance/tests/wrong_variants/, which the suite must catch.
-  RenderResult render(const scene::PreparedScene& scene, const Technique& technique, const RenderOptions& options = {});
   // Prepares `scene` in options.convention with options.shadow_map_size, then renders it.
   RenderResult render(const scene::Scene& scene, std::string_view technique, const RenderOptions& options = {});
 

@@ -15,8 +15,11 @@
 //
 // The rule that fixes every number below: a threshold that lets a known-wrong implementation pass
 // is a bug, and one that fails a correct implementation at another resolution or map size is too.
-// conformance/tests/ holds the wrong implementations and the resolution and map-size sweeps; the
-// numbers measured for them are in conformance/README.md.
+// conformance/tests/teeth_table.cpp lists such implementations — the real techniques with fault
+// switches on (renderer/include/shadowref/renderer/faults.hpp) — and `ctest -L teeth` demands each
+// is a FAIL on the scenes its row names, where the technique without faults passes;
+// conformance/tests/ also holds the resolution and map-size sweeps. Measured numbers are in
+// conformance/README.md.
 #pragma once
 
 #include <cstddef>

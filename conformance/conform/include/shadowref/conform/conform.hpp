@@ -22,17 +22,19 @@
 #include "shadowref/outputs/candidate.hpp"
 #include "shadowref/conform/reference_cache.hpp"
 
-namespace shadowref::renderer {
-struct Technique;
-}
+#include "shadowref/renderer/faults.hpp"
 
 namespace shadowref::conform {
 
-// A technique outside the renderer's table (the suite's own tests: deliberately wrong variants),
+// A deliberately wrong variant of one of our techniques (the suite's teeth,
+// conformance/tests/teeth_table.cpp): the renderer's technique `renders` with the fault switches
+// `faults` on (renderer/faults.hpp), shown in the table and written under renders/ as `name`, and
 // judged under the catalogue expectations and the threshold of the technique `judged_as`, or, when
 // `judged_as` names no catalogue technique, as expected to pass with the strictest threshold.
 struct ExtraTechnique {
-  const renderer::Technique* technique = nullptr;
+  std::string name;
+  std::string renders;
+  renderer::Faults faults;
   std::string judged_as;
 };
 

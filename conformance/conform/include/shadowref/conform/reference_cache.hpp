@@ -2,7 +2,8 @@
 //
 // The key is a 64-bit FNV-1a hash of: the scene file's bytes, the bytes of every mesh file it
 // names, the reference settings, the run convention, and the bytes of the running executable (so that a rebuilt
-// reference renderer never reads a stale picture: a cache that can lie is worse than none).
+// reference renderer never reads a stale picture: a cache that can lie is worse than none; a test
+// program may name another executable built from the same tree: ReferenceSettings::key_executable).
 // An entry is a folder <cache>/<scene name>-<16 hex digits>/ holding what `shadowref reference`
 // writes plus key.json (the inputs of the key, for people). It is written into a temporary
 // sibling and renamed into place, so concurrent runs (CTest fixtures, --jobs) never see half an
@@ -20,6 +21,10 @@ namespace shadowref::conform {
 struct ReferenceSettings {
   int samples_per_axis = 4;  // the sub-pixel grid of reference::Options: 4 × 4 = 16 samples
   int threads = 0;           // not part of the key: the images do not depend on it (tested bit for bit)
+  // The executable whose bytes enter the key; empty: the running one. A test program linking the
+  // same reference library, built with it from the same tree, names the `shadowref` built beside
+  // it, and so reads the entries that its CTest fixtures (`shadowref conform --references-only`) computed.
+  std::filesystem::path key_executable;
 };
 
 // The key of the prepared scene (loaded from scene.file, in its convention) under `settings`, as 16

@@ -1,0 +1,211 @@
+// teeth_test.cpp — runs one row of the teeth table (teeth_table.hpp) through run_conform, the
+// conformance run users get, and says whether the suite caught it.
+//
+//   conformance_teeth NAME            a row: FAIL on each of its scenes where its control is green;
+//                                     or a control (control.<technique>.<convention>): PASS or
+//                                     the catalogue's XFAIL on each of its scenes. Exit 0 / 1.
+//   conformance_teeth --list          the names, rows first
+//   conformance_teeth --ctest-script FILE --fixture-prefix P
+//                                     writes the CTest script registering one test per name
+//                                     (labels, and the reference fixtures P<convention>_<scene>)
+//   conformance_teeth --survey        every row and control on the whole default catalogue: where
+//                                     each row is caught (for conformance/README.md's table)
+//
+// References come from the cache the CTest fixtures fill (`shadowref conform --references-only`),
+// keyed by the `shadowref` executable built beside this one (ReferenceSettings::key_executable).
+#include <algorithm>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "shadowref/conform/catalogue.hpp"
+#include "shadowref/conform/conform.hpp"
+#include "teeth_table.hpp"
+
+namespace shadowref::teeth {
+namespace {
+
+using conform::Status;
+
+bool green(Status s) { return s == Status::Pass || s == Status::XFail; }
+
+conform::ConformOptions options_for(const std::string& convention, int shadow_map_size,
+                                    const std::vector<std::string>& scenes, const std::string& out) {
+  conform::ConformOptions o;
+  o.shadow_map_size = shadow_map_size;
+  o.scenes = conform::select_scenes(conform::default_catalogue(), scenes);
+  o.convention = convention;
+  o.backend = "llvmpipe";
+  o.out = std::filesystem::path(SHADOWREF_TEST_OUT) / out;
+  o.cache = SHADOWREF_TEST_CACHE;
+  o.reference.key_executable = SHADOWREF_EXE;
+  o.jobs = 1;
+  return o;
+}
+
+conform::ExtraTechnique variant_of(const Row& r) {
+  return conform::ExtraTechnique{std::string(r.name), std::string(r.technique), r.faults, std::string(r.judge())};
+}
+
+std::string numbers(const conform::CaseResult& c) {
+  char buf[160];
+  if (!c.comparison) {
+    std::snprintf(buf, sizeof buf, "%s (%s)", conform::to_string(c.status), c.error.c_str());
+  } else {
+    const compare::MaskMetrics& m = c.comparison->total;
+    std::snprintf(buf, sizeof buf, "%-5s %7.3f %% wrong, largest region %zu px", conform::to_string(c.status),
+                  m.wrong_percent(), m.largest_region);
+  }
+  return buf;
+}
+
+// scene -> case of `technique`
+std::map<std::string, const conform::CaseResult*> cases_of(const conform::ConformResult& r, const std::string& technique) {
+  std::map<std::string, const conform::CaseResult*> out;
+  for (const conform::CaseResult& c : r.cases)
+    if (c.technique == technique) out[c.scene] = &c;
+  return out;
+}
+
+int run_row(const Row& row) {
+  const Control control = control_of(row);
+  conform::ConformOptions o = options_for(std::string(row.convention), row.shadow_map_size, row.scene_list(),
+                                               std::string(row.name));
+  o.extra_techniques.push_back(variant_of(row));
+  o.techniques = {std::string(row.name), control.technique};
+  const conform::ConformResult r = conform::run_conform(o);
+  const auto variant = cases_of(r, std::string(row.name));
+  const auto right = cases_of(r, control.technique);
+  std::printf("%s: %s\n  %s in %s%s, judged as %s; control %s\n", std::string(row.name).c_str(),
+              std::string(row.field_class).c_str(), std::string(row.technique).c_str(), std::string(row.convention).c_str(),
+              row.shadow_map_size ? (", maps of " + std::to_string(row.shadow_map_size) + " texels").c_str() : "",
+              std::string(row.judge()).c_str(), control.name.c_str());
+  int missed = 0;
+  for (const std::string& scene : row.scene_list()) {
+    const conform::CaseResult& v = *variant.at(scene);
+    const conform::CaseResult& c = *right.at(scene);
+    const bool caught = v.status == Status::Fail && green(c.status);
+    missed += !caught;
+    std::printf("  %-28s variant %s\n  %-28s control %s\n  %-28s %s\n", scene.c_str(), numbers(v).c_str(), "",
+                numbers(c).c_str(), "",
+                caught ? "CAUGHT" : green(c.status) ? "NOT CAUGHT: the variant is not a FAIL here"
+                                                    : "NOT JUDGED: the control itself is not green here");
+  }
+  std::printf("  why: %s\n  report: %s\n", std::string(row.why).c_str(), r.report_html.string().c_str());
+  return missed ? 1 : 0;
+}
+
+int run_control(const Control& control) {
+  conform::ConformOptions o = options_for(control.convention, control.shadow_map_size, control.scenes, control.name);
+  o.techniques = {control.technique};
+  const conform::ConformResult r = conform::run_conform(o);
+  std::printf("%s: %s in %s without faults, on the scenes of its rows\n", control.name.c_str(), control.technique.c_str(),
+              control.convention.c_str());
+  int bad = 0;
+  for (const conform::CaseResult& c : r.cases) {
+    bad += !green(c.status);
+    std::printf("  %-28s %s%s\n", c.scene.c_str(), numbers(c).c_str(), green(c.status) ? "" : "   <- must be PASS or XFAIL");
+  }
+  std::printf("  report: %s\n", r.report_html.string().c_str());
+  return bad ? 1 : 0;
+}
+
+// Every row and control on the whole default catalogue, one run per convention and map size.
+int survey() {
+  std::map<std::pair<std::string, int>, std::vector<const Row*>> by_run;
+  for (const Row& r : rows()) by_run[{std::string(r.convention), r.shadow_map_size}].push_back(&r);
+  std::map<std::string, std::string> caught_on;  // row -> "scene (x %), ..."
+  for (const auto& [run, list] : by_run) {
+    const auto& [convention, size] = run;
+    conform::ConformOptions o = options_for(convention, size, {}, "survey-" + convention + "-" + std::to_string(size));
+    std::set<std::string> controls;
+    for (const Row* r : list) {
+      o.extra_techniques.push_back(variant_of(*r));
+      o.techniques.emplace_back(r->name);
+      controls.insert(std::string(r->technique));
+    }
+    for (const std::string& t : controls) o.techniques.push_back(t);
+    const conform::ConformResult res = conform::run_conform(o);
+    std::printf("== %s, shadow-map size %d\n%s\n", convention.c_str(), size, conform::table_text(res).c_str());
+    for (const Row* r : list) {
+      const auto variant = cases_of(res, std::string(r->name));
+      const auto right = cases_of(res, std::string(r->technique));
+      std::string text;
+      for (const auto& [scene, v] : variant) {
+        if (!(v->status == Status::Fail && green(right.at(scene)->status))) continue;
+        const std::vector<std::string> required = r->scene_list();
+        const bool listed = std::find(required.begin(), required.end(), scene) != required.end();
+        char buf[128];
+        std::snprintf(buf, sizeof buf, listed ? "**%s** %.3g %%" : "%s %.3g %%", scene.c_str(),
+                      v->comparison->total.wrong_percent());
+        text += (text.empty() ? "" : ", ") + std::string(buf);
+      }
+      caught_on[std::string(r->name)] = text.empty() ? "NOT CAUGHT" : text;
+    }
+  }
+  // The README table: the row's own scenes in bold, then every other scene that catches it.
+  std::printf("| variant | field class | technique, convention | caught (FAIL where the control is green) on, wrong %% |\n"
+              "| --- | --- | --- | --- |\n");
+  for (const Row& r : rows()) {
+    std::string run = std::string(r.technique) + ", " + std::string(r.convention);
+    if (r.shadow_map_size) run += ", maps of " + std::to_string(r.shadow_map_size);
+    std::printf("| %s | %s | %s | %s |\n", std::string(r.name).c_str(), std::string(r.field_class).c_str(), run.c_str(),
+                caught_on[std::string(r.name)].c_str());
+  }
+  return 0;
+}
+
+// The CTest script: one test per row and control, each requiring the reference fixtures of its
+// scenes in its convention (registered by conformance/tests/CMakeLists.txt).
+int write_ctest_script(const std::filesystem::path& file, const std::string& fixture_prefix, const std::string& exe) {
+  std::ofstream f(file);
+  const auto add = [&](const std::string& name, const std::string& convention, const std::vector<std::string>& scenes) {
+    std::string fixtures;
+    for (const std::string& s : scenes) fixtures += (fixtures.empty() ? "" : ";") + fixture_prefix + convention + "_" + s;
+    f << "add_test([=[conformance.teeth." << name << "]=] [=[" << exe << "]=] [=[" << name << "]=])\n"
+      << "set_tests_properties([=[conformance.teeth." << name << "]=] PROPERTIES LABELS [=[conformance;teeth;llvmpipe;convention-"
+      << convention << "]=] FIXTURES_REQUIRED [=[" << fixtures << "]=] ENVIRONMENT LP_NUM_THREADS=1 TIMEOUT 300)\n";
+  };
+  for (const Row& r : rows()) add(std::string(r.name), std::string(r.convention), r.scene_list());
+  for (const Control& c : controls()) add(c.name, c.convention, c.scenes);
+  return f ? 0 : 1;
+}
+
+int main_(int argc, char** argv) {
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.size() == 1 && args[0] == "--list") {
+    for (const Row& r : rows()) std::printf("%s\n", std::string(r.name).c_str());
+    for (const Control& c : controls()) std::printf("%s\n", c.name.c_str());
+    return 0;
+  }
+  if (args.size() == 1 && args[0] == "--survey") return survey();
+  if (args.size() == 4 && args[0] == "--ctest-script" && args[2] == "--fixture-prefix")
+    return write_ctest_script(args[1], args[3], std::filesystem::absolute(argv[0]).string());
+  if (args.size() == 1) {
+    for (const Row& r : rows())
+      if (r.name == args[0]) return run_row(r);
+    for (const Control& c : controls())
+      if (c.name == args[0]) return run_control(c);
+    std::fprintf(stderr, "conformance_teeth: no row or control '%s' (--list names them)\n", args[0].c_str());
+    return 4;
+  }
+  std::fprintf(stderr, "usage: conformance_teeth NAME | --list | --survey | --ctest-script FILE --fixture-prefix P\n");
+  return 4;
+}
+
+}  // namespace
+}  // namespace shadowref::teeth
+
+int main(int argc, char** argv) {
+  try {
+    return shadowref::teeth::main_(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "conformance_teeth: %s\n", e.what());
+    return 5;
+  }
+}

@@ -1,0 +1,115 @@
+// shadowref/renderer/faults.hpp — fault switches: bugs that engines have shipped, built into the
+// real techniques so that the conformance suite can show it catches them (its "teeth",
+// conformance/tests/teeth_table.cpp). Each switch is one `if` in the technique's own code, where
+// the bug would be; everything else a faulty render does is the production code. All switches
+// off (a default-constructed Faults) is the production renderer, and nothing but the suite's
+// tests turns one on (the `shadowref` command has no way to).
+//
+// One small struct per technique family; a switch of another family is ignored (a planar render
+// never reads VolumeFaults). CameraFaults apply to every technique.
+#pragma once
+
+#include <string>
+
+namespace shadowref::renderer {
+
+// The camera every technique renders through (Frame::camera_clip_double).
+struct CameraFaults {
+  // The image shifted by half a pixel right and down: Direct3D 9's pixel centres (at integer
+  // coordinates) assumed by an API whose centres are at +0.5 (OpenGL, Direct3D 10 and later).
+  bool half_pixel_offset = false;
+};
+
+// planar.cpp
+struct PlanarFaults {
+  // The shadow matrix transposed: D3DXMatrixShadow's row-vector layout (docs/conventions.md) used
+  // as a column-vector matrix.
+  bool matrix_transposed = false;
+  // A directional light (w = 0) projected as a point light at its direction vector (w taken as 1).
+  bool directional_as_point = false;
+  // No once-per-pixel stencil rule: every projected fragment on the receiver blends, so where the
+  // projection overlaps itself (any closed caster: its near and far sides) the shadow is darkened
+  // twice. The stencil then counts the fragments, and the mask — "darkened exactly once" — loses
+  // every pixel darkened more than once.
+  bool darken_every_fragment = false;
+};
+
+// stencil_volumes.cpp
+struct VolumeFaults {
+  // Depth-fail counting without the light and dark caps (open volumes).
+  bool no_caps = false;
+  // volume-robust: the near-plane clip-volume test skipped, z-pass everywhere (the eye may be inside
+  // a volume, where depth-pass counts start from the wrong value).
+  bool robust_always_zpass = false;
+  // Faces classified as lit with the point light's position used as a direction, plane · (x, y, z, 0)
+  // instead of plane · (x, y, z, 1), while the volume is still extruded from the point: Irrlicht 1.8's
+  // CShadowVolumeSceneNode passes the light position to isFrontFacing, which expects a direction.
+  bool light_position_as_direction = false;
+  // GL_INCR / GL_DECR (saturating at 0 and 255) instead of GL_INCR_WRAP / GL_DECR_WRAP: right in two
+  // passes (every increment first), wrong with two-sided stencil, where a decrement may come first.
+  bool saturating_stencil = false;
+  // Casters whose bounding sphere lies outside the camera's frustum are culled from the volume pass,
+  // as from the camera pass: a caster out of view casts no shadow into it.
+  bool cull_casters_outside_view = false;
+};
+
+// The shadow-map compare (lit when the fragment's depth is not beyond the stored one).
+enum class CompareFault {
+  None,
+  Reversed,           // the opposite of the convention's compare: lit and shadowed swap
+  ConventionIgnored,  // GL_LEQUAL whatever the convention: under reversed-Z, not flipped to GL_GEQUAL
+};
+
+// Where each light view's depth range ends (mathlib/light_fit.hpp fits it to every vertex).
+enum class FitFault {
+  None,
+  NearTooTight,  // the near plane moved to the middle of the range: casters near the light are clipped
+  FarTooTight,   // the far plane moved to the middle of the range: casters far from the light are clipped
+};
+
+// A point light's cube of six maps.
+enum class CubeFault {
+  None,
+  ZFacesSwapped,     // +z and −z exchanged when sampling: a left-handed cube's face order in a right-handed world
+  YFacesUpsideDown,  // the ±y faces sampled rotated by 180 degrees: their up vector taken wrong in the face table
+};
+
+// shadow_map.cpp
+struct ShadowMapFaults {
+  CompareFault compare = CompareFault::None;
+  // The map (depth, and the packed colour of shadowmap-rgba8) cleared to 1 whatever the convention:
+  // under reversed-Z, 1 is the near plane, so nothing is ever drawn into it.
+  bool clear_to_one = false;
+  // Polygon offset with the +1 sign whatever the convention: under reversed-Z it pulls depth toward
+  // the light instead of pushing it away.
+  bool offset_sign_ignored = false;
+  // The camera fragment mapped through P_light · V_light without the bias matrix B: clip −1..1 read
+  // as texture coordinates.
+  bool no_bias_matrix = false;
+  // The −1..1 bias matrix (z → 0.5 z + 0.5) applied to 0..1 clip depth (Direct3D, Vulkan, gl-zo, reversed-Z).
+  bool neg_one_to_one_bias = false;
+  // No polygon offset at all (factor 0, units 0): shadow acne where a surface compares against itself.
+  bool no_polygon_offset = false;
+  // A constant offset far larger than needed (kPeterPanUnits): peter-panning, shadows detached from
+  // their casters at the contact.
+  bool large_constant_offset = false;
+  // Casters whose bounding sphere lies outside the camera's frustum left out of the depth pass.
+  bool cull_casters_outside_view = false;
+  FitFault fit = FitFault::None;
+  CubeFault cube = CubeFault::None;
+  // Half a texel added to the map coordinates (Direct3D 9's texel-centre correction where none
+  // belongs): the whole map sampled half a texel off.
+  bool half_texel_offset = false;
+};
+
+struct Faults {
+  CameraFaults camera;
+  PlanarFaults planar;
+  VolumeFaults volume;
+  ShadowMapFaults shadow_map;
+};
+
+// The switches that are on, as "family.switch[=value]" joined by ", "; "" for production.
+std::string describe(const Faults& faults);
+
+}  // namespace shadowref::renderer
