@@ -36,13 +36,20 @@ struct Threshold {
   std::string_view why;              // why these numbers, with the measured margin
 };
 
-// Measured (llvmpipe, 2026-11-22) over the default catalogue at 256², at 1024² (--resolution-scale 4),
-// at 256 × 384, and with shadow maps of 512, 1024, 2048 and 4096 texels, in every case a correct
-// technique is expected to pass: at most 0.79 % of the edge pixels unexplained (ground_sphere,
-// volume-zpass, 1024²), no core, explained errors at most 11.6 % (torus_self_shadow, shadowmap-pcf,
-// 1024²). The least wrong expected failure: 3.02 % unexplained (torus_self_shadow, planar, 256²).
-// Hence the fail bound of 2 %: 2.5 times the worst correct case, 1.5 times below the mildest known
-// limitation; and the quality bound of 50 % explained: 4 times the worst correct case.
+// Measured (llvmpipe, 2026-11-22) over the default catalogue (18 scenes) at 256², at 1024²
+// (--resolution-scale 4), at 256 × 384, at 512², and with shadow maps of 512, 1024, 2048 and 4096
+// texels, in every case a correct technique is expected to pass, and over the teeth table
+// (conformance/tests/teeth_table.cpp):
+//   exact techniques   correct: at most 0.79 % of the edge pixels unexplained (ground_sphere,
+//                      volume-zpass, 1024²), no core; the mildest expected failure 3.02 % (planar on
+//                      the torus, 256²); the mildest wrong variant 13.0 % (half-pixel offset).
+//   shadow maps        correct: at most 1.75 % unexplained (grazing_light, shadowmap, 1024²: the sun
+//                      8° up), no core, at most 27.3 % explained; the mildest wrong variant 30.8 %
+//                      (half-texel offset, 128-texel maps).
+// Hence the fail bounds: 2 % for exact techniques (2.5 times their worst correct case, 1.5 times
+// below the mildest known limitation) and 5 % for shadow maps (2.9 times their worst correct case, 6
+// times below the mildest wrong variant); the quality bound of 50 % explained is 1.8 times the worst
+// correct case.
 
 // Planar projection and stencil volumes rasterise exactly the triangles the reference intersects
 // (the shadow matrix and the volumes come from mathlib, the camera from the same matrices), so on a
@@ -52,20 +59,21 @@ inline constexpr Threshold kExactGeometry{
     "exact-geometry", false, 0.02, 0.5,
     "rasterised from the very triangles the reference traces: only float rounding at an edge through a pixel centre "
     "can differ (measured <= 0.79 % of the edge pixels, isolated); FAIL beyond 2 % unexplained or any 5x5 unexplained "
-    "core, which a half-pixel offset, a missing cap or a planar limitation (>= 3.02 %) reaches"};
+    "core, which a half-pixel offset (>= 13 %) or a planar limitation (>= 3.02 %) reaches"};
 
 // A shadow map samples occluder depth at texel centres and offsets it by its bias: its honest errors
 // are the texel-footprint and depth-bias bands, which the cause model explains (reference/causes.hpp).
 inline constexpr Threshold kShadowMap{
-    "shadow-map", true, 0.02, 0.5,
+    "shadow-map", true, 0.05, 0.5,
     "depth is sampled at texel centres and offset by the bias: errors within the declared texel footprint of a true "
-    "boundary or within the declared bias are explained (measured: unexplained <= 0.39 % of the edge pixels at any "
-    "map size 512..4096 and resolution 256..1024); FAIL beyond 2 % unexplained or any 5x5 unexplained core; WARN "
-    "when explained errors exceed half the edge pixels (measured <= 11.6 %)"};
+    "boundary or within the declared bias are explained (measured: unexplained <= 1.75 % of the edge pixels at any "
+    "map size 512..4096 and resolution 256..1024, a sun 8 degrees up); FAIL beyond 5 % unexplained or any 5x5 "
+    "unexplained core (the mildest wrong variant: 30.8 %); WARN when explained errors exceed half the edge pixels "
+    "(measured <= 27.3 %)"};
 
 // PCF: the same model with the declared filter radius widening the footprint.
 inline constexpr Threshold kShadowMapPcf{
-    "shadow-map-pcf", true, 0.02, 0.5,
+    "shadow-map-pcf", true, 0.05, 0.5,
     "as shadow-map, with the footprint widened by the declared filter radius (3x3 PCF: 1 texel)"};
 
 // The threshold of a technique (outputs::kTechniques); an unknown name
