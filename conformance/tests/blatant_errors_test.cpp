@@ -7,6 +7,8 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <map>
+#include <memory>
 
 #include "shadowref/conform/catalogue.hpp"
 #include "shadowref/conform/conform.hpp"
@@ -23,16 +25,21 @@ namespace fs = std::filesystem;
 using outputs::Image8;
 
 constexpr const char* kScene = "shadow_on_object";  // a box on the ground: a contact shadow in view
+constexpr const char* kShadowScene = "ground_sphere";  // a sphere's whole shadow on the ground in view
 
 struct Fixture {
-  scene::Scene scene = scene::load_scene(conform::default_catalogue() / (std::string(kScene) + ".json"));
-  scene::PreparedScene prepared = scene::prepare_scene(scene);
+  explicit Fixture(const std::string& name)
+      : scene(scene::load_scene(conform::default_catalogue() / (name + ".json"))), prepared(scene::prepare_scene(scene)) {}
+  scene::Scene scene;
+  scene::PreparedScene prepared;
   fs::path root = fs::path(SHADOWREF_TEST_OUT);
 };
 
-Fixture& fixture() {
-  static Fixture f;
-  return f;
+Fixture& fixture(const std::string& name = kScene) {
+  static std::map<std::string, std::unique_ptr<Fixture>> fixtures;
+  auto& f = fixtures[name];
+  if (!f) f = std::make_unique<Fixture>(name);
+  return *f;
 }
 
 renderer::Renderer& gl() {
@@ -42,13 +49,14 @@ renderer::Renderer& gl() {
 
 // Renders the scene with `shadowmap`, applies `defect` to the mask, writes the candidate folder
 // and judges it; returns the case.
-conform::CaseResult judge(const std::string& name, const std::function<void(Image8&)>& defect) {
-  Fixture& f = fixture();
+conform::CaseResult judge(const std::string& name, const std::function<void(Image8&)>& defect,
+                          const std::string& scene_name = kScene) {
+  Fixture& f = fixture(scene_name);
   renderer::RenderResult r = gl().render(f.prepared, "shadowmap");
   defect(r.masks[0]);
   const fs::path dir = f.root / name / "candidates";
   fs::remove_all(dir);
-  renderer::write_outputs(r, gl().info(), f.scene, dir / kScene);
+  renderer::write_outputs(r, gl().info(), f.scene, dir / f.scene.name);
   conform::ConformOptions o;
   o.scenes = {f.scene.file};
   o.techniques = {"shadowmap"};
@@ -88,6 +96,7 @@ TEST(BlatantErrors, AnEightByEightSwappedTileFails) {
 }
 
 TEST(BlatantErrors, AWholeShadowShiftedByOnePixelFails) {
+  // On the sphere's shadow, whose outline is in view all round (a box's shadow hides mostly behind it).
   const conform::CaseResult c = judge("shift", [](Image8& m) {
     // Every surface pixel takes the shadow answer of its left neighbour (silhouettes stay put).
     const Image8 was = m;
@@ -96,7 +105,7 @@ TEST(BlatantErrors, AWholeShadowShiftedByOnePixelFails) {
         const std::size_t i = static_cast<std::size_t>(y * m.width + x);
         if (was.pixels[i] != outputs::kMaskNoSurface && was.pixels[i - 1] != outputs::kMaskNoSurface) m.pixels[i] = was.pixels[i - 1];
       }
-  });
+  }, kShadowScene);
   EXPECT_EQ(c.status, conform::Status::Fail);
 }
 
