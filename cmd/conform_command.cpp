@@ -128,6 +128,7 @@ int run_conform_command(const ConformArgs& a) {
     }
     if (c.comparison && c.status == conform::Status::XPass && c.comparison->judgement.reasons.empty())
       std::printf("; but it passed (wrong %.3g %%)", c.comparison->total.wrong_percent());
+    if (!c.signature.empty()) std::printf("; %s", c.signature.c_str());
     if (!c.error.empty()) std::printf(": %s", c.error.c_str());
     std::printf("\n");
   }

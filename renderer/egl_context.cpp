@@ -91,6 +91,9 @@ class EglGlContext final : public GlContext {
     return reinterpret_cast<GlProc>(eglGetProcAddress(name));
   }
   GlApi api() const override { return GlApi::Egl; }
+  void make_current() override {
+    if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) throw GlError(egl_error("eglMakeCurrent (surfaceless)"));
+  }
 
  private:
   EGLDisplay display_ = EGL_NO_DISPLAY;

@@ -40,6 +40,9 @@ class OSMesaGlContext final : public GlContext {
     return reinterpret_cast<GlProc>(OSMesaGetProcAddress(name));
   }
   GlApi api() const override { return GlApi::OSMesa; }
+  void make_current() override {
+    if (!OSMesaMakeCurrent(ctx_, buffer_.data(), GL_UNSIGNED_BYTE, kSize, kSize)) throw GlError("OSMesaMakeCurrent failed");
+  }
 
  private:
   static constexpr int kSize = 16;

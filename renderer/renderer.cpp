@@ -450,6 +450,7 @@ struct Renderer::Impl {
         link(gl, {shaders::kVersion, shaders::kDepthPacking, shaders::kPackedDepthFragmentBody}, "packed depth");
   }
   ~Impl() {
+    context->make_current();
     gl.DeleteProgram(programs.flat.id);
     gl.DeleteProgram(programs.surface.id);
     gl.DeleteProgram(programs.packed_depth.id);
@@ -506,6 +507,7 @@ RenderResult Renderer::render(const scene::Scene& scene, std::string_view techni
 RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_view technique, const RenderOptions& options) {
   const Technique* t = find_technique(technique);
   if (!t) throw std::invalid_argument("unknown technique '" + std::string(technique) + "'");
+  impl_->context->make_current();
   const scene::Scene& scene = *prepared.scene;
   const RunConvention& convention = *prepared.convention;
   const GlFunctions& gl = impl_->gl;

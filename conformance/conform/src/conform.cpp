@@ -18,6 +18,7 @@
 #include "shadowref/scene/load_scene.hpp"
 #include "shadowref/scene/prepared_scene.hpp"
 #include "shadowref/outputs/candidate.hpp"
+#include "shadowref/outputs/file_names.hpp"
 #include "shadowref/reference/causes.hpp"
 
 namespace shadowref::conform {
@@ -166,6 +167,7 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
   // The cause model of each scene (its BVH), built when a shadow-map case first needs it.
   std::vector<std::unique_ptr<reference::CauseModel>> causes(prepared.size());
   std::unique_ptr<renderer::Renderer> gl;
+  std::unique_ptr<renderer::Renderer> model_gl;  // the techniques' models of their failures, for candidates
   if (!o.candidate_dir) {
     // llvmpipe's rasteriser threads; an explicit LP_NUM_THREADS in the environment wins.
     if (!std::getenv("LP_NUM_THREADS"))
@@ -234,6 +236,27 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
         if (!gl) {
           // Keep where the error images went for the report.
           for (auto& e : c.error_images) e = (error_dir / e).string();
+        }
+        // An expected failure is granted only when the candidate's errors are the ones the
+        // technique's own model of its failure predicts: our implementation of the technique, which
+        // shows the limitation exactly. The candidate is judged against the model's masks (on the
+        // reference's decided pixels, with the same causes); what is left is wrong elsewhere.
+        if (c.status == Status::XFail && !gl && renderer::find_technique(judged_as)) {
+          if (!model_gl) model_gl = std::make_unique<renderer::Renderer>(renderer::GlApi::OSMesa, renderer::Driver::Llvmpipe);
+          const std::filesystem::path model_dir = std::filesystem::absolute(o.out / "models" / s.name / judged_as);
+          renderer::write_outputs(model_gl->render(prepared[si], judged_as), model_gl->info(), s, model_dir);
+          for (std::size_t l = 0; l < s.lights.size(); ++l) {
+            const std::string d = outputs::decided_name(l, s.lights.size());
+            std::filesystem::copy_file(c.reference_dir / d, model_dir / d, std::filesystem::copy_options::overwrite_existing);
+          }
+          const compare::FolderComparison against_model = compare::compare_folders(model_dir, c.candidate_dir, threshold, copt);
+          if (against_model.judgement.verdict == compare::Verdict::Fail) {
+            c.status = Status::Fail;
+            c.signature = "expected failure seen, but also wrong elsewhere: " + std::to_string(against_model.total.unexplained) +
+                          " px unexplained against the technique's own model of its failure (our " + judged_as + ")";
+          } else {
+            c.signature = "the errors are the ones the technique's own model of its failure predicts (our " + judged_as + ")";
+          }
         }
       } catch (const std::exception& e) {
         c.status = Status::Error;

@@ -78,6 +78,7 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
     k["status"] = to_string(c.status);
     k["expected"] = c.expected_pass ? "pass" : "fail";
     k["why"] = c.why;
+    if (!c.signature.empty()) k["signature"] = c.signature;
     k["reference_dir"] = c.reference_dir.string();
     k["candidate_dir"] = c.candidate_dir.string();
     k["frame_ms"] = c.frame_ms;

@@ -267,6 +267,7 @@ std::string render_html(const json& r) {
       << (cmp.contains("threshold") ? ", threshold " + escape_html(str(cmp["threshold"], "name")) : std::string())
       << "</span>";
     if (!str(c, "why", "").empty()) h << "<div class=\"why\"><b>why it is expected to fail:</b> " << escape_html(str(c, "why")) << "</div>";
+    if (!str(c, "signature", "").empty()) h << "<div class=\"why\"><b>signature:</b> " << escape_html(str(c, "signature")) << "</div>";
     if (c.contains("error")) h << "<p class=\"error\">" << escape_html(str(c, "error")) << "</p>";
     if (c.contains("candidate")) {
       const json& d = c["candidate"];

@@ -49,6 +49,9 @@ class GlContext {
 
   // The address of a GL function ("glDrawArrays"), or nullptr.
   virtual GlProc proc_address(const char* name) const = 0;
+  // Makes this context current on the calling thread (several renderers may share a process: each
+  // makes its own current before it draws). Throws GlError.
+  virtual void make_current() = 0;
   virtual GlApi api() const = 0;
 };
 

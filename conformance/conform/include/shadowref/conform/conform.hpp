@@ -6,7 +6,9 @@
 //   PASS   expected to pass, verdict pass
 //   WARN   expected to pass, verdict quality warning (within the looser bound)
 //   FAIL   expected to pass, verdict fail
-//   XFAIL  expected to fail (the catalogue's `why`), verdict fail: the limitation is detected
+//   XFAIL  expected to fail (the catalogue's `why`), verdict fail: the limitation is detected and,
+//          for an engine team's candidate, its errors are those of the technique's own model of its
+//          failure (our implementation); errors beyond the model make the case FAIL
 //   XPASS  expected to fail, verdict pass or warning: a broken expectation, counted as a failure
 //   ERROR  the case could not be judged (GL error, missing or unreadable candidate file)
 // Exit (docs/output-contract.md): 2 when any FAIL, XPASS or ERROR; else 1 when any WARN; else 0.
@@ -74,6 +76,7 @@ struct CaseResult {
   std::string technique;
   bool expected_pass = true;
   std::string why;                              // the catalogue's why (expected failures)
+  std::string signature;                        // an engine's expected failure against the technique's model
   Status status = Status::Error;
   std::optional<compare::FolderComparison> comparison;
   std::string error;                            // ERROR: what went wrong
