@@ -20,6 +20,25 @@ struct Hit {
   Vec3<double> p, n;
 };
 
+// The first hit along the ray from `o` along the unit `dir`, up to `tfar` (Embree: geomID invalid on a miss).
+RTCRayHit first_hit(RTCScene scene, const Vec3<double>& o, const Vec3<double>& dir, float tfar) {
+  RTCRayHit r{};
+  r.ray.org_x = static_cast<float>(o.x());
+  r.ray.org_y = static_cast<float>(o.y());
+  r.ray.org_z = static_cast<float>(o.z());
+  r.ray.dir_x = static_cast<float>(dir.x());
+  r.ray.dir_y = static_cast<float>(dir.y());
+  r.ray.dir_z = static_cast<float>(dir.z());
+  r.ray.tnear = 0.0f;
+  r.ray.tfar = tfar;
+  r.ray.mask = 0xFFFFFFFFu;
+  r.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  rtcIntersect1(scene, &ctx, &r);
+  return r;
+}
+
 Vec3<double> unproject(const Mat4<double>& inv, double x, double y, double z) {
   const Vec4<double> h = inv * Vec4<double>(x, y, z, 1.0);
   return h.head<3>() / h.w();
@@ -54,20 +73,7 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
   const double zn = near_ndc_z(*scene_.convention), zf = far_ndc_z(*scene_.convention);
   const Vec3<double> o = unproject(inverse_clip_, ndc.x(), ndc.y(), zn);
   const Vec3<double> dir = (unproject(inverse_clip_, ndc.x(), ndc.y(), 0.5 * (zn + zf)) - o).normalized();
-  RTCRayHit rh{};
-  rh.ray.org_x = static_cast<float>(o.x());
-  rh.ray.org_y = static_cast<float>(o.y());
-  rh.ray.org_z = static_cast<float>(o.z());
-  rh.ray.dir_x = static_cast<float>(dir.x());
-  rh.ray.dir_y = static_cast<float>(dir.y());
-  rh.ray.dir_z = static_cast<float>(dir.z());
-  rh.ray.tnear = 0.0f;
-  rh.ray.tfar = std::numeric_limits<float>::infinity();
-  rh.ray.mask = 0xFFFFFFFFu;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  rtcIntersect1(embree_->handle(), &ctx, &rh);
+  const RTCRayHit rh = first_hit(embree_->handle(), o, dir, std::numeric_limits<float>::infinity());
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return Cause::Unexplained;
   const auto& mesh = s.objects[rh.hit.geomID].mesh;
   const auto& tri = mesh.triangles[rh.hit.primID];
@@ -131,20 +137,9 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
     const double mx = q.x() + dx * texel_ndc, my = q.y() + dy * texel_ndc;
     const Vec3<double> a = unproject(inv, mx, my, zn), b = unproject(inv, mx, my, zf);
     const Vec3<double> ray_dir = (b - a).normalized();
-    RTCRayHit r{};
-    r.ray.org_x = static_cast<float>(a.x());
-    r.ray.org_y = static_cast<float>(a.y());
-    r.ray.org_z = static_cast<float>(a.z());
-    r.ray.dir_x = static_cast<float>(ray_dir.x());
-    r.ray.dir_y = static_cast<float>(ray_dir.y());
-    r.ray.dir_z = static_cast<float>(ray_dir.z());
-    r.ray.tnear = 0.0f;
-    r.ray.tfar = static_cast<float>((b - a).norm());
-    r.ray.mask = 0xFFFFFFFFu;
-    r.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    RTCRayHit r = first_hit(embree_->handle(), a, ray_dir, static_cast<float>((b - a).norm()));
     RTCIntersectContext c;
     rtcInitIntersectContext(&c);
-    rtcIntersect1(embree_->handle(), &c, &r);
     if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) return true;
     const auto biased = [&](double t_hit) {
       const double at = depth(a + t_hit * ray_dir);

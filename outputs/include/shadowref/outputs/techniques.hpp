@@ -3,7 +3,7 @@
 // A technique name is what a scene's `expect` keys, a candidate's declaration, the renderer's
 // `--technique`, the judge's threshold and the CTest case names all use. The renderer's table
 // (renderer/renderer.cpp) is checked at compile time against this list, entry by entry; the CMake
-// test registration reads the quoted names below (cmake/Techniques.cmake), so keep one entry per
+// test registration reads the quoted names below (cmake/ContractNames.cmake), so keep one entry per
 // line in the form {"name", TechniqueFamily::...}.
 #pragma once
 
