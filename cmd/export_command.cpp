@@ -412,7 +412,7 @@ void register_export_command(CLI::App& app, int& exit_code) {
       "D3DX layout, reference masks, and a README saying what to render and how to name the files.");
   cmd->add_option("--out", args->out, "the pack folder")->required();
   cmd->add_option("--scenes", args->scenes, "globs over scene names (default: the default catalogue)");
-  cmd->add_option("--catalogue", args->catalogue, "scene folder (default: the source tree's conformance/scenes)");
+  cmd->add_option("--catalogue", args->catalogue, "scene folder (default: the installed catalogue; from the build tree, the source tree's)");
   cmd->add_option("--cache", args->cache, "reference cache folder, kept between runs (default: none; the references are computed inside the "
                   "pack's staging folder, and nothing is written outside --out). `shadowref conform --out O` keeps "
                   "its cache in O/reference-cache: name it to reuse conform's references");
