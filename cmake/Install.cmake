@@ -24,8 +24,10 @@ configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/shadowrefConfig.cmake.
   ${PROJECT_BINARY_DIR}/shadowrefConfig.cmake INSTALL_DESTINATION ${SHADOWREF_INSTALL_CMAKEDIR})
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/shadowrefConfigVersion.cmake
   COMPATIBILITY SameMinorVersion ARCH_INDEPENDENT)
+configure_file(${PROJECT_SOURCE_DIR}/property_tests/shadowrefProperties.cmake.in
+  ${PROJECT_BINARY_DIR}/shadowrefProperties.cmake @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/shadowrefConfig.cmake ${PROJECT_BINARY_DIR}/shadowrefConfigVersion.cmake
-  ${PROJECT_SOURCE_DIR}/property_tests/shadowrefProperties.cmake DESTINATION ${SHADOWREF_INSTALL_CMAKEDIR})
+  ${PROJECT_BINARY_DIR}/shadowrefProperties.cmake DESTINATION ${SHADOWREF_INSTALL_CMAKEDIR})
 
 install(FILES
   ${PROJECT_SOURCE_DIR}/property_tests/math_properties_test.cpp ${PROJECT_SOURCE_DIR}/property_tests/property_main.cpp
