@@ -103,11 +103,12 @@ standalone)
     "$3" conform --catalogue scenes --scenes ground_sphere --candidate-dir mine --technique volume-zfail --out verdict
   }
   if [ "$(id -u)" = 0 ]; then hide=(unshare --mount --propagation private); else hide=(unshare --mount --map-root-user); fi
-  if "${hide[@]}" true 2>/dev/null; then
+  mkdir "$outside/probe"
+  if "${hide[@]}" mount -t tmpfs none "$outside/probe" 2>/dev/null; then
     "${hide[@]}" bash -c "$(declare -f judge); judge '$source_dir' '$outside' '$exe' hide" ||
       fail "export and conform with the installed binary, the source tree hidden, failed"
   else
-    echo "install test: no mount namespace (${hide[*]}): the source tree is not hidden in this run"
+    echo "install test: no tmpfs in a mount namespace (${hide[*]}): the source tree is not hidden in this run"
     (judge "$source_dir" "$outside" "$exe" show) || fail "export and conform with the installed binary failed"
   fi
   grep -q '"status": "PASS"' "$outside/work/pack/verdict/report.json" || fail "the verdict is not a PASS"
