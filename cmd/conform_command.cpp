@@ -168,7 +168,7 @@ void register_conform_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--gl", args->gl, "context: osmesa or egl")->capture_default_str();
   cmd->add_option("--out", args->out, "output folder: renders/, report.json, report/index.html")->capture_default_str();
   cmd->add_option("--cache", args->cache, "reference cache folder (default: OUT/reference-cache)");
-  cmd->add_option("--catalogue", args->catalogue, "scene folder (default: the source tree's conformance/scenes)");
+  cmd->add_option("--catalogue", args->catalogue, "scene folder (default: the installed catalogue; from the build tree, the source tree's)");
   cmd->add_option("--candidate-dir", args->candidate_dir,
                   "judge these renders instead of ours: DIR/<scene>/mask.png (or DIR/<scene>/<technique>/mask.png), "
                   "as `shadowref export` describes");

@@ -50,7 +50,7 @@ struct ExportArgs {
   std::string out;
   std::string scenes;
   std::string catalogue;
-  std::string cache = "conformance-out/reference-cache";
+  std::string cache;  // empty: a cache inside the staging folder, removed before the pack is committed
   int jobs = 0;
 };
 
@@ -239,39 +239,68 @@ std::string readme(const json& manifest) {
   std::string t =
       "# shadowref scene pack\n\n"
       "Render each scene below with your engine and let `shadowref conform` judge the shadows exactly as it judges\n"
-      "ours: pixel by pixel against a ray-traced reference, on the pixels whose answer is certain.\n\n"
-      "## What to render\n\n"
-      "For every scene folder `<scene>/`: the objects in `<scene>/meshes/` (OBJ or glTF, world space, right-handed,\n"
-      "y up, counter-clockwise = outside), seen through the camera of `<scene>/matrices.json` at the scene's resolution,\n"
-      "lit by its lights (homogeneous points: w = 1 a point light at xyz, w = 0 a directional light with xyz pointing\n"
-      "toward the light; spot and rect lights are listed with all their parameters). Faces turned away from a light are\n"
-      "in their own (attached) shadow: shadowed in the mask.\n\n"
+      "ours: pixel by pixel against a ray-traced reference, on the pixels whose answer is certain. The pack stands\n"
+      "alone: every command below runs in this folder, with no shadowref source tree.\n\n"
+      "## The world\n\n"
+      "Right-handed, y up: every position, direction and mesh in this pack is in that one world frame. The objects\n"
+      "are in `<scene>/meshes/` (OBJ or glTF, world space, counter-clockwise = outside), seen through the camera of\n"
+      "`<scene>/matrices.json` at the scene's resolution, lit by its lights: `homogeneous` (x, y, z, w) is w = 1 a\n"
+      "point light at xyz, w = 0 a directional light with xyz pointing toward the light; spot and rect lights are\n"
+      "listed with all their parameters, and the mask is the visibility of the light's homogeneous point.\n"
+      "**Faces turned away from a light are shadowed** (their own, attached shadow: 0 in the mask), not lit.\n\n"
+      "## The matrices\n\n"
       "`matrices.json` has, under `conventions`, the camera and every light's shadow-map views in each depth convention\n"
       "we render and judge in: `gl` (right-handed, -1..1), `gl-zo` (right-handed, 0..1), `reversed-z` (0..1 reversed,\n"
       "float depth, GREATER) and `d3d` (truly left-handed: the world mirrored in z by `world_from_scene`, then a\n"
-      "left-handed look-at and projection, 0..1). Use the one your engine works in; `projection` has an infinite far\n"
-      "plane, `projection_finite` a far plane behind the whole scene. Every matrix is given in canonical (column\n"
-      "vectors) and D3DX (row vectors) layout. Pixel centres: `ndc.x = 2 (x + 0.5) / W - 1`, `ndc.y = 1 - 2 (y + 0.5) / H`,\n"
-      "row 0 at the top (remove Direct3D 9's half-pixel offset).\n\n"
+      "left-handed look-at and projection, 0..1). Use the one your engine works in: `conventions.<name>.view`,\n"
+      "`.projection` (an infinite far plane), `.projection_finite` (a far plane behind the whole scene),\n"
+      "`.view_projection`, `.shadow_map_bias` and `.light_views[<light>].views[<view>]` (`view`, `projection`,\n"
+      "`shadow_from_scene`; a cube has 6 views: +x, -x, +y, -y, +z, -z). Every matrix is given in canonical (column\n"
+      "vectors, v' = M v) and D3DX (row vectors, v' = v M: the transpose) layout. Pixel centres:\n"
+      "`ndc.x = 2 (x + 0.5) / W - 1`, `ndc.y = 1 - 2 (y + 0.5) / H`, row 0 at the top (remove Direct3D 9's\n"
+      "half-pixel offset).\n\n"
       "## What to write\n\n"
       "One folder per scene, named after it, holding the shadow mask your technique computes:\n\n"
       "```\n"
       "my-renders/<scene>/mask.png        one light: 8-bit grey PNG, W x H, row 0 at the top\n"
       "my-renders/<scene>/mask_<i>.png    several lights: one mask per light, in the order of matrices.json\n"
+      "my-renders/<scene>/candidate.json  optional: who made the masks, and how (below)\n"
       "```\n\n"
       "Each pixel answers \"is the surface seen through this pixel centre lit by this light?\": **255 lit, 0 shadowed,\n"
-      "128 no surface** (background). Shadow only — no shading, no ambient, no spot-cone falloff (a spot light's cone is\n"
-      "lighting, not shadow). `<scene>/reference/mask*.png` shows the expected answer; `decided*.png` marks (255) the\n"
-      "pixels that are judged. Optionally add `shaded.png` (RGB) for the report.\n\n"
-      "## How to get the verdict\n\n"
-      "```sh\n"
-      "shadowref conform --candidate-dir my-renders --technique shadowmap --out my-verdict\n"
+      "128 no surface** (background). The encoding is strict: a mask holding any other value (a 10 or a 250 from\n"
+      "filtering or gamma) is refused, with one line naming the file, how many pixels are off and the first one.\n"
+      "Shadow only: no shading, no ambient, no spot-cone falloff (a spot light's cone is lighting, not shadow).\n"
+      "`<scene>/reference/mask*.png` shows the expected answer; `decided*.png` marks (255) the pixels that are judged.\n"
+      "Optionally add `shaded.png` (RGB) for the report.\n\n"
+      "`candidate.json`, beside each scene's masks, declares the producer and the settings the judge may explain\n"
+      "wrong pixels by (every key is optional; the report lists the ones it assumed):\n\n"
+      "```json\n"
+      "{\n"
+      "  \"producer\": \"my-engine\",       \"version\": \"4.2.1\",\n"
+      "  \"technique\": \"shadowmap\",      \"convention\": \"gl\",\n"
+      "  \"shadow_map_size\": 2048,       \"filter_radius_texels\": 1,\n"
+      "  \"slope_bias_texels\": 2,        \"constant_bias\": 0.0,\n"
+      "  \"light_views\": \"pack\"\n"
+      "}\n"
       "```\n\n"
-      "`--technique` picks the threshold (our technique names: planar, volume-*, shadowmap, shadowmap-pcf,\n"
-      "shadowmap-rgba8; any other name gets the strictest) and the catalogue's expectations (a scene where the\n"
-      "technique is known to fail expects a FAIL: see `manifest.json`). The table, `my-verdict/report.json` and\n"
-      "`my-verdict/report/index.html` (reference, your mask and the error image side by side) follow.\n"
-      "Exit code: 0 every case PASS or XFAIL, 1 quality warnings, 2 failures.\n\n"
+      "`technique`: how it is judged; `convention`: gl, gl-zo, reversed-z or d3d; `shadow_map_size`: texels per side\n"
+      "(16 .. 16384); `filter_radius_texels`: how far the filter reaches beyond the centre texel (0 one tap, 1 a 3x3\n"
+      "PCF box); `slope_bias_texels`: the slope-scaled bias as the depth change across this many texels\n"
+      "(glPolygonOffset's factor); `constant_bias`: world units along the light ray; `light_views`: `pack` when your\n"
+      "shadow maps use the light views of matrices.json (their texel grid is known), `own` when your engine fits its own.\n\n"
+      "## How to get the verdict\n\n"
+      "In this folder:\n\n"
+      "```sh\n"
+      "shadowref conform --catalogue scenes --candidate-dir my-renders --technique shadowmap --out my-verdict\n"
+      "shadowref conform --catalogue scenes --scenes ground_sphere --candidate-dir my-renders --technique shadowmap --out my-verdict\n"
+      "```\n\n"
+      "`--catalogue scenes` is this pack's copy of the scene files (the references are recomputed from them into\n"
+      "`my-verdict/reference-cache`); `--scenes` picks some (globs over the names below). `--technique` picks the\n"
+      "threshold (our technique names: planar, volume-*, shadowmap, shadowmap-pcf, shadowmap-rgba8; any other name\n"
+      "gets the strictest) and the catalogue's expectations (a scene where the technique is known to fail expects a\n"
+      "FAIL: see `manifest.json`). The table, `my-verdict/report.json` and `my-verdict/report/index.html` (reference,\n"
+      "your mask and the error image side by side) follow. Exit code: 0 every case PASS or XFAIL, 1 quality warnings,\n"
+      "2 failures.\n\n"
       "## Scenes\n\n| scene | resolution | lights | description |\n| --- | --- | --- | --- |\n";
   for (const json& s : manifest["scenes"])
     t += "| " + s["name"].get<std::string>() + " | " + std::to_string(s["resolution"][0].get<int>()) + "x" +
@@ -313,6 +342,10 @@ void run_export(const ExportArgs& a) {
   if (ec) throw BadInput("--out " + a.out + ": " + ec.message());
   conform::ReferenceSettings settings;
   settings.threads = a.jobs;
+  // Export writes only under --out: without --cache, the references are computed into the staging
+  // folder and the cache is dropped before the commit (the pack keeps copies in <scene>/reference/).
+  const fs::path private_cache = out / ".reference-cache";
+  const fs::path cache = a.cache.empty() ? private_cache : fs::path(a.cache);
   json manifest;
   manifest["tool"] = "shadowref export";
   manifest["mask_values"] = {{"lit", outputs::kMaskLit}, {"shadowed", outputs::kMaskShadowed}, {"no_surface", outputs::kMaskNoSurface}};
@@ -346,7 +379,7 @@ void run_export(const ExportArgs& a) {
     json m = matrices(s);
     m["objects"] = objects;
     write_text(dir / "matrices.json", m.dump(2) + "\n");
-    const conform::CachedReference ref = conform::ensure_reference(scene::prepare_scene(s), a.cache, settings);
+    const conform::CachedReference ref = conform::ensure_reference(scene::prepare_scene(s), cache, settings);
     fs::remove_all(dir / "reference", ec);
     fs::create_directories(dir / "reference");
     for (const auto& e : fs::directory_iterator(ref.dir))
@@ -362,6 +395,7 @@ void run_export(const ExportArgs& a) {
     std::printf("exported %s (%zu objects, %zu light(s), reference %s)\n", s.name.c_str(), s.objects.size(),
                 s.lights.size(), ref.computed ? "computed" : "cached");
   }
+  if (a.cache.empty()) fs::remove_all(private_cache);
   write_text(out / "README.md", readme(manifest));
   write_text(out / "manifest.json", manifest.dump(2) + "\n");  // last: its presence marks a complete pack
   staging.commit();
@@ -378,8 +412,10 @@ void register_export_command(CLI::App& app, int& exit_code) {
       "D3DX layout, reference masks, and a README saying what to render and how to name the files.");
   cmd->add_option("--out", args->out, "the pack folder")->required();
   cmd->add_option("--scenes", args->scenes, "globs over scene names (default: the default catalogue)");
-  cmd->add_option("--catalogue", args->catalogue, "scene folder (default: the source tree's conformance/scenes)");
-  cmd->add_option("--cache", args->cache, "reference cache (shared with shadowref conform's default)")->capture_default_str();
+  cmd->add_option("--catalogue", args->catalogue, "scene folder (default: the installed catalogue; from the build tree, the source tree's)");
+  cmd->add_option("--cache", args->cache, "reference cache folder, kept between runs (default: none; the references are computed inside the "
+                  "pack's staging folder, and nothing is written outside --out). `shadowref conform --out O` keeps "
+                  "its cache in O/reference-cache: name it to reuse conform's references");
   cmd->add_option("--jobs", args->jobs, "reference threads (0: all cores)")->check(CLI::Range(0, 256));
   cmd->callback([args, &exit_code] {
     run_export(*args);

@@ -33,7 +33,7 @@ namespace fs = std::filesystem;
 struct GoldensArgs {
   bool check = false;
   bool update = false;
-  std::string dir = SHADOWREF_GOLDEN_IMAGES_DIR;
+  std::string dir = conform::default_golden_images().string();
   std::string scenes;
   std::string catalogue;
   std::string cache;
@@ -171,7 +171,7 @@ void register_goldens_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--update", args->update, "rewrite the golden images from fresh references");
   cmd->add_option("--dir", args->dir, "the golden image folder")->capture_default_str();
   cmd->add_option("--scenes", args->scenes, "globs over scene names (default: the default catalogue, no 'large' scenes)");
-  cmd->add_option("--catalogue", args->catalogue, "scene folder (default: the source tree's conformance/scenes)");
+  cmd->add_option("--catalogue", args->catalogue, "scene folder (default: the installed catalogue; from the build tree, the source tree's)");
   cmd->add_option("--cache", args->cache, "take references from this conformance cache (keyed by this executable)");
   cmd->add_option("--jobs", args->jobs, "reference threads (0: all cores)")->check(CLI::Range(0, 256));
   cmd->callback([args, &exit_code] { exit_code = run_goldens(*args); });

@@ -6,6 +6,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "run_command.hpp"
@@ -71,6 +74,32 @@ TEST(ExportCommand, PackHasEveryConventionAndTheyPutPointsOnTheSamePixel) {
     EXPECT_GT(t[2] / t[3], 0.0) << name;
     EXPECT_LT(t[2] / t[3], 1.0) << name;
   }
+  fs::remove_all(root);
+}
+
+// Without --cache, export writes nothing outside --out (no cache in the working folder, none left in
+// the pack), and the pack's README gives what an engine team needs with the commands run from the pack.
+TEST(ExportCommand, WritesOnlyUnderOutAndItsReadmeStandsAlone) {
+  const fs::path root = fs::temp_directory_path() / ("shadowref_export_only_out_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  fs::create_directories(root / "cwd");
+  const fs::path before = fs::current_path();
+  fs::current_path(root / "cwd");  // the child inherits it
+  const test::CommandResult r = test::run_command({SHADOWREF_EXE, "export", "--scenes", "ground_sphere", "--out", "pack"});
+  fs::current_path(before);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(root / "cwd")) names.push_back(e.path().filename().string());
+  EXPECT_EQ(names, std::vector<std::string>{"pack"});
+  const fs::path pack = root / "cwd" / "pack";
+  EXPECT_FALSE(fs::exists(pack / ".reference-cache"));
+  EXPECT_TRUE(fs::exists(pack / "ground_sphere" / "reference" / "mask.png"));
+  std::ifstream in(pack / "README.md");
+  const std::string readme((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const char* needed : {"shadowref conform --catalogue scenes --candidate-dir my-renders", "Right-handed, y up",
+                             "Faces turned away from a light are shadowed", "any other value", "is refused",
+                             "\"light_views\": \"pack\"", "\"producer\"", "\"shadow_map_size\"", "conventions.<name>.view"})
+    EXPECT_NE(readme.find(needed), std::string::npos) << needed;
   fs::remove_all(root);
 }
 

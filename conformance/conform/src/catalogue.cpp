@@ -1,4 +1,4 @@
-// catalogue.cpp — selecting scene files by glob (catalogue.hpp).
+// catalogue.cpp — where the data is (built or installed) and selecting scene files by glob (catalogue.hpp).
 #include "shadowref/conform/catalogue.hpp"
 
 #include <fnmatch.h>
@@ -24,7 +24,22 @@ bool tagged_large(const std::filesystem::path& file) {
 
 }  // namespace
 
-std::filesystem::path default_catalogue() { return std::filesystem::path(SHADOWREF_CATALOGUE_DIR); }
+std::filesystem::path data_dir() {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) return SHADOWREF_SOURCE_DIR;
+  const fs::path installed = exe.parent_path().parent_path() / "share" / "shadowref";
+  if (fs::is_directory(installed, ec)) return installed;
+  const fs::path build = fs::weakly_canonical(SHADOWREF_BUILD_DIR, ec);
+  if (!ec && std::mismatch(build.begin(), build.end(), exe.begin(), exe.end()).first == build.end())
+    return SHADOWREF_SOURCE_DIR;
+  return installed;
+}
+
+std::filesystem::path default_catalogue() { return data_dir() / "conformance" / "scenes"; }
+
+std::filesystem::path default_golden_images() { return data_dir() / "goldens" / "images"; }
 
 std::vector<std::string> split_list(const std::string& text) {
   std::vector<std::string> out;

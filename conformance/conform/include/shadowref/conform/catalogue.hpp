@@ -13,8 +13,19 @@
 
 namespace shadowref::conform {
 
-// The default catalogue: <source tree>/conformance/scenes (a compile-time path).
+// The folder the data lives in, which keeps the source tree's layout (conformance/scenes with its
+// meshes, goldens/images). Installed, it is found relative to the running binary (/proc/self/exe):
+// <prefix>/bin/shadowref reads <prefix>/share/shadowref. A binary inside the build tree (the build's
+// `shadowref` and every test) reads the source tree, a compile-time path; so does a binary that
+// cannot see /proc/self/exe. An installed binary whose data is missing still answers the installed
+// folder, so that the error names it and no source path is ever used outside the build tree.
+std::filesystem::path data_dir();
+
+// The default catalogue: data_dir()/conformance/scenes.
 std::filesystem::path default_catalogue();
+
+// The reference masks `shadowref goldens` checks: data_dir()/goldens/images.
+std::filesystem::path default_golden_images();
 
 // The scene files selected by `patterns` (may be empty: the default selection), sorted by name,
 // each once. Throws std::invalid_argument when a pattern matches nothing or the catalogue is not a
