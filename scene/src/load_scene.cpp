@@ -307,8 +307,8 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& file,
   if (auto inv = root.optional("invariants")) {
     for (std::size_t i = 0; i < inv->array_size(); ++i) {
       const JsonNode item = inv->element(i);
-      const std::string name = item.string();
-      if (name != "no-cast-shadow") item.fail("unknown invariant '" + name + "' (known: no-cast-shadow)");
+      const std::string invariant = item.string();
+      if (invariant != "no-cast-shadow") item.fail("unknown invariant '" + invariant + "' (known: no-cast-shadow)");
       scene.invariant_no_cast_shadow = true;
     }
   }
