@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "shadowref/report/comparison_json.hpp"
+#include "shadowref/report/ci_summary.hpp"
 #include "shadowref/report/html.hpp"
 
 namespace shadowref::conform {
@@ -130,6 +131,9 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
     if (!f) throw std::runtime_error("cannot write " + r.report_json.string());
   }
   report::write_html(j, r.report_html);
+  // For CI: a JUnit XML file and a Markdown summary beside report.json.
+  report::write_junit(j, r.report_json.parent_path() / "report.junit.xml");
+  report::write_markdown(j, r.report_json.parent_path() / "summary.md");
 }
 
 }  // namespace shadowref::conform

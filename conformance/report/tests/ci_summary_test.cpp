@@ -1,0 +1,42 @@
+// ci_summary_test.cpp — the JUnit XML and Markdown summary of a conformance run (ci_summary.hpp),
+// on a synthetic report.json: every status lands where a CI reader looks for it.
+#include <gtest/gtest.h>
+
+#include "shadowref/report/ci_summary.hpp"
+
+namespace shadowref::report {
+namespace {
+
+nlohmann::json sample() {
+  using nlohmann::json;
+  json r;
+  r["convention"] = "gl";
+  r["cases"] = json::array();
+  r["cases"].push_back({{"scene", "ground_sphere"}, {"technique", "shadowmap"}, {"status", "PASS"}, {"seconds", 0.5}});
+  r["cases"].push_back({{"scene", "ground_sphere"}, {"technique", "planar"}, {"status", "FAIL"},
+                        {"comparison", {{"reasons", {"1 unexplained core pixel(s) <here>"}}}}});
+  r["cases"].push_back({{"scene", "cornell_box"}, {"technique", "planar"}, {"status", "XFAIL"}, {"why", "walls & ceiling"}});
+  r["cases"].push_back({{"scene", "cornell_box"}, {"technique", "shadowmap"}, {"status", "ERROR"}, {"error", "no mask.png"}});
+  return r;
+}
+
+TEST(CiSummary, JUnitCountsFailuresAndErrorsAndEscapes) {
+  const std::string x = render_junit(sample());
+  EXPECT_NE(x.find("tests=\"4\" failures=\"1\" errors=\"1\""), std::string::npos) << x;
+  EXPECT_NE(x.find("<testcase classname=\"ground_sphere\" name=\"planar\""), std::string::npos) << x;
+  EXPECT_NE(x.find("<failure message=\"FAIL: 1 unexplained core pixel(s) &lt;here&gt;\""), std::string::npos) << x;
+  EXPECT_NE(x.find("<error message=\"no mask.png\"/>"), std::string::npos) << x;
+  EXPECT_NE(x.find("XFAIL: walls &amp; ceiling"), std::string::npos) << x;
+}
+
+TEST(CiSummary, MarkdownHasTheCountsTheTableAndTheProblems) {
+  const std::string m = render_markdown(sample());
+  EXPECT_NE(m.find("4 cases: 1 PASS, 1 XFAIL, 0 WARN, 1 FAIL, 0 XPASS, 1 ERROR (convention gl)"), std::string::npos) << m;
+  EXPECT_NE(m.find("| scene | shadowmap | planar |"), std::string::npos) << m;
+  EXPECT_NE(m.find("| ground_sphere | PASS | **FAIL** |"), std::string::npos) << m;
+  EXPECT_NE(m.find("- **FAIL** ground_sphere × planar: 1 unexplained core pixel(s) <here>"), std::string::npos) << m;
+  EXPECT_NE(m.find("- **XFAIL** cornell_box × planar: expected to fail: walls & ceiling"), std::string::npos) << m;
+}
+
+}  // namespace
+}  // namespace shadowref::report
