@@ -5,6 +5,7 @@
 // --help always lists exactly what `--technique` accepts.
 #include <CLI/CLI.hpp>
 
+#include <chrono>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -69,9 +70,12 @@ void run_render(const RenderArgs& a) {
   prepare.shadow_map_size = a.shadow_map_size;
   const RunConvention& convention = parse_convention(a.convention);
   // Everything that depends on the scene alone, once, outside the timed frames.
+  const auto prepare_start = std::chrono::steady_clock::now();
   const scene::PreparedScene prepared = scene::prepare_scene(sc, convention, prepare);
+  const double prepare_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - prepare_start).count();
   renderer::Renderer r(api, driver);
-  std::cerr << "shadowref render: " << sc.name << " (convention " << convention.name << ") on " << r.info().renderer << " (" << renderer::to_string(api)
+  std::cerr << "shadowref render: " << sc.name << " (convention " << convention.name << ", prepared in " << prepare_ms
+            << " ms: casters, adjacency, light fits) on " << r.info().renderer << " (" << renderer::to_string(api)
             << ", OpenGL " << r.info().version << ")\n";
   for (const renderer::Technique* t : chosen) {
     const renderer::RenderResult res = r.render(prepared, t->name, options);
