@@ -290,6 +290,10 @@ std::vector<Case> make_cases() {
                      write_png(dir / "cand" / "mask.png", 16, 16, 3, 255);
                    },
                    compare, 4, "channel"});
+  // A technique name that would climb out of --out (it becomes a folder name) is refused.
+  cases.push_back({"technique_climbs_out_conform", [](const fs::path& dir) { fs::create_directories(dir / "cand"); },
+                   {"conform", "--candidate-dir", "@/cand", "--technique", "../../escaped", "--out", "@/out"}, 4,
+                   "--technique '../../escaped'"});
   // Mask values other than 255 / 0 / 128 are refused, not rounded (a mask written as 10 / 250).
   cases.push_back({"off_values_mask_compare",
                    [ref_ok](const fs::path& dir) {

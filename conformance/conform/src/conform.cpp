@@ -15,6 +15,7 @@
 #include "report_writer.hpp"
 #include "shadowref/renderer/renderer.hpp"
 #include "shadowref/convention.hpp"
+#include "shadowref/scene/identifier.hpp"
 #include "shadowref/scene/load_scene.hpp"
 #include "shadowref/scene/prepared_scene.hpp"
 #include "shadowref/outputs/candidate.hpp"
@@ -94,6 +95,9 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
     for (const renderer::Technique& t : renderer::techniques()) result.techniques.emplace_back(t.name);
   } else {
     for (const std::string& t : o.techniques) {
+      // A technique's name becomes folder names under --out (renders/<scene>/<technique>,
+      // errors/<scene>/<technique>): the scene files' safe-identifier rule holds for it too.
+      if (const auto problem = scene::identifier_problem(t)) throw std::invalid_argument("--technique '" + t + "': " + *problem);
       const bool extra = std::any_of(o.extra_techniques.begin(), o.extra_techniques.end(),
                                      [&](const ExtraTechnique& e) { return e.name == t; });
       if (!o.candidate_dir && !extra && !renderer::find_technique(t))
