@@ -7,7 +7,7 @@
 // Why fixed point and not the classic `fract(d · (1, 255, 255², 255³))` chain: that chain loses
 // bits to float rounding and breaks at d = 1 (fract(1) = 0), so it is neither exact nor monotonic;
 // here every step is one correctly rounded multiply, an exact rounding and integer shifts, so that
-// the GLSL mirror (conformance/renderer/shaders.cpp: `pack_depth_rgba8`, `unpack_depth_rgba8`)
+// the GLSL mirror (renderer/shaders.cpp: `pack_depth_rgba8`, `unpack_depth_rgba8`)
 // gives the very same bytes as these functions with T = float. The packed 24 bits equal the
 // precision of a DEPTH_COMPONENT24 buffer.
 //
