@@ -106,7 +106,8 @@ TEST_F(ReportHtml, SyntheticReportHasEveryImageAndOneRowPerCase) {
   const Dom d = load(dir / "index.html");
   ASSERT_TRUE(d.checked) << "the page's image check did not run:\n" << d.html.substr(0, 2000);
   EXPECT_EQ(d.rows, 6);
-  EXPECT_EQ(d.images, 6 * 4);
+  // Per case: reference, candidate, error, shaded, and the viewer's two stacked images.
+  EXPECT_EQ(d.images, 6 * (4 + 2));
   EXPECT_EQ(d.broken, 0);
   // The why is shown, escaped.
   EXPECT_NE(d.html.find("a &lt;known&gt; limit &amp; its why"), std::string::npos);
@@ -134,9 +135,17 @@ TEST_F(ReportHtml, RealConformRunRendersEveryImage) {
   const Dom d = load(dir / "report" / "index.html");
   ASSERT_TRUE(d.checked);
   EXPECT_EQ(d.rows, 4);
-  // ground_sphere: one light (3 masks + shaded); two_lights: two lights (6 masks + shaded).
-  EXPECT_EQ(d.images, 2 * 4 + 2 * 7);
+  // ground_sphere: one light (3 masks + shaded + the viewer's reference, candidate and decided
+  // overlay); two_lights: two lights (6 masks + shaded + two viewers).
+  EXPECT_EQ(d.images, 2 * (4 + 3) + 2 * (7 + 2 * 3));
   EXPECT_EQ(d.broken, 0);
+  // The image-diff modes are there for every light: swipe, flicker, amplification, decided overlay.
+  for (const char* mode : {"shadowrefView(this,'swipe')", "shadowrefView(this,'flicker')", "shadowrefView(this,'amplify')",
+                           "shadowrefOverlay(this)"}) {
+    std::size_t n = 0;
+    for (std::size_t at = d.html.find(mode); at != std::string::npos; at = d.html.find(mode, at + 1)) ++n;
+    EXPECT_EQ(n, 6u) << mode;
+  }
 }
 
 }  // namespace

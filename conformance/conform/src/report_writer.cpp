@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "shadowref/report/comparison_json.hpp"
+#include "shadowref/outputs/file_names.hpp"
 #include "shadowref/report/ci_summary.hpp"
 #include "shadowref/report/html.hpp"
 
@@ -104,6 +105,8 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
         json l;
         l["mask"] = m;
         l["reference"] = copy_in(c.reference_dir / m, report_dir, "img/" + c.scene + "/reference_" + m);
+        const std::string d = outputs::decided_name(i, c.comparison->masks.size());
+        l["decided"] = copy_in(c.reference_dir / d, report_dir, "img/" + c.scene + "/reference_" + d);
         l["candidate"] = copy_in(c.candidate_dir / m, report_dir, base + "candidate_" + m);
         const fs::path err = fs::path(c.error_images[i]).is_absolute() ? fs::path(c.error_images[i])
                                                                        : c.candidate_dir / c.error_images[i];

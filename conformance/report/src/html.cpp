@@ -92,6 +92,13 @@ table.metrics td:first-child { color:var(--muted); }
 figure { margin:0 0 8px; display:inline-block; }
 figure img { width:192px; height:auto; image-rendering:pixelated; border:1px solid var(--line); background:#888; display:block; }
 figure img.broken { outline:3px dashed var(--fail); min-height:40px; }
+.viewer { display:inline-block; vertical-align:top; margin-left:8px; }
+.viewer .stage { position:relative; width:256px; }
+.viewer .stage img { width:256px; height:auto; image-rendering:pixelated; display:block; border:1px solid var(--line); }
+.viewer .stage img.top { position:absolute; left:0; top:0; }
+.viewer .stage img.overlay { position:absolute; left:0; top:0; opacity:0.45; mix-blend-mode:multiply; display:none; }
+.viewer button.on { font-weight:bold; }
+.viewer input[type=range] { width:256px; }
 figcaption { font-size:12px; color:var(--muted); margin-top:2px; }
 .notes { font-size:12px; color:var(--muted); }
 .filters button { margin-right:6px; border:1px solid var(--line); background:#fff; border-radius:14px; padding:3px 12px; cursor:pointer; }
@@ -113,6 +120,41 @@ function shadowrefCheckImages() {
   document.getElementById('broken-images').textContent = broken.join('\n');
 }
 window.addEventListener('load', shadowrefCheckImages);
+// Image-diff modes of one case's viewer: swipe (slider = where the candidate starts), flicker
+// (reference and candidate alternate every 0.5 s), amplify (the error image, slider = contrast).
+function shadowrefView(button, mode) {
+  var v = button.closest('.viewer'), base = v.querySelector('img.base'), top = v.querySelector('img.top');
+  var slider = v.querySelector('input[type=range]'), note = v.querySelector('.notes');
+  if (v.shadowrefTimer) { clearInterval(v.shadowrefTimer); v.shadowrefTimer = null; }
+  var bs = v.querySelectorAll('button:not(:last-of-type)');
+  for (var i = 0; i < bs.length; ++i) bs[i].classList.remove('on');
+  button.classList.add('on');
+  v.setAttribute('data-mode', mode);
+  base.style.filter = ''; top.style.display = ''; slider.value = 50;
+  if (mode === 'swipe') {
+    base.src = v.getAttribute('data-ref'); top.style.clipPath = 'inset(0 0 0 50%)';
+    note.textContent = 'swipe: reference left of the line, candidate right';
+  } else if (mode === 'flicker') {
+    base.src = v.getAttribute('data-ref'); top.style.clipPath = 'none';
+    v.shadowrefTimer = setInterval(function () { top.style.display = top.style.display === 'none' ? '' : 'none'; }, 500);
+    note.textContent = 'flicker: reference and candidate alternate';
+  } else {
+    base.src = v.getAttribute('data-err'); top.style.display = 'none';
+    base.style.filter = 'contrast(4) brightness(1.2)';
+    note.textContent = 'amplified error image (slider: contrast)';
+  }
+}
+function shadowrefSlide(slider) {
+  var v = slider.closest('.viewer'), mode = v.getAttribute('data-mode') || 'swipe';
+  if (mode === 'swipe') v.querySelector('img.top').style.clipPath = 'inset(0 0 0 ' + slider.value + '%)';
+  if (mode === 'amplify') v.querySelector('img.base').style.filter = 'contrast(' + (1 + slider.value / 10) + ') brightness(1.2)';
+}
+function shadowrefOverlay(button) {
+  var o = button.closest('.viewer').querySelector('img.overlay');
+  if (!o) return;
+  o.style.display = o.style.display === 'block' ? 'none' : 'block';
+  button.classList.toggle('on');
+}
 function shadowrefFilter(kind, button) {
   var rows = document.querySelectorAll('#cases tr.case');
   for (var i = 0; i < rows.length; ++i) {
@@ -134,6 +176,27 @@ void figure(std::ostringstream& h, const std::string& src, const std::string& ca
   }
   h << "<figure><a href=\"" << escape_html(src) << "\"><img src=\"" << escape_html(src) << "\" alt=\""
     << escape_html(caption) << "\" loading=\"eager\"></a><figcaption>" << escape_html(caption) << "</figcaption></figure>";
+}
+
+// The image-diff modes people use, on one light's images: side by side is the figures above; here
+// flicker (reference and candidate toggled), swipe (the candidate revealed from the left by a slider),
+// amplification (the error image's contrast raised) and the decided overlay (the reference's decided
+// pixels darkened over what is shown).
+void viewer(std::ostringstream& h, const json& l) {
+  const std::string ref = str(l, "reference", ""), cand = str(l, "candidate", ""), err = str(l, "error", ""),
+                    dec = str(l, "decided", "");
+  if (ref.empty() || cand.empty()) return;
+  h << "<div class=\"viewer\" data-ref=\"" << escape_html(ref) << "\" data-cand=\"" << escape_html(cand) << "\" data-err=\""
+    << escape_html(err) << "\"><div>"
+    << "<button onclick=\"shadowrefView(this,'swipe')\" class=\"on\">swipe</button> "
+    << "<button onclick=\"shadowrefView(this,'flicker')\">flicker</button> "
+    << "<button onclick=\"shadowrefView(this,'amplify')\">amplify error</button> "
+    << "<button onclick=\"shadowrefOverlay(this)\">decided overlay</button></div>"
+    << "<div class=\"stage\"><img class=\"base\" src=\"" << escape_html(ref) << "\" alt=\"reference\">"
+    << "<img class=\"top\" src=\"" << escape_html(cand) << "\" alt=\"candidate\" style=\"clip-path:inset(0 0 0 50%)\">";
+  if (!dec.empty()) h << "<img class=\"overlay\" src=\"" << escape_html(dec) << "\" alt=\"decided\">";
+  h << "</div><input type=\"range\" min=\"0\" max=\"100\" value=\"50\" oninput=\"shadowrefSlide(this)\">"
+    << "<div class=\"notes\">swipe: reference left of the line, candidate right</div></div>";
 }
 
 void metrics_table(std::ostringstream& h, const json& m) {
@@ -302,6 +365,7 @@ std::string render_html(const json& r) {
         figure(h, str(l, "reference", ""), "reference" + suffix);
         figure(h, str(l, "candidate", ""), "candidate" + suffix);
         figure(h, str(l, "error", ""), "error" + suffix + ": " + str(l.value("metrics", json::object()), "wrong") + " wrong");
+        viewer(h, l);
         if (i == 0) figure(h, str(c, "shaded", ""), "candidate shaded");
         h << "</div>";
       }
