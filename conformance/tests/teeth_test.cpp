@@ -10,6 +10,10 @@
 //                                     (labels, and the reference fixtures P<convention>_<scene>)
 //   conformance_teeth --survey        every row and control on the whole default catalogue: where
 //                                     each row is caught (for conformance/README.md's table)
+//   conformance_teeth --at SIZE       every row caught on its scenes at another size too, SIZE one of
+//                                     x2, x4 (times the resolution), 256x384 (non-square),
+//                                     map-512, map-1024, map-4096 (shadow-map rows only): the teeth do not
+//                                     depend on the catalogue's own resolution and map size
 //
 // References come from the cache the CTest fixtures fill (`shadowref conform --references-only`),
 // keyed by the `shadowref` executable built beside this one (ReferenceSettings::key_executable).
@@ -25,6 +29,7 @@
 
 #include "shadowref/conform/catalogue.hpp"
 #include "shadowref/conform/conform.hpp"
+#include "shadowref/outputs/techniques.hpp"
 #include "teeth_table.hpp"
 
 namespace shadowref::teeth {
@@ -33,6 +38,22 @@ namespace {
 using conform::Status;
 
 bool green(Status s) { return s == Status::Pass || s == Status::XFail; }
+
+// Another size for every row (`--at`): a resolution, or a map size for the shadow-map rows.
+struct Size {
+  std::string_view name;
+  double resolution_scale = 1.0;
+  int width = 0, height = 0;
+  int shadow_map_size = 0;  // 0: the row's own
+  // x4 is a documented command, not a test: a minute, and one row (half-texel-offset, pinned to
+  // 128-texel maps) meets a control that is an honest quality WARN there — 128 texels seen at 1024²
+  // leave explained staircases wider than half the edge pixels — while the variant still FAILs.
+  bool in_ctest = true;
+};
+constexpr Size kSizes[] = {
+    {"x2", 2.0, 0, 0, 0},          {"256x384", 1.0, 256, 384, 0},   {"map-512", 1.0, 0, 0, 512},
+    {"map-1024", 1.0, 0, 0, 1024}, {"map-4096", 1.0, 0, 0, 4096},   {"x4", 4.0, 0, 0, 0, false},
+};
 
 conform::ConformOptions options_for(const std::string& convention, int shadow_map_size,
                                     const std::vector<std::string>& scenes, const std::string& out) {
@@ -97,6 +118,42 @@ int run_row(const Row& row) {
                                                     : "NOT JUDGED: the control itself is not green here");
   }
   std::printf("  why: %s\n  report: %s\n", std::string(row.why).c_str(), r.report_html.string().c_str());
+  return missed ? 1 : 0;
+}
+
+// Every row at `size`, on its own scenes, next to its control at the same size. A map size applies
+// to the rows whose technique draws a shadow map and that do not pin their own map size.
+int run_at(const Size& size) {
+  int missed = 0, runs = 0;
+  for (const Row& row : rows()) {
+    const outputs::TechniqueName* t = outputs::find_technique_name(row.technique);
+    const bool shadow_map = t && t->family != outputs::TechniqueFamily::ExactGeometry;
+    if (size.shadow_map_size && (!shadow_map || row.shadow_map_size)) continue;
+    const Control control = control_of(row);
+    conform::ConformOptions o =
+        options_for(std::string(row.convention), size.shadow_map_size ? size.shadow_map_size : row.shadow_map_size,
+                    row.scene_list(), std::string(size.name) + "/" + std::string(row.name));
+    o.resolution_scale = size.resolution_scale;
+    o.width = size.width;
+    o.height = size.height;
+    o.write_report = false;
+    o.extra_techniques.push_back(variant_of(row));
+    o.techniques = {std::string(row.name), control.technique};
+    const conform::ConformResult r = conform::run_conform(o);
+    const auto variant = cases_of(r, std::string(row.name));
+    const auto right = cases_of(r, control.technique);
+    ++runs;
+    for (const std::string& scene : row.scene_list()) {
+      const conform::CaseResult& v = *variant.at(scene);
+      const conform::CaseResult& c = *right.at(scene);
+      const bool caught = v.status == Status::Fail && green(c.status);
+      missed += !caught;
+      std::printf("%-38s %-28s variant %s, control %s%s\n", std::string(row.name).c_str(), scene.c_str(),
+                  numbers(v).c_str(), conform::to_string(c.status),
+                  caught ? "" : green(c.status) ? "   <- NOT CAUGHT" : "   <- control not green");
+    }
+  }
+  std::printf("%s: %d rows run, %d (row, scene) pairs not caught\n", std::string(size.name).c_str(), runs, missed);
   return missed ? 1 : 0;
 }
 
@@ -173,6 +230,23 @@ int write_ctest_script(const std::filesystem::path& file, const std::string& fix
   };
   for (const Row& r : rows()) add(std::string(r.name), std::string(r.convention), r.scene_list());
   for (const Control& c : controls()) add(c.name, c.convention, c.scenes);
+  // Every row at the other sizes: the fixtures of every row; the resolution sizes run after the
+  // sweep at that resolution (conformance/tests/CMakeLists.txt), which fills the gl references
+  // they read, rather than computing them twice at once.
+  std::set<std::string> all;
+  for (const Row& r : rows())
+    for (const std::string& s : r.scene_list()) all.insert(fixture_prefix + std::string(r.convention) + "_" + s);
+  std::string fixtures;
+  for (const std::string& x : all) fixtures += (fixtures.empty() ? "" : ";") + x;
+  for (const Size& size : kSizes) {
+    if (!size.in_ctest) continue;
+    const std::string name = "conformance.teeth_at." + std::string(size.name);
+    const std::string after = size.name == "x2" ? "conformance.sweep.resolution-x2"
+                              : size.name == "256x384" ? "conformance.sweep.resolution-256x384" : "";
+    f << "add_test([=[" << name << "]=] [=[" << exe << "]=] --at [=[" << size.name << "]=])\n"
+      << "set_tests_properties([=[" << name << "]=] PROPERTIES LABELS [=[conformance;teeth;sweep;llvmpipe]=] FIXTURES_REQUIRED [=["
+      << fixtures << "]=] ENVIRONMENT LP_NUM_THREADS=1 TIMEOUT 600" << (after.empty() ? "" : " DEPENDS " + after) << ")\n";
+  }
   return f ? 0 : 1;
 }
 
@@ -184,6 +258,12 @@ int main_(int argc, char** argv) {
     return 0;
   }
   if (args.size() == 1 && args[0] == "--survey") return survey();
+  if (args.size() == 2 && args[0] == "--at") {
+    for (const Size& size : kSizes)
+      if (size.name == args[1]) return run_at(size);
+    std::fprintf(stderr, "conformance_teeth: no size '%s' (x2, x4, 256x384, map-512, map-1024, map-4096)\n", args[1].c_str());
+    return 4;
+  }
   if (args.size() == 4 && args[0] == "--ctest-script" && args[2] == "--fixture-prefix")
     return write_ctest_script(args[1], args[3], std::filesystem::absolute(argv[0]).string());
   if (args.size() == 1) {
@@ -194,7 +274,7 @@ int main_(int argc, char** argv) {
     std::fprintf(stderr, "conformance_teeth: no row or control '%s' (--list names them)\n", args[0].c_str());
     return 4;
   }
-  std::fprintf(stderr, "usage: conformance_teeth NAME | --list | --survey | --ctest-script FILE --fixture-prefix P\n");
+  std::fprintf(stderr, "usage: conformance_teeth NAME | --list | --survey | --at SIZE | --ctest-script FILE --fixture-prefix P\n");
   return 4;
 }
 
