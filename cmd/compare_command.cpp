@@ -21,6 +21,7 @@
 #include "shadowref/scene/scene.hpp"
 #include "shadowref/compare/compare.hpp"
 #include "shadowref/report/comparison_json.hpp"
+#include "shadowref/outputs/json_text.hpp"
 
 namespace shadowref::cli {
 namespace {
@@ -93,7 +94,7 @@ int run_compare(const CompareArgs& a) {
     j["technique"] = technique;
     j["error_images"] = errors;
     j["exit_code"] = code;
-    std::cout << j.dump(2) << "\n";
+    std::cout << outputs::json_text(j, 2) << "\n";
     return code;
   }
   std::printf("shadowref compare: %s against %s\n", a.candidate.c_str(), a.reference.c_str());

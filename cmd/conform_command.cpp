@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "numbers.hpp"
 #include "shadowref/conform/catalogue.hpp"
 #include "shadowref/conform/conform.hpp"
 #include "shadowref/renderer/gl_context.hpp"
@@ -55,12 +56,9 @@ int run_conform_command(const ConformArgs& a) {
   o.shadow_map_size = a.shadow_map_size;
   o.resolution_scale = a.resolution_scale;
   if (!a.resolution.empty()) {
-    int w = 0, h = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(a.resolution.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 1 || h < 1 || w > 16384 || h > 16384)
-      throw BadInput("--resolution '" + a.resolution + "': expected WxH with both in [1, 16384], e.g. 1024x768");
-    o.width = w;
-    o.height = h;
+    const Size2 size = parse_size("--resolution", a.resolution, 16384);  // the scene loader's limit
+    o.width = size.width;
+    o.height = size.height;
   }
   o.backend = a.backend;
   o.gl = a.gl;

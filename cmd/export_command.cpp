@@ -39,6 +39,7 @@
 #include "shadowref/scene/load_scene.hpp"
 #include "shadowref/shadow_map.hpp"
 #include "shadowref/shadow_matrix.hpp"
+#include "shadowref/outputs/json_text.hpp"
 
 namespace shadowref::cli {
 namespace {
@@ -137,7 +138,7 @@ void write_gltf(const scene::Object& o, const fs::path& file) {
   g["accessors"] = {{{"bufferView", 0}, {"componentType", 5126}, {"count", o.mesh.positions.size()}, {"type", "VEC3"},
                      {"min", {lo.x(), lo.y(), lo.z()}}, {"max", {hi.x(), hi.y(), hi.z()}}},
                     {{"bufferView", 1}, {"componentType", 5125}, {"count", 3 * o.mesh.triangles.size()}, {"type", "SCALAR"}}};
-  write_text(file, g.dump() + "\n");
+  write_text(file, outputs::json_text(g) + "\n");
 }
 
 // The matrices of one run convention (convention.hpp), from the prepared scene: the very ones our
@@ -378,7 +379,7 @@ void run_export(const ExportArgs& a) {
     }
     json m = matrices(s);
     m["objects"] = objects;
-    write_text(dir / "matrices.json", m.dump(2) + "\n");
+    write_text(dir / "matrices.json", outputs::json_text(m, 2) + "\n");
     const conform::CachedReference ref = conform::ensure_reference(scene::prepare_scene(s), cache, settings);
     fs::remove_all(dir / "reference", ec);
     fs::create_directories(dir / "reference");
@@ -397,7 +398,7 @@ void run_export(const ExportArgs& a) {
   }
   if (a.cache.empty()) fs::remove_all(private_cache);
   write_text(out / "README.md", readme(manifest));
-  write_text(out / "manifest.json", manifest.dump(2) + "\n");  // last: its presence marks a complete pack
+  write_text(out / "manifest.json", outputs::json_text(manifest, 2) + "\n");  // last: its presence marks a complete pack
   staging.commit();
   std::printf("pack: %s (README.md says what to render and how to name the files)\n", final_out.string().c_str());
 }

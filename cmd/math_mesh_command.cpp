@@ -19,6 +19,7 @@
 #include "shadowref/adjacency.hpp"
 #include "shadowref/scene/mesh_file.hpp"
 #include "shadowref/silhouette.hpp"
+#include "shadowref/outputs/json_text.hpp"
 
 namespace shadowref::cli {
 namespace {
@@ -46,7 +47,7 @@ void run_mesh_report(const MeshReportArgs& a) {
   if (!adj) throw BadInput("--mesh '" + a.mesh + "': " + adj.message());
   const MeshReport& r = adj->report;
   if (a.json) {
-    std::cout << json{{"command", "mesh-report"},
+    std::cout << outputs::json_text(json{{"command", "mesh-report"},
                       {"mesh", a.mesh},
                       {"vertices", r.vertices},
                       {"welded_vertices", r.welded_vertices},
@@ -57,7 +58,7 @@ void run_mesh_report(const MeshReportArgs& a) {
                       {"miswound_edges", r.miswound_edges},
                       {"degenerate_triangles", r.degenerate_triangles},
                       {"closed_manifold", r.closed_manifold()}}
-                     .dump()
+                     )
               << "\n";
     return;
   }
@@ -94,14 +95,14 @@ void run_silhouette(const SilhouetteArgs& a) {
     for (const SilhouetteEdge& e : s.edges) edges.push_back({e.from, e.to});
     json light_json = json::array();
     for (int i = 0; i < 4; ++i) light_json.push_back(light[i] + 0.0);  // -0 prints as 0
-    std::cout << json{{"command", "silhouette"},
+    std::cout << outputs::json_text(json{{"command", "silhouette"},
                       {"mesh", a.mesh},
                       {"light", light_json},
                       {"light_type", kind},
                       {"lit_triangles", s.lit_count},
                       {"count", s.edges.size()},
                       {"edges", edges}}
-                     .dump()
+                     )
               << "\n";
     return;
   }

@@ -27,6 +27,23 @@ double parse_number(std::string_view option, std::string_view text) {
   return value;
 }
 
+Size2 parse_size(std::string_view option, std::string_view text, int max_side) {
+  const auto bad = [&] {
+    return BadInput(std::string(option) + " " + quoted(text) + ": expected WxH with both in [1, " + std::to_string(max_side) +
+                    "], e.g. 1024x768");
+  };
+  const std::size_t x = text.find('x');
+  if (x == std::string_view::npos) throw bad();
+  const auto whole = [&](std::string_view t) {
+    int v = 0;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    // from_chars takes a leading '-' for int: refused by the range check below.
+    if (t.empty() || ec != std::errc() || end != t.data() + t.size() || v < 1 || v > max_side) throw bad();
+    return v;
+  };
+  return {whole(text.substr(0, x)), whole(text.substr(x + 1))};
+}
+
 std::vector<double> parse_numbers(std::string_view option, std::string_view text, std::size_t count) {
   std::vector<std::string_view> fields;
   std::size_t start = 0;

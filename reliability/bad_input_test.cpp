@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <OpenImageIO/imageio.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cstdint>
@@ -78,6 +79,21 @@ void write_png(const fs::path& p, int w, int h, int channels, std::uint8_t value
 void write_mask_folder(const fs::path& dir, int w, int h, bool reference) {
   write_png(dir / "mask.png", w, h, 1, 255);
   if (reference) write_png(dir / "decided.png", w, h, 1, 255);
+}
+
+// A glTF holding one triangle, its positions in buffer `uri`; `diamond` > 0 puts the mesh under a
+// chain of that many nodes, each naming the next one twice (2^diamond instances of the mesh).
+constexpr const char* kTriangleDataUri =
+    "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA";
+std::string gltf_triangle(const std::string& uri, int diamond = 0, const std::string& byte_length = "36") {
+  std::string nodes;
+  for (int i = 0; i < diamond; ++i)
+    nodes += "{\"children\": [" + std::to_string(i + 1) + ", " + std::to_string(i + 1) + "]}, ";
+  nodes += R"({"mesh": 0})";
+  return R"({"asset": {"version": "2.0"}, "buffers": [{"uri": ")" + uri + R"(", "byteLength": )" + byte_length +
+         R"(}], "bufferViews": [{"buffer": 0, "byteLength": 36}], "accessors": [{"bufferView": 0, "componentType": 5126,
+         "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}], "meshes": [{"primitives": [{"attributes":
+         {"POSITION": 0}}]}], "nodes": [)" + nodes + R"(], "scenes": [{"nodes": [0]}]})";
 }
 
 // A PNG header (signature + IHDR with a correct CRC) claiming w × h 8-bit grey, and no pixel data.
@@ -172,6 +188,17 @@ const std::vector<SceneDefect>& scene_defects() {
       {"missing_mesh", nullptr, good_scene("objects", mesh_object("nowhere.obj")), "nowhere.obj"},
       {"truncated_gltf", [](const fs::path& dir) { write_text(dir / "cut.gltf", R"({"asset": {"version": "2.0"}, "meshes": [)"); },
        good_scene("objects", mesh_object("cut.gltf")), "cut.gltf"},
+      // glTF: an external buffer outside the glTF file's folder is not read; a hierarchy naming one
+      // node many times over (2^60 instances) and a buffer claiming a terabyte are refused.
+      {"gltf_buffer_climbs_out", [](const fs::path& dir) { write_text(dir / "m.gltf", gltf_triangle("../outside.bin")); },
+       good_scene("objects", mesh_object("m.gltf")), "is outside the glTF file's folder"},
+      {"gltf_buffer_absolute", [](const fs::path& dir) { write_text(dir / "m.gltf", gltf_triangle("/etc/passwd")); },
+       good_scene("objects", mesh_object("m.gltf")), "is outside the glTF file's folder"},
+      {"gltf_exponential_hierarchy", [](const fs::path& dir) { write_text(dir / "m.gltf", gltf_triangle(kTriangleDataUri, 60)); },
+       good_scene("objects", mesh_object("m.gltf")), "the node hierarchy instances more than"},
+      {"gltf_huge_buffer",
+       [](const fs::path& dir) { write_text(dir / "m.gltf", gltf_triangle(kTriangleDataUri, 0, "1000000000000")); },
+       good_scene("objects", mesh_object("m.gltf")), "m.gltf"},
       // A scene's name becomes a folder name (renders/<name>/, the reference cache's <name>-<key>/):
       // only safe identifiers (shadowref/scene/identifier.hpp).
       {"name_climbs_out", nullptr, good_scene("name", R"("../../escaped_scene")"), "name: must not contain '..'"},
@@ -464,6 +491,157 @@ TEST(Confinement, ConformWithAnEscapingSceneNameWritesNothingOutsideOrInsideOut)
   EXPECT_EQ(listing(root), before) << "conform wrote beside or inside --out";
   EXPECT_FALSE(fs::exists(out)) << "conform left an output folder";
   fs::remove_all(root);
+}
+
+// ------------------------------------------------------------------ hostile candidate folders
+
+// An engine team's candidate folder judged by `shadowref conform --candidate-dir`: one bad scene
+// folder does not stop the others. The bad scene's case is an ERROR whose one line (in report.json
+// and on the terminal) names the file and what is wrong, the run exits 2 (failures), the other
+// scene is judged, report.json is valid JSON, and nothing outside --out changes.
+struct CandidateCase {
+  std::string name;
+  std::string scene;                                    // "one" (one light) or "two" (two lights)
+  std::function<void(const fs::path& scene_dir)> spoil;  // applied to a valid candidate folder
+  std::string must_mention;                              // "@" is the scene's candidate folder
+};
+
+void PrintTo(const CandidateCase& c, std::ostream* os) { *os << c.name; }
+
+std::vector<CandidateCase> candidate_cases() {
+  const auto text = [](std::string file, std::string content) {
+    return [file, content](const fs::path& d) { write_text(d / file, content); };
+  };
+  return {
+      // A decompression bomb stops at the header: the size is checked before any pixel is decoded.
+      {"absurd_header", "one", text("mask.png", png_header_only(1000000, 1000000)), "@/mask.png"},
+      {"bomb_within_limit", "one", [](const fs::path& d) { write_png(d / "mask.png", 8192, 8192, 1, 0); },
+       "@/mask.png: candidate is 8192x8192, reference is 32x32"},
+      {"wrong_size", "one", [](const fs::path& d) { write_png(d / "mask.png", 16, 32, 1, 0); },
+       "@/mask.png: candidate is 16x32, reference is 32x32"},
+      {"off_values", "one", [](const fs::path& d) { write_png(d / "mask.png", 32, 32, 1, 10); },
+       "@/mask.png: 1024 pixel(s) hold values other than 255"},
+      {"truncated", "one",
+       [](const fs::path& d) { fs::resize_file(d / "mask.png", fs::file_size(d / "mask.png") / 2); }, "@/mask.png"},
+      {"folder_named_mask", "one",
+       [](const fs::path& d) {
+         fs::remove(d / "mask.png");
+         fs::create_directories(d / "mask.png");
+       },
+       "@/mask.png: not a regular file"},
+      {"dangling_link", "one",
+       [](const fs::path& d) {
+         fs::remove(d / "mask.png");
+         fs::create_symlink("/nonexistent/mask.png", d / "mask.png");
+       },
+       "@/mask.png: no such file"},
+      {"per_light_mask_for_one_light", "one",
+       [](const fs::path& d) { fs::copy_file(d / "mask.png", d / "mask_0.png"); },
+       "@/mask_0.png: the reference has 1 light(s)"},
+      {"missing_light_mask", "two", [](const fs::path& d) { fs::remove(d / "mask_1.png"); }, "@/mask_1.png: no such file"},
+      {"extra_light_mask", "two", [](const fs::path& d) { fs::copy_file(d / "mask_0.png", d / "mask_2.png"); },
+       "@/mask_2.png: the reference has 2 light(s)"},
+      {"single_mask_beside_per_light", "two", [](const fs::path& d) { fs::copy_file(d / "mask_0.png", d / "mask.png"); },
+       "@/mask.png: the reference has 2 light(s)"},
+      {"declaration_wrong_type", "one", text("candidate.json", R"({"shadow_map_size": "big"})"),
+       "@/candidate.json: shadow_map_size: must be an integer"},
+      {"declaration_malformed", "one", text("candidate.json", R"({"producer": )"), "@/candidate.json"},
+      {"declaration_unknown_key", "one", text("candidate.json", R"({"shadowmapsize": 2048})"), "shadowmapsize"},
+      {"declaration_out_of_range", "one", text("candidate.json", R"({"shadow_map_size": 100000000})"), "shadow_map_size"},
+      {"declaration_not_utf8", "one", text("candidate.json", "{\"producer\": \"\xff\xfe\"}"), "@/candidate.json"},
+  };
+}
+
+void write_candidate_catalogue(const fs::path& dir) {
+  write_text(dir / "cat" / "one.json", good_scene("name", R"("one")"));
+  std::string two = good_scene("lights", R"([{"type": "point", "position": [2, 6, 1]}, {"type": "point", "position": [-2, 5, 0]}])");
+  two.replace(two.find(R"("bad")"), 5, R"("two")");
+  write_text(dir / "cat" / "two.json", two);
+  write_png(dir / "cand" / "one" / "mask.png", 32, 32, 1, 255);
+  write_png(dir / "cand" / "two" / "mask_0.png", 32, 32, 1, 255);
+  write_png(dir / "cand" / "two" / "mask_1.png", 32, 32, 1, 255);
+}
+
+// Every entry under `root` except the subtree `skip`, with sizes.
+std::vector<std::string> listing_without(const fs::path& root, const fs::path& skip) {
+  std::vector<std::string> out;
+  for (auto it = fs::recursive_directory_iterator(root); it != fs::recursive_directory_iterator(); ++it) {
+    if (it->path() == skip) {
+      it.disable_recursion_pending();
+      continue;
+    }
+    std::error_code ec;
+    out.push_back(fs::relative(it->path(), root).string() +
+                  (it->is_symlink() ? " link" : it->is_directory() ? "/" : " " + std::to_string(it->file_size(ec))));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+class HostileCandidate : public ::testing::TestWithParam<CandidateCase> {};
+
+TEST_P(HostileCandidate, TheSceneIsAnErrorNamingTheFileTheOthersAreJudged) {
+  const CandidateCase& c = GetParam();
+  const fs::path dir = fs::path(::testing::TempDir()) / ("shadowref-hostile-" + c.name);
+  fs::remove_all(dir);
+  write_candidate_catalogue(dir);
+  const fs::path scene_dir = dir / "cand" / c.scene;
+  c.spoil(scene_dir);
+  const std::vector<std::string> before = listing_without(dir, dir / "out");
+  const CommandResult r = run_command({"/usr/bin/timeout", "120", SHADOWREF_EXE, "conform", "--catalogue", (dir / "cat").string(),
+                                       "--candidate-dir", (dir / "cand").string(), "--technique", "shadowmap", "--spp", "1",
+                                       "--out", (dir / "out").string(), "--quiet"});
+  ASSERT_NE(r.exit_code, 124) << "hung";
+  EXPECT_EQ(r.exit_code, 2) << r.err << r.out;
+  for (const char* crash : {"terminate called", "Sanitizer", "runtime error", "Segmentation", "Aborted", "internal error"})
+    EXPECT_EQ((r.err + r.out).find(crash), std::string::npos) << crash << "\n" << r.err;
+  std::string mention = c.must_mention;
+  for (std::size_t at; (at = mention.find('@')) != std::string::npos;) mention.replace(at, 1, scene_dir.string());
+  std::ifstream in(dir / "out" / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  ASSERT_FALSE(report.is_discarded()) << "report.json is missing or not JSON";
+  int errors = 0, judged = 0;
+  for (const nlohmann::json& k : report.at("cases")) {
+    if (k.at("scene") == c.scene) {
+      EXPECT_EQ(k.at("status"), "ERROR");
+      const std::string line = k.value("error", std::string());
+      EXPECT_NE(line.find(mention), std::string::npos) << "the error does not name '" << mention << "': " << line;
+      EXPECT_EQ(line.find('\n'), std::string::npos) << "more than one line: " << line;
+      EXPECT_NE((r.err + r.out).find(line), std::string::npos) << "the terminal does not show: " << line;
+      ++errors;
+    } else {
+      EXPECT_NE(k.at("status"), "ERROR") << k.at("scene") << ": " << k.value("error", std::string());
+      ++judged;
+    }
+  }
+  EXPECT_EQ(errors, 1);
+  EXPECT_EQ(judged, 1);
+  EXPECT_EQ(listing_without(dir, dir / "out"), before) << "conform changed something outside --out";
+  fs::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(Folders, HostileCandidate, ::testing::ValuesIn(candidate_cases()),
+                         [](const ::testing::TestParamInfo<CandidateCase>& p) { return p.param.name; });
+
+// A candidate folder whose name is not UTF-8 (legal on Linux): judged as any other, and report.json
+// stays valid JSON (the name's invalid bytes become U+FFFD there).
+TEST(HostileCandidateNames, ANonUtf8FolderNameIsJudgedAndReportedAsValidJson) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "shadowref-hostile-non-utf8";
+  fs::remove_all(dir);
+  write_candidate_catalogue(dir);
+  const fs::path odd = dir / "cand\xff\xfe";
+  fs::rename(dir / "cand", odd);
+  write_text(odd / "one" / "notes\xff.txt", "a file the judge does not read\n");
+  const CommandResult r = run_command({"/usr/bin/timeout", "120", SHADOWREF_EXE, "conform", "--catalogue", (dir / "cat").string(),
+                                       "--candidate-dir", odd.string(), "--technique", "shadowmap", "--spp", "1", "--out",
+                                       (dir / "out").string(), "--quiet"});
+  EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1 || r.exit_code == 2) << r.err;
+  EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+  std::ifstream in(dir / "out" / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
+  ASSERT_FALSE(report.is_discarded()) << "report.json is missing or not JSON\n" << r.err;
+  for (const nlohmann::json& k : report.at("cases")) EXPECT_NE(k.at("status"), "ERROR") << k.dump();
+  fs::remove_all(dir);
 }
 
 INSTANTIATE_TEST_SUITE_P(Table, BadInput, ::testing::ValuesIn(make_cases()),

@@ -12,6 +12,7 @@
 #include "shadowref/outputs/image_io.hpp"
 #include "shadowref/outputs/staged_folder.hpp"
 #include "shadowref/renderer/renderer.hpp"
+#include "shadowref/outputs/json_text.hpp"
 
 namespace shadowref::renderer {
 
@@ -49,7 +50,7 @@ void write_outputs(const RenderResult& result, const GlInfo& info, const scene::
   if (!result.faults.empty()) j["faults"] = result.faults;  // a deliberately wrong render (faults.hpp)
   {
     std::ofstream f(tmp / "render.json");
-    f << j.dump(2) << "\n";
+    f << outputs::json_text(j, 2) << "\n";
     if (!f) throw std::runtime_error("cannot write " + (tmp / "render.json").string());
   }
   folder.commit();

@@ -9,6 +9,7 @@
 
 #include "shadowref/outputs/errors.hpp"
 #include "shadowref/outputs/techniques.hpp"
+#include "shadowref/outputs/json_text.hpp"
 
 namespace shadowref::outputs {
 
@@ -94,7 +95,7 @@ void write_declaration(const CandidateDeclaration& d, const std::filesystem::pat
   j["constant_bias"] = d.constant_bias;
   j["light_views"] = d.light_views_from_pack ? "pack" : "own";
   std::ofstream f(dir / kCandidateFile, std::ios::binary);
-  f << j.dump(2) << "\n";
+  f << json_text(j, 2) << "\n";
   if (!f) throw FileError((dir / kCandidateFile).string() + ": cannot write");
 }
 

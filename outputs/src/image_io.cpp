@@ -68,7 +68,9 @@ void write_image(const std::filesystem::path& file, const OIIO::ImageSpec& spec,
 
 }  // namespace
 
-Image8 read_image8(const std::filesystem::path& file, int channels) {
+Image8 read_image8(const std::filesystem::path& file, int channels) { return read_image8(file, channels, 0, 0); }
+
+Image8 read_image8(const std::filesystem::path& file, int channels, int width, int height) {
   const auto bad = [&](const std::string& what) { return InputError(InputError::Kind::BadInput, file.string() + ": " + what); };
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) throw bad("no such file");
@@ -81,6 +83,10 @@ Image8 read_image8(const std::filesystem::path& file, int channels) {
   if (spec.width <= 0 || spec.height <= 0 || spec.depth != 1) throw bad("not a 2D image");
   if (static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) > kMaxPixels)
     throw bad(std::to_string(spec.width) + " x " + std::to_string(spec.height) + " pixels: larger than 16384 x 16384");
+  if (width > 0 && (spec.width != width || spec.height != height))
+    throw InputError(InputError::Kind::SizeMismatch, file.string() + ": candidate is " + std::to_string(spec.width) + "x" +
+                                                         std::to_string(spec.height) + ", reference is " + std::to_string(width) +
+                                                         "x" + std::to_string(height));
   if (spec.nchannels != channels)
     throw bad("has " + std::to_string(spec.nchannels) + " channel(s), expected " + std::to_string(channels) +
               (channels == 1 ? " (8-bit grey: 255 lit, 0 shadowed, 128 no surface)" : ""));

@@ -228,20 +228,65 @@ void append_primitive(const tinygltf::Model& model, const tinygltf::Primitive& p
   }
 }
 
-void append_node(const tinygltf::Model& model, int node_index, const Eigen::Matrix4d& parent, TriangleMesh<double>& mesh, int depth) {
+// A hierarchy that names the same node many times over (node i's children [i+1, i+1], 60 deep) is
+// small on disk and 2^60 instances when walked: the walk stops at this many node instances.
+constexpr std::size_t kMaxNodeInstances = std::size_t{1} << 20;
+
+void append_node(const tinygltf::Model& model, int node_index, const Eigen::Matrix4d& parent, TriangleMesh<double>& mesh, int depth,
+                 std::size_t& instances) {
   if (node_index < 0 || static_cast<std::size_t>(node_index) >= model.nodes.size()) throw MeshFileError("node " + std::to_string(node_index) + " does not exist");
   if (depth > 64) throw MeshFileError("the node hierarchy is deeper than 64 (a cycle?)");
+  if (++instances > kMaxNodeInstances)
+    throw MeshFileError("the node hierarchy instances more than " + std::to_string(kMaxNodeInstances) +
+                        " nodes (nodes referenced many times over)");
   const auto& node = model.nodes[static_cast<std::size_t>(node_index)];
   const Eigen::Matrix4d xf = parent * node_transform(node);
   if (node.mesh >= 0) {
     if (static_cast<std::size_t>(node.mesh) >= model.meshes.size()) throw MeshFileError("mesh " + std::to_string(node.mesh) + " does not exist");
     for (const auto& prim : model.meshes[static_cast<std::size_t>(node.mesh)].primitives) append_primitive(model, prim, xf, mesh);
   }
-  for (int child : node.children) append_node(model, child, xf, mesh, depth + 1);
+  for (int child : node.children) append_node(model, child, xf, mesh, depth + 1, instances);
+}
+
+// glTF's external buffers and images are files named by URIs inside the file: they may only be
+// files in the glTF file's own folder or below it (a pack is self-contained, and a mesh must not
+// make us read what we were not given, e.g. "uri": "/etc/shadow" or "../../secret.bin").
+struct GltfFolder {
+  std::filesystem::path root;  // weakly_canonical folder of the glTF file
+};
+
+bool inside(const std::string& file, const GltfFolder& folder) {
+  std::error_code ec;
+  const std::filesystem::path p = std::filesystem::weakly_canonical(file, ec);
+  if (ec) return false;
+  const auto [r, q] = std::mismatch(folder.root.begin(), folder.root.end(), p.begin(), p.end());
+  return r == folder.root.end();
+}
+
+// An outside file "exists", so that tinygltf goes on to read it and gltf_read_file says why not
+// (tinygltf would otherwise report a plain "File not found").
+bool gltf_file_exists(const std::string& file, void* user) {
+  return !inside(file, *static_cast<GltfFolder*>(user)) || tinygltf::FileExists(file, nullptr);
+}
+
+bool gltf_read_file(std::vector<unsigned char>* out, std::string* err, const std::string& file, void* user) {
+  if (!inside(file, *static_cast<GltfFolder*>(user))) {
+    if (err) *err += "'" + file + "' is outside the glTF file's folder\n";
+    return false;
+  }
+  return tinygltf::ReadWholeFile(out, err, file, nullptr);
+}
+
+bool gltf_refuse_write(std::string* err, const std::string& file, const std::vector<unsigned char>&, void*) {
+  if (err) *err += "'" + file + "': loading a glTF writes nothing\n";
+  return false;
 }
 
 TriangleMesh<double> load_gltf(const std::filesystem::path& path, bool binary) {
   tinygltf::TinyGLTF loader;
+  std::error_code ec;
+  GltfFolder folder{std::filesystem::weakly_canonical(std::filesystem::absolute(path, ec).parent_path(), ec)};
+  loader.SetFsCallbacks({&gltf_file_exists, &tinygltf::ExpandFilePath, &gltf_read_file, &gltf_refuse_write, &folder});
   tinygltf::Model model;
   std::string err, warn;
   const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path.string())
@@ -261,7 +306,8 @@ TriangleMesh<double> load_gltf(const std::filesystem::path& path, bool binary) {
     for (std::size_t i = 0; i < model.nodes.size(); ++i)
       if (!is_child[i]) roots.push_back(static_cast<int>(i));
   }
-  for (int r : roots) append_node(model, r, Eigen::Matrix4d::Identity(), mesh, 0);
+  std::size_t instances = 0;
+  for (int r : roots) append_node(model, r, Eigen::Matrix4d::Identity(), mesh, 0, instances);
   return mesh;
 }
 

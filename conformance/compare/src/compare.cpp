@@ -248,6 +248,15 @@ FolderComparison compare_folders(const std::filesystem::path& reference_dir,
   std::error_code ec;
   if (!std::filesystem::is_directory(candidate_dir, ec))
     throw CompareError(CompareError::Kind::BadInput, candidate_dir.string() + ": not a folder");
+  // A mask for a light the reference does not have (mask_<n>.png, mask.png beside per-light masks,
+  // mask_0.png for a one-light scene) is a producer that counted the lights wrongly, not a detail:
+  // refused before any image is read.
+  const std::size_t n = out.masks.size();
+  for (const std::string& stray : {outputs::mask_name(n, n + 1), n == 1 ? outputs::mask_name(0, 2) : outputs::mask_name(0, 1)})
+    if (std::filesystem::exists(candidate_dir / stray, ec) || std::filesystem::is_symlink(candidate_dir / stray, ec))
+      throw CompareError(CompareError::Kind::BadInput,
+                         (candidate_dir / stray).string() + ": the reference has " + std::to_string(n) + " light(s), masks " +
+                             (n == 1 ? out.masks[0] : out.masks.front() + " ... " + out.masks.back()));
   for (std::size_t i = 0; i < out.masks.size(); ++i) {
     const std::string& name = out.masks[i];
     const std::string decided_name = outputs::decided_name(i, out.masks.size());
@@ -258,17 +267,12 @@ FolderComparison compare_folders(const std::filesystem::path& reference_dir,
                              (out.masks.size() == 1 ? out.masks[0] : out.masks.front() + " ... " + out.masks.back()) + ")");
     const Image8 ref = read_image8(reference_dir / name, 1);
     const Image8 dec = read_image8(reference_dir / decided_name, 1);
-    const Image8 cand = read_image8(candidate_dir / name, 1);
+    const Image8 cand = read_image8(candidate_dir / name, 1, ref.width, ref.height);
     CompareOptions o = options;
     if (!threshold.bands) o.explain = nullptr;  // exact techniques: no texel or bias band
     out.per_light.push_back(compare_mask(ref, dec, cand, (candidate_dir / name).string(), i, o));
     out.total += out.per_light.back().metrics;
   }
-  // One light beyond what the reference has is a wrong producer, not a detail.
-  const std::string extra = outputs::mask_name(out.masks.size(), out.masks.size() + 1);
-  if (out.masks.size() > 1 && std::filesystem::exists(candidate_dir / extra, ec))
-    throw CompareError(CompareError::Kind::BadInput, (candidate_dir / extra).string() + ": the reference has only " +
-                                                         std::to_string(out.masks.size()) + " lights");
   out.judgement = judge(out.total, threshold);
   return out;
 }

@@ -15,6 +15,7 @@
 #include "shadowref/outputs/staged_folder.hpp"
 #include "shadowref/reference/render.hpp"
 #include "shadowref/reference/write_images.hpp"
+#include "shadowref/outputs/json_text.hpp"
 
 namespace shadowref::conform {
 namespace {
@@ -145,7 +146,7 @@ CachedReference ensure_reference(const scene::PreparedScene& prepared, const std
     k["key"] = key;
     k["key_inputs"] = "FNV-1a 64 of the scene file, its mesh files, the settings, the convention and the shadowref executable";
     std::ofstream f(tmp / "key.json");
-    f << k.dump(2) << "\n";
+    f << outputs::json_text(k, 2) << "\n";
     if (!f) throw std::runtime_error("cannot write " + (tmp / "key.json").string());
   }
   // Another process may have finished the same key first: theirs is as good as ours.

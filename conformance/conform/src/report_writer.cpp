@@ -12,6 +12,7 @@
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/report/ci_summary.hpp"
 #include "shadowref/report/html.hpp"
+#include "shadowref/outputs/json_text.hpp"
 
 namespace shadowref::conform {
 namespace {
@@ -130,7 +131,7 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
 
   {
     std::ofstream f(r.report_json);
-    f << j.dump(2) << "\n";
+    f << outputs::json_text(j, 2) << "\n";
     if (!f) throw std::runtime_error("cannot write " + r.report_json.string());
   }
   report::write_html(j, r.report_html);

@@ -22,6 +22,11 @@ namespace shadowref::outputs {
 // Reads `file` as an 8-bit image with exactly `channels` channels. Throws InputError(BadInput).
 Image8 read_image8(const std::filesystem::path& file, int channels);
 
+// The same, for a file that must be `width` × `height` (a candidate mask beside its reference):
+// another size is InputError(SizeMismatch) "<file>: candidate is WxH, reference is WxH", known from
+// the header before any pixel is decoded, so a decompression bomb costs no memory.
+Image8 read_image8(const std::filesystem::path& file, int channels, int width, int height);
+
 // Writes `image` as PNG.
 void write_png(const Image8& image, const std::filesystem::path& file);
 
