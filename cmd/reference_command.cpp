@@ -22,6 +22,7 @@ namespace {
 
 struct ReferenceArgs {
   std::string scene;
+  bool allow_meshes_outside = false;  // LoadOptions::allow_meshes_outside_scene_folder
   std::string out;
   std::string convention = "gl";
   int spp = 16;
@@ -43,7 +44,7 @@ void run_reference(const ReferenceArgs& a) {
   options.threads = a.threads;
   scene::Scene s;
   try {
-    s = scene::load_scene(a.scene);
+    s = scene::load_scene(a.scene, {.allow_meshes_outside_scene_folder = a.allow_meshes_outside});
   } catch (const scene::SceneError& e) {
     throw BadInput(e.what());
   }
@@ -78,6 +79,9 @@ void register_reference_command(CLI::App& app, int& exit_code) {
       "Render a scene's ray-traced ground truth (Embree): mask.png, visibility.exr, decided.png, shaded.png "
       "(mask_<i>.png etc. per light when there are several).");
   cmd->add_option("--scene", args->scene, "the scene file (JSON)")->required();
+  cmd->add_flag("--allow-meshes-outside", args->allow_meshes_outside,
+                "let the scene's mesh files lie outside its folder (absolute paths, '../'): for local use; a catalogue or a "
+                "pack never needs it, and conform and export always refuse such scenes");
   cmd->add_option("--out", args->out, "the output folder (created if needed)")->required();
   add_convention_option(*cmd, args->convention);
   cmd->add_option("--spp", args->spp, "sub-pixel samples per pixel, a square number (n x n grid)")->capture_default_str();

@@ -22,6 +22,7 @@ namespace {
 
 struct RenderArgs {
   std::string scene;
+  bool allow_meshes_outside = false;  // LoadOptions::allow_meshes_outside_scene_folder
   std::string technique;
   std::string out;
   std::string convention = "gl";
@@ -60,7 +61,7 @@ void run_render(const RenderArgs& a) {
   }
   scene::Scene sc;
   try {
-    sc = scene::load_scene(a.scene);
+    sc = scene::load_scene(a.scene, {.allow_meshes_outside_scene_folder = a.allow_meshes_outside});
   } catch (const scene::SceneError& e) {
     throw BadInput(e.what());
   }
@@ -95,6 +96,9 @@ void register_render_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "render", "Render a scene with one shadow technique in OpenGL (Mesa llvmpipe / softpipe) into masks and a picture.");
   cmd->add_option("--scene", args->scene, "scene file (JSON)")->required()->check(CLI::ExistingFile);
+  cmd->add_flag("--allow-meshes-outside", args->allow_meshes_outside,
+                "let the scene's mesh files lie outside its folder (absolute paths, '../'): for local use; a catalogue or a "
+                "pack never needs it, and conform and export always refuse such scenes");
   cmd->add_option("--technique", args->technique, "technique name (listed below) or 'all'")->required();
   cmd->add_option("--out", args->out, "output folder (replaced when the render completes)")->required();
   add_convention_option(*cmd, args->convention);

@@ -493,6 +493,30 @@ TEST(Confinement, ConformWithAnEscapingSceneNameWritesNothingOutsideOrInsideOut)
   fs::remove_all(root);
 }
 
+// The one way to read a mesh outside the scene's folder is asked for by name, on the commands for
+// local use (render, reference); without the flag the same scene is bad input.
+TEST(Confinement, AllowMeshesOutsideIsTheOnlyWayToReadAMeshAboveTheSceneFolder) {
+  const fs::path root = fs::path(::testing::TempDir()) / "shadowref-allow-outside";
+  fs::remove_all(root);
+  write_text(root / "outside.obj", "v 0 1 0\nv 1 1 0\nv 0 1 1\nf 1 3 2\n");
+  write_text(root / "scenes" / "s.json", good_scene("objects", mesh_object("../outside.obj")));
+  for (const std::string sub : {"render", "reference"}) {
+    std::vector<std::string> args = {"/usr/bin/timeout", "120", SHADOWREF_EXE, sub, "--scene", (root / "scenes" / "s.json").string(),
+                                     "--out", (root / ("out-" + sub)).string()};
+    if (sub == "render") args.insert(args.end(), {"--technique", "planar"});
+    else args.insert(args.end(), {"--spp", "1", "--quiet"});
+    const CommandResult refused = run_command(args);
+    EXPECT_EQ(refused.exit_code, 4) << sub << ": " << refused.err;
+    EXPECT_NE(refused.err.find("objects[1].shape.file: '../outside.obj' resolves to"), std::string::npos) << refused.err;
+    EXPECT_FALSE(fs::exists(root / ("out-" + sub)));
+    args.push_back("--allow-meshes-outside");
+    const CommandResult allowed = run_command(args);
+    EXPECT_EQ(allowed.exit_code, 0) << sub << ": " << allowed.err;
+    EXPECT_TRUE(fs::exists(root / ("out-" + sub) / "mask.png")) << sub;
+  }
+  fs::remove_all(root);
+}
+
 // ------------------------------------------------------------------ hostile candidate folders
 
 // An engine team's candidate folder judged by `shadowref conform --candidate-dir`: one bad scene
