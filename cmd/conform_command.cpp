@@ -135,6 +135,11 @@ int run_conform_command(const ConformArgs& a) {
               r.count(conform::Status::Fail), r.count(conform::Status::XPass), r.count(conform::Status::Warn),
               r.count(conform::Status::Error), r.seconds, r.reference_seconds,
               r.gl_renderer.empty() ? "" : ", ", r.gl_renderer.c_str());
+  std::size_t linked = 0;
+  for (const conform::CaseResult& c : r.cases) linked += c.read_through_links.size();
+  if (linked)
+    std::printf("note: %zu candidate file(s) were read through symbolic links that leave --candidate-dir "
+                "(report.json: read_through_links)\n", linked);
   std::printf("report: %s\n        %s\n", r.report_html.string().c_str(), r.report_json.string().c_str());
   return r.exit_code();
 }

@@ -668,6 +668,42 @@ TEST(HostileCandidateNames, ANonUtf8FolderNameIsJudgedAndReportedAsValidJson) {
   fs::remove_all(dir);
 }
 
+// A symlink forest (how CI systems lay out candidate folders): links are followed, and report.json
+// names each input read through a link that leaves --candidate-dir, with its real location; a link
+// that stays inside is not named; nothing is written through a link.
+TEST(Confinement, InputsReadThroughLinksLeavingTheCandidateFolderAreNamed) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "shadowref-symlink-forest";
+  fs::remove_all(dir);
+  write_candidate_catalogue(dir);
+  write_png(dir / "elsewhere" / "mask.png", 32, 32, 1, 255);
+  fs::remove(dir / "cand" / "one" / "mask.png");
+  fs::create_symlink(dir / "elsewhere" / "mask.png", dir / "cand" / "one" / "mask.png");
+  fs::remove(dir / "cand" / "two" / "mask_1.png");
+  fs::create_symlink("mask_0.png", dir / "cand" / "two" / "mask_1.png");  // stays inside
+  const std::vector<std::string> before = listing_without(dir, dir / "out");
+  const CommandResult r = run_command({"/usr/bin/timeout", "120", SHADOWREF_EXE, "conform", "--catalogue", (dir / "cat").string(),
+                                       "--candidate-dir", (dir / "cand").string(), "--technique", "shadowmap", "--spp", "1",
+                                       "--out", (dir / "out").string()});
+  EXPECT_TRUE(r.exit_code >= 0 && r.exit_code <= 2) << r.err;
+  EXPECT_NE(r.out.find("note: 1 candidate file(s) were read through symbolic links"), std::string::npos) << r.out;
+  std::ifstream in(dir / "out" / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
+  ASSERT_FALSE(report.is_discarded());
+  EXPECT_EQ(report.value("inputs_read_through_links", -1), 1);
+  for (const nlohmann::json& k : report.at("cases")) {
+    if (k.at("scene") == "one") {
+      ASSERT_TRUE(k.contains("read_through_links")) << k.dump();
+      ASSERT_EQ(k["read_through_links"].size(), 1u);
+      EXPECT_EQ(k["read_through_links"][0]["file"], (dir / "cand" / "one" / "mask.png").string());
+      EXPECT_EQ(k["read_through_links"][0]["resolves_to"], (dir / "elsewhere" / "mask.png").string());
+    } else {
+      EXPECT_FALSE(k.contains("read_through_links")) << k.dump();
+    }
+  }
+  EXPECT_EQ(listing_without(dir, dir / "out"), before) << "conform changed something outside --out";
+  fs::remove_all(dir);
+}
+
 INSTANTIATE_TEST_SUITE_P(Table, BadInput, ::testing::ValuesIn(make_cases()),
                          [](const ::testing::TestParamInfo<Case>& param_info) {
                            std::string n = param_info.param.name;

@@ -12,6 +12,7 @@
 #include <system_error>
 #include <thread>
 
+#include "linked_inputs.hpp"
 #include "report_writer.hpp"
 #include "shadowref/renderer/renderer.hpp"
 #include "shadowref/convention.hpp"
@@ -232,6 +233,11 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
           copt.explain = &explainer;
         }
         c.comparison = compare::compare_folders(c.reference_dir, c.candidate_dir, threshold, copt);
+        if (!gl) {
+          std::vector<std::filesystem::path> read = {c.candidate_dir / outputs::kCandidateFile, c.candidate_dir / "shaded.png"};
+          for (const std::string& m : c.comparison->masks) read.push_back(c.candidate_dir / m);
+          for (const LinkedInput& l : inputs_outside(*o.candidate_dir, read)) c.read_through_links.emplace_back(l.file, l.resolves_to);
+        }
         const std::filesystem::path error_dir =
             gl ? c.candidate_dir : std::filesystem::absolute(o.out / "errors" / s.name / technique);
         c.error_images = compare::write_error_images(*c.comparison, error_dir);

@@ -52,7 +52,12 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
   j["generated"] = now_utc();
   j["command"] = o.command_line;
   j["mode"] = o.candidate_dir ? "candidate-dir" : "render";
-  if (o.candidate_dir) j["candidate_dir"] = fs::absolute(*o.candidate_dir).string();
+  if (o.candidate_dir) {
+    j["candidate_dir"] = fs::absolute(*o.candidate_dir).string();
+    std::size_t linked = 0;
+    for (const CaseResult& c : r.cases) linked += c.read_through_links.size();
+    j["inputs_read_through_links"] = linked;  // each case's read_through_links names them
+  }
   j["backend"] = o.candidate_dir ? json() : json(o.backend);
   j["gl_api"] = o.candidate_dir ? json() : json(o.gl);
   j["gl"] = {{"vendor", r.gl_vendor}, {"renderer", r.gl_renderer}, {"version", r.gl_version}};
@@ -88,6 +93,11 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
     k["seconds"] = c.seconds;
     k["notes"] = c.notes;
     if (!c.error.empty()) k["error"] = c.error;
+    if (!c.read_through_links.empty()) {
+      json links = json::array();
+      for (const auto& [file, target] : c.read_through_links) links.push_back({{"file", file}, {"resolves_to", target}});
+      k["read_through_links"] = links;
+    }
     {
       const outputs::CandidateDeclaration& d = c.declaration;
       k["candidate"] = {{"producer", d.producer}, {"version", d.version}, {"technique", d.technique},

@@ -18,6 +18,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "shadowref/compare/compare.hpp"
@@ -84,6 +85,9 @@ struct CaseResult {
   std::filesystem::path reference_dir, candidate_dir;
   std::vector<std::string> error_images;        // in candidate_dir (ours) or out/errors/...
   std::vector<std::string> notes;               // the renderer's notes
+  // Candidate files (masks, candidate.json, shaded.png) read through a symbolic link that leads out
+  // of --candidate-dir: {file as read, where it really is}. Reading them is allowed; the report says so.
+  std::vector<std::pair<std::string, std::string>> read_through_links;
   double frame_ms = 0;
   double seconds = 0;
 };
