@@ -14,7 +14,7 @@
 //   * Far plane: Irrlicht's z-fail volumes are finite (extruded by `infinity`) and it skips any volume
 //     whose back cap lies beyond the camera's far plane (CShadowVolumeSceneNode::render), as its
 //     documentation of addShadowVolumeSceneNode demands. The harness uses the pack's finite
-//     projection with the far plane moved out just enough for that; near, field of view and aspect
+//     projection with the far plane moved out far enough for that; near, field of view and aspect
 //     are the pack's, so no pixel moves.
 //   * Lights: Irrlicht reads only SLight::Position. A point (spot, rect: their centre) light is that
 //     point; a directional light is a point 10^4 scene diagonals away along its direction.
@@ -26,7 +26,7 @@
 //     the face as its shadow mesh. Irrlicht classifies faces with the light's position in the node's
 //     space (CShadowVolumeSceneNode::createEdgesAndCaps); at a node placed on the face that position
 //     is the direction from the face to the light, which is what the test needs. Each face then gets
-//     its own closed volume (three open edges, two caps). Nothing else changes, so where this passes
+//     its own volume (its three edges are open, so all three are extruded). Nothing else changes, so where this passes
 //     and the plain run fails, the failure is Irrlicht's face classification, not this harness.
 #include <GL/gl.h>
 #include <irrlicht.h>
