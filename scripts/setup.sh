@@ -12,6 +12,7 @@ packages=(
   libosmesa6-dev libegl-dev libgl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
   nlohmann-json3-dev libcli11-dev libtinyobjloader-dev libtinygltf-dev
   libmeshoptimizer-dev
+  libirrlicht-dev libopenscenegraph-dev xvfb xauth
   clang libclang-rt-14-dev
   chromium
 )

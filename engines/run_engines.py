@@ -1,0 +1,137 @@
+#!/usr/bin/python3
+"""engines/run_engines.py — judge the real engines and hold their verdicts to the recorded table.
+
+Exports the pack with the built `shadowref`, renders it with each run of engines/verdicts.json (a
+harness and its variant) under a virtual X display, lets `shadowref conform --candidate-dir` judge
+each candidate folder, and compares every scene's verdict with the one recorded. Any difference — a
+verdict that changed, a scene added or lost — fails, with the report to look at.
+
+  run_engines.py --shadowref EXE --irrlicht EXE --osg EXE --work DIR [--verdicts FILE] [--record]
+
+--record rewrites the verdicts of verdicts.json from this run, keeping each *why* and *cause* whose
+verdict did not change and emptying the others (engines/readme_table.py then refuses a non-PASS
+without them until someone has looked at the report and written them).
+"""
+
+import argparse
+import json
+import os
+import pathlib
+import shutil
+import subprocess
+import sys
+import time
+
+HERE = pathlib.Path(__file__).resolve().parent
+# Irrlicht needs an X display with a stencil buffer; Mesa's llvmpipe draws through Xvfb's GLX.
+# -noreset: an X server resets when its last client leaves, and a harness that opens a new device per
+# scene then races the reset ("Could not open display" on a random scene).
+XVFB_ARGS = "-screen 0 1024x1024x24 -noreset"
+
+
+def run(cmd, **kwargs):
+    return subprocess.run([str(c) for c in cmd], **kwargs)
+
+
+def under_xvfb(cmd, work):
+    # xvfb-run -a finds a free display itself; its authority file goes in our work folder rather than
+    # a temporary folder under /tmp, which other jobs on a shared machine have been seen to clean up
+    # mid-run (new connections then fail).
+    return ["xvfb-run", "-a", "-f", work / "Xauthority", "-s", XVFB_ARGS] + cmd
+
+
+def render(r, exes, pack, out, work):
+    cmd = under_xvfb([exes[r["harness"]], "--pack", pack, "--out", out, "--variant", r["variant"]], work)
+    p = run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if p.returncode != 0:
+        sys.exit(f"{r['run']}: the harness failed (exit {p.returncode}):\n{p.stdout}")
+
+
+def judge(r, shadowref, pack, candidates, out, cache):
+    cmd = [shadowref, "conform", "--catalogue", pack / "scenes", "--candidate-dir", candidates,
+           "--technique", r["technique"], "--out", out, "--cache", cache, "--quiet"]
+    p = run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if p.returncode not in (0, 1, 2):  # 0 pass, 1 warnings, 2 failures: all verdicts; others are errors
+        sys.exit(f"{r['run']}: shadowref conform failed (exit {p.returncode}):\n{p.stdout}")
+    report = json.loads((out / "report.json").read_text())
+    return {c["scene"]: c["status"] for c in report["cases"]}
+
+
+def differences(recorded, observed):
+    """Lines naming every scene whose verdict differs between the recorded table and this run."""
+    lines = []
+    for scene in sorted(set(recorded) | set(observed)):
+        want = recorded.get(scene, {}).get("verdict")
+        got = observed.get(scene)
+        if want != got:
+            lines.append(f"  {scene}: recorded {want or '(none)'}, now {got or '(none)'}")
+    return lines
+
+
+def recorded_entry(before, status):
+    """The table's entry for a scene now `status`: its why and cause kept only if the verdict stayed."""
+    if status == "PASS":
+        return {"verdict": status}
+    if before.get("verdict") == status:
+        return {"verdict": status, "why": before.get("why", ""), "cause": before.get("cause", "")}
+    return {"verdict": status, "why": "", "cause": ""}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--shadowref", required=True, type=pathlib.Path)
+    ap.add_argument("--irrlicht", required=True, type=pathlib.Path)
+    ap.add_argument("--osg", required=True, type=pathlib.Path)
+    ap.add_argument("--work", required=True, type=pathlib.Path)
+    ap.add_argument("--verdicts", type=pathlib.Path, default=HERE / "verdicts.json")
+    ap.add_argument("--record", action="store_true", help="rewrite the recorded verdicts from this run")
+    a = ap.parse_args()
+
+    start = time.monotonic()
+    table = json.loads(a.verdicts.read_text())
+    exes = {"irrlicht": a.irrlicht.resolve(), "osg": a.osg.resolve()}
+    work = a.work.resolve()
+    shutil.rmtree(work, ignore_errors=True)
+    work.mkdir(parents=True)
+    pack, cache = work / "pack", work / "reference-cache"
+    p = run([a.shadowref, "export", "--out", pack], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if p.returncode != 0:
+        sys.exit(f"shadowref export failed (exit {p.returncode}):\n{p.stdout}")
+
+    failed = False
+    for r in table["runs"]:
+        t0 = time.monotonic()
+        candidates, verdict_dir = work / "renders" / r["run"], work / "verdicts" / r["run"]
+        render(r, exes, pack, candidates, work)
+        observed = judge(r, a.shadowref.resolve(), pack, candidates, verdict_dir, cache)
+        diff = differences(r["verdicts"], observed)
+        counts = {}
+        for status in observed.values():
+            counts[status] = counts.get(status, 0) + 1
+        summary = ", ".join(f"{n} {s}" for s, n in sorted(counts.items()))
+        print(f"{r['run']:<28} {r['technique']:<14} {summary}  ({time.monotonic() - t0:.1f} s)")
+        if a.record:
+            r["verdicts"] = {scene: recorded_entry(r["verdicts"].get(scene, {}), status)
+                             for scene, status in sorted(observed.items())}
+        elif diff:
+            failed = True
+            print(f"{r['run']}: verdicts differ from {a.verdicts.name}:\n" + "\n".join(diff) +
+                  f"\n  look at {verdict_dir / 'report' / 'index.html'}")
+
+    # The comparison has teeth: a recorded verdict flipped in memory must be reported.
+    probe = table["runs"][0]
+    scene = sorted(probe["verdicts"])[0]
+    flipped = dict(probe["verdicts"], **{scene: {"verdict": "NOT-" + probe["verdicts"][scene]["verdict"]}})
+    if not differences(flipped, {s: v["verdict"] for s, v in probe["verdicts"].items()}):
+        sys.exit("self-check: a changed verdict went unnoticed")
+
+    if a.record:
+        a.verdicts.write_text(json.dumps(table, indent=2, ensure_ascii=False) + "\n")
+        print(f"recorded {a.verdicts}; write the why of every non-PASS, then engines/readme_table.py --update")
+    print(f"engines: {'FAILED' if failed else 'all verdicts as recorded'} in {time.monotonic() - start:.1f} s;"
+          f" reports under {work / 'verdicts'}")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
