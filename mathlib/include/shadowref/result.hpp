@@ -35,6 +35,8 @@ enum class Error {
   DistanceNotPositive,  // a finite extrusion distance <= 0
   SingularMatrix,       // a matrix that must be inverted is singular
   InvalidShape,         // a procedural shape's size or tessellation is out of range
+  CascadeCountOutOfRange,  // a cascade count outside [1, kMaxCascades]
+  SplitWeightOutOfRange,   // the practical split scheme's weight outside [0, 1]
 };
 
 constexpr const char* describe(Error e) {
@@ -61,6 +63,8 @@ constexpr const char* describe(Error e) {
     case Error::DistanceNotPositive: return "the extrusion distance must be > 0";
     case Error::SingularMatrix: return "the matrix is singular";
     case Error::InvalidShape: return "the shape's size or tessellation is out of range";
+    case Error::CascadeCountOutOfRange: return "the cascade count must be in [1, 8]";
+    case Error::SplitWeightOutOfRange: return "the split weight (lambda) must be in [0, 1]";
   }
   return "unknown error";
 }
