@@ -13,24 +13,23 @@ namespace {
 
 enum Class : std::uint8_t { kShadowed = 0, kNoSurface = 1, kLit = 2 };
 
-// Nearest of 0 / 128 / 255.
-inline Class classify(std::uint8_t v) { return v < 64 ? kShadowed : v < 192 ? kNoSurface : kLit; }
+// Nearest of 0 / 128 / 255: 0, 1 or 2 thresholds passed (branchless, so that loops over it vectorise).
+inline Class classify(std::uint8_t v) { return static_cast<Class>((v >= 64) + (v >= 192)); }
 inline bool exact(std::uint8_t v) { return outputs::is_mask_value(v); }
 
 // The reference's boundary pixels, the scale errors are judged against: those with a 4-neighbour
 // (inside the image) of another class. Branchless over whole rows, so that it vectorises: a
 // neighbour outside the image is replaced by the pixel itself, which never differs.
 std::size_t count_edges(const std::uint8_t* ref, int w, int h) {
-  const auto cls = [](std::uint8_t v) { return static_cast<std::uint8_t>((v >= 64) + (v >= 192)); };  // = classify
   std::size_t edges = 0;
   for (int y = 0; y < h; ++y) {
     const std::uint8_t* row = ref + static_cast<std::size_t>(y) * static_cast<std::size_t>(w);
     const std::uint8_t* up = y > 0 ? row - w : row;
     const std::uint8_t* down = y + 1 < h ? row + w : row;
     for (int x = 0; x < w; ++x) {
-      const std::uint8_t c = cls(row[x]);
-      const std::uint8_t l = cls(row[x > 0 ? x - 1 : x]), r = cls(row[x + 1 < w ? x + 1 : x]);
-      edges += (c != l) | (c != r) | (c != cls(up[x])) | (c != cls(down[x]));
+      const Class c = classify(row[x]);
+      const Class l = classify(row[x > 0 ? x - 1 : x]), r = classify(row[x + 1 < w ? x + 1 : x]);
+      edges += (c != l) | (c != r) | (c != classify(up[x])) | (c != classify(down[x]));
     }
   }
   return edges;
