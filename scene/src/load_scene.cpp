@@ -15,6 +15,7 @@
 #include "json_node.hpp"
 #include "shadowref/scene/camera.hpp"
 #include "shadowref/scene/identifier.hpp"
+#include "shadowref/scene/path_within.hpp"
 #include "shadowref/scene/mesh_file.hpp"
 #include "shadowref/primitives.hpp"
 #include "shadowref/scene/shapes.hpp"
@@ -124,7 +125,7 @@ std::filesystem::path mesh_path(const JsonNode& f, const std::filesystem::path& 
   if (rel.has_root_path()) f.fail("'" + rel.string() + "' is an absolute path, outside the scene's folder " + dir.string());
   const fs::path resolved = fs::weakly_canonical(path, ec);
   if (ec) f.fail("cannot resolve " + path.string() + ": " + ec.message());
-  if (std::mismatch(dir.begin(), dir.end(), resolved.begin(), resolved.end()).first != dir.end())
+  if (!is_within(dir, resolved))
     f.fail("'" + rel.string() + "' resolves to " + resolved.string() + ", outside the scene's folder " + dir.string());
   return path;
 }

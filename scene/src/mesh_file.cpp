@@ -16,6 +16,8 @@
 #include <fstream>
 #include <string>
 
+#include "shadowref/scene/path_within.hpp"
+
 namespace shadowref::scene {
 namespace {
 
@@ -252,16 +254,10 @@ void append_node(const tinygltf::Model& model, int node_index, const Eigen::Matr
 // files in the glTF file's own folder or below it (a pack is self-contained, and a mesh must not
 // make us read what we were not given, e.g. "uri": "/etc/shadow" or "../../secret.bin").
 struct GltfFolder {
-  std::filesystem::path root;  // weakly_canonical folder of the glTF file
+  std::filesystem::path root;  // the glTF file's folder
 };
 
-bool inside(const std::string& file, const GltfFolder& folder) {
-  std::error_code ec;
-  const std::filesystem::path p = std::filesystem::weakly_canonical(file, ec);
-  if (ec) return false;
-  const auto [r, q] = std::mismatch(folder.root.begin(), folder.root.end(), p.begin(), p.end());
-  return r == folder.root.end();
-}
+bool inside(const std::string& file, const GltfFolder& folder) { return resolves_within(folder.root, file); }
 
 // An outside file "exists", so that tinygltf goes on to read it and gltf_read_file says why not
 // (tinygltf would otherwise report a plain "File not found").
@@ -284,8 +280,7 @@ bool gltf_refuse_write(std::string* err, const std::string& file, const std::vec
 
 TriangleMesh<double> load_gltf(const std::filesystem::path& path, bool binary) {
   tinygltf::TinyGLTF loader;
-  std::error_code ec;
-  GltfFolder folder{std::filesystem::weakly_canonical(std::filesystem::absolute(path, ec).parent_path(), ec)};
+  GltfFolder folder{path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path()};
   loader.SetFsCallbacks({&gltf_file_exists, &tinygltf::ExpandFilePath, &gltf_read_file, &gltf_refuse_write, &folder});
   tinygltf::Model model;
   std::string err, warn;
