@@ -116,6 +116,7 @@ int run_conform_command(const ConformArgs& a) {
     if (c.status == conform::Status::Pass) continue;
     std::printf("%-6s %s x %s", conform::to_string(c.status), c.scene.c_str(), c.technique.c_str());
     if (c.status == conform::Status::XFail || c.status == conform::Status::XPass) std::printf(": expected to fail: %s", c.why.c_str());
+    if (c.status == conform::Status::Warn && c.expected_warning) std::printf(": expected quality warning: %s", c.why.c_str());
     if (c.comparison && c.status == conform::Status::XFail)
       std::printf(" (wrong %.3g %%, unexplained %zu px = %.3g %% of edges, core %zu px)", c.comparison->total.wrong_percent(),
                   c.comparison->total.unexplained, 100 * c.comparison->total.unexplained_ratio(), c.comparison->total.unexplained_core);
@@ -184,7 +185,7 @@ void register_conform_command(CLI::App& app, int& exit_code) {
   cmd->footer(
       "Status: PASS, WARN (quality warning), FAIL, XFAIL (an expected failure that failed: the catalogue's why),\n"
       "XPASS (an expected failure that passed: a broken expectation, counted as a failure), ERROR.\n"
-      "Exit: 0 when every case is PASS or XFAIL, 1 with warnings, 2 with any FAIL, XPASS or ERROR, 4 bad input.");
+      "Exit: 0 when every case is PASS, XFAIL or an expected WARN, 1 with other warnings, 2 with any FAIL, XPASS or ERROR, 4 bad input.");
   cmd->callback([args, &exit_code] {
     // The effective command line, for report.json.
     ConformArgs& a = *args;

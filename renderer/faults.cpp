@@ -32,6 +32,10 @@ std::string describe(const Faults& f) {
   on(s.cube == CubeFault::ZFacesSwapped, "shadow_map.cube=z_faces_swapped");
   on(s.cube == CubeFault::YFacesUpsideDown, "shadow_map.cube=y_faces_upside_down");
   on(s.half_texel_offset, "shadow_map.half_texel_offset");
+  on(f.cascade.gap, "cascade.gap");
+  on(f.cascade.slice_depth_range, "cascade.slice_depth_range");
+  on(f.cascade.no_snapping, "cascade.no_snapping");
+  on(f.cascade.frustum_behind_camera, "cascade.frustum_behind_camera");
   return out;
 }
 

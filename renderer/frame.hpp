@@ -21,8 +21,8 @@ struct Program {
   GLuint id = 0;
   GLint clip_from_world = -1, shadow_from_world = -1, colour = -1, mode = -1, shadow = -1, albedo = -1,
         ambient = -1, light = -1, light_intensity = -1, spot = -1, shadow_map = -1, packed_map = -1,
-        texel = -1, offset_factor = -1, offset_units = -1, cube = -1, cube_from_world = -1, reversed = -1,
-        lit_greater = -1;
+        texel = -1, offset_factor = -1, offset_units = -1, layout = -1, layer_from_world = -1, cascade_depth = -1,
+        cascade_begin = -1, cascade_end = -1, reversed = -1, lit_greater = -1;
 };
 
 struct Programs {
@@ -137,5 +137,7 @@ void render_volume_finite(Frame& frame);
 void render_shadowmap(Frame& frame);
 void render_shadowmap_pcf(Frame& frame);
 void render_shadowmap_rgba8(Frame& frame);
+void render_csm(Frame& frame);
+void render_csm_pcf(Frame& frame);
 
 }  // namespace shadowref::renderer

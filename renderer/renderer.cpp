@@ -147,8 +147,11 @@ Program link(const GlFunctions& gl, std::initializer_list<const char*> fragment,
   p.texel = loc("u_texel");
   p.offset_factor = loc("u_offset_factor");
   p.offset_units = loc("u_offset_units");
-  p.cube = loc("u_cube");
-  p.cube_from_world = loc("u_cube_from_world[0]");
+  p.layout = loc("u_layout");
+  p.layer_from_world = loc("u_layer_from_world[0]");
+  p.cascade_depth = loc("u_cascade_depth");
+  p.cascade_begin = loc("u_cascade_begin");
+  p.cascade_end = loc("u_cascade_end");
   p.reversed = loc("u_reversed");
   p.lit_greater = loc("u_lit_greater");
   gl.UseProgram(p.id);
@@ -404,6 +407,15 @@ constexpr Technique kTechniqueTable[] = {
      "The shadow map of hardware without depth textures: depth packed into an RGBA8 colour target "
      "(24 bits, mathlib's depth_packing) and compared as integers in the shader.",
      render_shadowmap_rgba8},
+    {"csm",
+     "Cascaded shadow maps (Engel 2006; Zhang et al. 2006): a directional light's map split at the "
+     "practical split of the camera's depth into 4 cascades, each fitted to its slice's bounding "
+     "sphere and snapped to whole texels (stable), depth range holding the whole scene; one nearest "
+     "compare in the cascade of the fragment's depth. Other lights as shadowmap.",
+     render_csm},
+    {"csm-pcf",
+     "The cascaded shadow maps with the 3x3 percentage-closer filter of shadowmap-pcf in each cascade.",
+     render_csm_pcf},
 };
 
 // The renderer implements exactly the contract's technique list, in its order.

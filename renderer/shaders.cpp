@@ -80,11 +80,15 @@ uniform float u_ambient;
 uniform vec4 u_light;                // homogeneous: w = 1 point / spot, w = 0 directional
 uniform float u_light_intensity;
 uniform vec4 u_spot;                 // xyz: the spot's axis (into the scene), w: cos(cone); w <= -1: no cone
-uniform sampler2DArrayShadow u_shadow_map;  // unit 0: one layer, or a cube's six faces
+uniform sampler2DArrayShadow u_shadow_map;  // unit 0: one layer, a cube's six faces, or the cascades
 uniform sampler2DArray u_packed_map;        // unit 1 (RGBA8 variant), the same layers
 uniform vec2 u_texel;                // 1 / shadow-map size
-uniform int u_cube;                  // 0: one map through v_shadow; 1: six faces picked per fragment
-uniform mat4 u_cube_from_world[6];   // B · P_face · V_face for the faces +x, -x, +y, -y, +z, -z
+uniform int u_layout;                // 0: one map through v_shadow; 1: a cube's six faces; 2: cascades,
+                                     // each picked per fragment (mathlib's light_view_of)
+uniform mat4 u_layer_from_world[6];  // B · P · V per layer: the faces +x, -x, +y, -y, +z, -z, or the cascades
+uniform vec4 u_cascade_depth;        // the camera depth of a world point: dot(u_cascade_depth, (p, 1))
+uniform vec4 u_cascade_begin;        // cascade i decides depths in [begin[i], end[i]) (up to 4 cascades)
+uniform vec4 u_cascade_end;
 uniform int u_reversed;              // 1: reversed-Z maps (near 1, far 0)
 uniform int u_lit_greater;           // the RGBA8 compare: 1 lit when here >= stored (GEQUAL), 0 when
                                      // here <= stored (LEQUAL); a depth texture has its own compare function
@@ -95,7 +99,18 @@ float shadow_visibility() {
   if (u_shadow == 0) return 1.0;
   vec4 s = v_shadow;
   float layer = 0.0;
-  if (u_cube == 1) {
+  if (u_layout == 2) {
+    // The first cascade whose range ends beyond the fragment's camera depth; none (a gap, or beyond
+    // the last): no map decides, lit.
+    float depth = dot(u_cascade_depth, vec4(v_world, 1.0));
+    int c = -1;
+    for (int i = 3; i >= 0; --i)
+      if (depth < u_cascade_end[i]) c = i;
+    if (c < 0 || depth < u_cascade_begin[c]) return 1.0;
+    s = u_layer_from_world[c] * vec4(v_world, 1.0);
+    layer = float(c);
+  }
+  if (u_layout == 1) {
     // The face whose axis is the largest component of the direction from the light (that of a
     // cube-map lookup); each face's map reaches a few texels beyond 90 degrees, so the PCF taps
     // of a fragment on a face's edge stay in that face.
@@ -104,7 +119,7 @@ float shadow_visibility() {
     int face = (a.x >= a.y && a.x >= a.z) ? (d.x >= 0.0 ? 0 : 1)
              : (a.y >= a.z)               ? (d.y >= 0.0 ? 2 : 3)
                                           : (d.z >= 0.0 ? 4 : 5);
-    s = u_cube_from_world[face] * vec4(v_world, 1.0);
+    s = u_layer_from_world[face] * vec4(v_world, 1.0);
     layer = float(face);
   }
   // Behind the light's centre of projection: outside the map, which knows of no occluder there

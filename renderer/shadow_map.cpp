@@ -25,6 +25,10 @@
 // the "nearer" depth test and polygon offset of the convention's sign, compared with the
 // convention's "lit" compare (GL_LEQUAL; GL_GEQUAL under reversed-Z) through its bias matrix; its
 // border holds the far depth, so that nothing occludes outside it.
+// Cascaded (csm, csm-pcf): a directional light's map is the prepared scene's cascades
+// (mathlib/cascades.hpp: practical splits, a stable sphere per slice snapped to whole texels, the
+// whole scene's depth range), one layer each, the cascade picked per fragment by its camera depth
+// (light_view_of); other lights are drawn as by shadowmap / shadowmap-pcf.
 // A fragment outside the single map, or behind its light, counts as lit: the map knows of no
 // occluder there (directional maps hold the whole bounding sphere; a point light's single map
 // holds the whole box, so only geometry-free directions fall outside).
@@ -32,7 +36,8 @@
 // compare reversed or not flipped for reversed-Z, the map cleared to 1, the offset's sign, no bias
 // matrix or the −1..1 one, no offset (acne) or a large constant one (peter-panning), casters out of
 // the camera's view culled, a light fit that clips casters, cube faces swapped or upside down, and a
-// half-texel offset. There is no border-colour switch: every fit holds every vertex with a margin
+// half-texel offset; for the cascades (CascadeFaults) a gap between them, depth ranges clipped to
+// the slices, no texel snapping, and a fit to the frustum behind the camera. There is no border-colour switch: every fit holds every vertex with a margin
 // (light_fit.hpp), so no catalogue fragment maps outside its map or within a PCF tap of its edge
 // (conformance/README.md: a border at the near depth changes no pixel of the catalogue).
 #include <algorithm>
@@ -42,6 +47,7 @@
 #include <vector>
 
 #include "frame.hpp"
+#include "shadowref/cascades.hpp"
 #include "shadowref/projection.hpp"
 #include "shadowref/scene/scene.hpp"
 #include "shadowref/shadow_map.hpp"
@@ -102,13 +108,17 @@ struct LightMap {
   const GlFunctions* gl = nullptr;
   GLuint texture = 0;
   int size = 0;
-  bool cube = false;
+  int layout = 0;                 // the shader's u_layout: 0 one view, 1 a cube, 2 cascades
   Mat4<float> shadow_from_world;  // B · P_light · V_light (the single view)
-  std::vector<Mat4<float>> face_from_world;  // the same per cube face
+  std::vector<Mat4<float>> face_from_world;  // the same per cube face or cascade
+  // Cascades: the camera-depth row, and the depths each cascade is picked for (shader u_cascade_*).
+  Vec4<float> cascade_depth = Vec4<float>::Zero();
+  Vec4<float> cascade_begin = Vec4<float>::Constant(-3e38f), cascade_end = Vec4<float>::Constant(-3e38f);
   LightMap() = default;
   LightMap(LightMap&& o) noexcept
-      : gl(o.gl), texture(o.texture), size(o.size), cube(o.cube), shadow_from_world(o.shadow_from_world),
-        face_from_world(std::move(o.face_from_world)) {
+      : gl(o.gl), texture(o.texture), size(o.size), layout(o.layout), shadow_from_world(o.shadow_from_world),
+        face_from_world(std::move(o.face_from_world)), cascade_depth(o.cascade_depth),
+        cascade_begin(o.cascade_begin), cascade_end(o.cascade_end) {
     o.texture = 0;
   }
   LightMap(const LightMap&) = delete;
@@ -119,16 +129,50 @@ struct LightMap {
   }
 };
 
-LightMap render_light_map(const Frame& frame, std::size_t light_index, Variant variant) {
+// The cascades of the directional light `i` for csm and csm-pcf: the prepared ones, or, when a
+// CascadeFaults switch changes how they are fitted, a refit (into `refit`) with that one change.
+const LightFit& cascade_fit(const Frame& frame, std::size_t i, LightFit& refit) {
+  const LightFit& prepared = frame.prepared.cascade_fits[i];
+  const CascadeFaults& f = frame.faults().cascade;
+  if (prepared.cascade_splits.empty() || (!f.slice_depth_range && !f.no_snapping && !f.frustum_behind_camera))
+    return prepared;
+  CascadeOptions o;
+  o.count = static_cast<int>(prepared.views.size());
+  o.map_size = prepared.size;
+  o.snap = !f.no_snapping;                        // FAULT: the windows follow the camera continuously
+  o.scene_depth_range = !f.slice_depth_range;     // FAULT: casters outside the slice's sphere clipped
+  CascadeCamera camera = scene::cascade_camera(frame.scene);
+  if (f.frustum_behind_camera) camera.forward = -camera.forward;  // FAULT: the other handedness's axis
+  refit = fit_cascades(frame.convention(), frame.light(i).head<3>(), frame.prepared.bounds, camera, o).value();
+  if (f.frustum_behind_camera) {  // the selection is the shader's own, from the true view depth
+    refit.cascade_splits = prepared.cascade_splits;
+    refit.cascade_depth_from_scene = prepared.cascade_depth_from_scene;
+  }
+  return refit;
+}
+
+LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant variant) {
   const GlFunctions& gl = frame.gl;
   const RunConvention& conv = frame.convention();
-  const LightFit& lc = frame.prepared.light_fits[light_index];
   const int size = lc.size;
   const auto layers = static_cast<GLsizei>(lc.views.size());
   LightMap map;
   map.gl = &gl;
   map.size = size;
-  map.cube = lc.cube;
+  map.layout = lc.cube ? 1 : lc.cascade_splits.empty() ? 0 : 2;
+  if (map.layout == 2) {
+    const std::vector<double>& s = lc.cascade_splits;
+    const std::size_t n = s.size() - 1;
+    if (n > 4) throw GlError("the shader picks among at most 4 cascades");
+    map.cascade_depth = lc.cascade_depth_from_scene.cast<float>();
+    for (std::size_t c = 0; c < n; ++c) {
+      map.cascade_begin[c] = c == 0 ? -3e38f : static_cast<float>(s[c]);
+      double end = s[c + 1];
+      // FAULT: the selection ends short of the split the next cascade begins at.
+      if (frame.faults().cascade.gap && c + 1 < n) end = s[c] + kCascadeGapFraction * (s[c + 1] - s[c]);
+      map.cascade_end[c] = static_cast<float>(end);
+    }
+  }
   const ShadowMapFaults& faults = frame.faults().shadow_map;
   Mat4<double> bias = shadow_bias<double>(conv);
   // FAULT: the −1..1 bias matrix whatever the clip depth range.
@@ -255,15 +299,18 @@ void bind_map(const Frame& frame, const LightMap& map, Variant variant) {
   gl.UseProgram(p.id);
   const float texel = 1.0f / static_cast<float>(map.size);
   gl.Uniform2f(p.texel, texel, texel);
-  gl.Uniform1i(p.cube, map.cube ? 1 : 0);
+  gl.Uniform1i(p.layout, map.layout);
   gl.Uniform1i(p.reversed, frame.convention().clip.order == DepthOrder::Reversed ? 1 : 0);
   const DepthCompare lit = lit_compare(frame.convention(), frame.faults().shadow_map.compare);
   gl.Uniform1i(p.lit_greater, lit == DepthCompare::GreaterEqual ? 1 : 0);
-  if (map.cube) {
+  if (map.layout != 0) {
     static_assert(!Mat4<float>::IsRowMajor);
     std::vector<float> m;
     for (const Mat4<float>& f : map.face_from_world) m.insert(m.end(), f.data(), f.data() + 16);
-    gl.UniformMatrix4fv(p.cube_from_world, static_cast<GLsizei>(map.face_from_world.size()), GL_FALSE, m.data());
+    gl.UniformMatrix4fv(p.layer_from_world, static_cast<GLsizei>(map.face_from_world.size()), GL_FALSE, m.data());
+    gl.Uniform4f(p.cascade_depth, map.cascade_depth.x(), map.cascade_depth.y(), map.cascade_depth.z(), map.cascade_depth.w());
+    gl.Uniform4f(p.cascade_begin, map.cascade_begin.x(), map.cascade_begin.y(), map.cascade_begin.z(), map.cascade_begin.w());
+    gl.Uniform4f(p.cascade_end, map.cascade_end.x(), map.cascade_end.y(), map.cascade_end.z(), map.cascade_end.w());
   }
 }
 
@@ -276,11 +323,14 @@ void unbind_maps(const GlFunctions& gl) {
 
 int shader_mode(Variant v) { return v == Variant::Depth ? 1 : v == Variant::Pcf ? 2 : 3; }
 
-void render_variant(Frame& frame, Variant variant) {
+void render_variant(Frame& frame, Variant variant, bool cascaded) {
   const GlFunctions& gl = frame.gl;
   const Mat4<float> clip = frame.camera_clip(CameraDepth::Scene);
   std::vector<LightMap> maps;
-  for (std::size_t i = 0; i < frame.scene.lights.size(); ++i) maps.push_back(render_light_map(frame, i, variant));
+  for (std::size_t i = 0; i < frame.scene.lights.size(); ++i) {
+    LightFit refit;
+    maps.push_back(render_light_map(frame, cascaded ? cascade_fit(frame, i, refit) : frame.prepared.light_fits[i], variant));
+  }
 
   // Masks: one camera pass per light writing the 0/1 comparison; the clear colour is "no surface".
   const Program& p = frame.programs.surface;
@@ -313,8 +363,10 @@ void render_variant(Frame& frame, Variant variant) {
 
 }  // namespace
 
-void render_shadowmap(Frame& frame) { render_variant(frame, Variant::Depth); }
-void render_shadowmap_pcf(Frame& frame) { render_variant(frame, Variant::Pcf); }
-void render_shadowmap_rgba8(Frame& frame) { render_variant(frame, Variant::Rgba8); }
+void render_shadowmap(Frame& frame) { render_variant(frame, Variant::Depth, false); }
+void render_shadowmap_pcf(Frame& frame) { render_variant(frame, Variant::Pcf, false); }
+void render_shadowmap_rgba8(Frame& frame) { render_variant(frame, Variant::Rgba8, false); }
+void render_csm(Frame& frame) { render_variant(frame, Variant::Depth, true); }
+void render_csm_pcf(Frame& frame) { render_variant(frame, Variant::Pcf, true); }
 
 }  // namespace shadowref::renderer

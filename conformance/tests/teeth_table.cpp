@@ -188,6 +188,28 @@ constexpr Row kRows[] = {
             "a pixel and no scene tells it from the right technique's own texel quantisation, which the "
             "shadow-map threshold must allow)",
      .shadow_map_size = 128},
+
+    // ---- cascaded shadow maps -----------------------------------------------------------------
+    {.name = "csm-gap-between-cascades", .technique = "csm",
+     .faults = on([](Faults& f) { f.cascade.gap = true; }), .convention = "gl",
+     .scenes = "sun_horizon",
+     .field_class = "a gap between cascades (the selection's splits and the fit's disagree)",
+     .why = "each cascade is picked only for the first 85 % of its slice: a band of ground before every split "
+            "falls in no cascade, and the long shadows that cross it are cut by a lit stripe"},
+    {.name = "csm-caster-clipped-from-cascade", .technique = "csm",
+     .faults = on([](Faults& f) { f.cascade.slice_depth_range = true; }), .convention = "gl",
+     .scenes = "sun_horizon",
+     .field_class = "a caster between the light and a cascade clipped from its depth range",
+     .why = "each cascade's depth range is its slice's sphere alone: the wall outside the view and the tall "
+            "casters stand outside the spheres of the cascades their shadows fall in, and those shadows vanish"},
+    {.name = "csm-fitted-to-the-wrong-frustum", .technique = "csm-pcf",
+     .faults = on([](Faults& f) { f.cascade.frustum_behind_camera = true; }), .convention = "gl",
+     .scenes = "sun_horizon",
+     .field_class = "cascades fitted to the wrong frustum (the other handedness's viewing axis)",
+     .why = "the slices are fitted behind the eye while the selection uses the true depth: each window holds only "
+            "what its sphere, centred behind the eye, reaches in front of it (the near ground, the middle of the "
+            "far cascades, whose spheres are large), and the shadows farther out, the wall's at the left and the "
+            "tips of the pole's and the sphere's, come out lit"},
 };
 // clang-format on
 

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <set>
 
+#include "shadowref/cascades.hpp"
 #include "shadowref/outputs/errors.hpp"
 #include "shadowref/outputs/techniques.hpp"
 #include "shadowref/outputs/json_text.hpp"
@@ -19,7 +20,7 @@ CandidateDeclaration default_declaration(const std::string& technique) {
   const TechniqueName* t = find_technique_name(technique);
   d.filter_radius_texels = t && t->family == TechniqueFamily::ShadowMapPcf ? 1.0 : 0.0;
   d.defaulted = {"producer", "version", "technique", "convention", "shadow_map_size", "filter_radius_texels",
-                 "slope_bias_texels", "constant_bias", "light_views"};
+                 "slope_bias_texels", "constant_bias", "light_views", "cascades"};
   return d;
 }
 
@@ -35,7 +36,8 @@ CandidateDeclaration read_declaration(const std::filesystem::path& dir, const st
   if (j.is_discarded()) throw bad("not valid JSON");
   if (!j.is_object()) throw bad("must be a JSON object");
   static const std::set<std::string> known{"producer", "version", "technique", "convention", "shadow_map_size",
-                                           "filter_radius_texels", "slope_bias_texels", "constant_bias", "light_views"};
+                                           "filter_radius_texels", "slope_bias_texels", "constant_bias", "light_views",
+                                           "cascades"};
   for (const auto& item : j.items())
     if (!known.count(item.key())) throw bad(item.key() + ": unknown key");
   std::set<std::string> given;
@@ -77,6 +79,14 @@ CandidateDeclaration read_declaration(const std::filesystem::path& dir, const st
     d.light_views_from_pack = j["light_views"] == "pack";
     given.insert("light_views");
   }
+  if (j.contains("cascades")) {
+    if (!j["cascades"].is_number_integer()) throw bad("cascades: must be an integer");
+    const auto v = j["cascades"].get<long long>();
+    if (v < 0 || v > kMaxCascades)
+      throw bad("cascades: must be in [0, " + std::to_string(kMaxCascades) + "] (0: the pack's count)");
+    d.cascades = static_cast<int>(v);
+    given.insert("cascades");
+  }
   d.defaulted.clear();
   for (const std::string& k : known)
     if (!given.count(k)) d.defaulted.push_back(k);
@@ -94,6 +104,7 @@ void write_declaration(const CandidateDeclaration& d, const std::filesystem::pat
   j["slope_bias_texels"] = d.slope_bias_texels;
   j["constant_bias"] = d.constant_bias;
   j["light_views"] = d.light_views_from_pack ? "pack" : "own";
+  j["cascades"] = d.cascades;
   std::ofstream f(dir / kCandidateFile, std::ios::binary);
   f << json_text(j, 2) << "\n";
   if (!f) throw FileError((dir / kCandidateFile).string() + ": cannot write");

@@ -10,6 +10,8 @@
 
 #include "shadowref/reference/embree_scene.hpp"
 #include "shadowref/reference/shadow_ray.hpp"
+#include "shadowref/cascades.hpp"
+#include "shadowref/outputs/techniques.hpp"
 #include "shadowref/scene/camera.hpp"
 
 namespace shadowref::reference {
@@ -52,16 +54,25 @@ CauseModel::CauseModel(const scene::PreparedScene& scene)
 
 CauseModel::~CauseModel() = default;
 
-const LightFit& CauseModel::fit_for(std::size_t light, int size) const {
-  if (size == 0 || size == scene_.light_fits[light].size) return scene_.light_fits[light];
-  const auto key = std::make_pair(light, size);
+const LightFit& CauseModel::fit_for(std::size_t light, int size, int cascades) const {
+  if (cascades == 0 && (size == 0 || size == scene_.light_fits[light].size)) return scene_.light_fits[light];
+  if (cascades == kDefaultCascades && (size == 0 || size == scene_.cascade_fits[light].size))
+    return scene_.cascade_fits[light];
+  const auto key = std::make_tuple(light, size, cascades);
   auto it = fits_.find(key);
   if (it == fits_.end()) {
-    std::vector<const TriangleMesh<float>*> meshes;
-    for (const scene::Object& o : scene_.scene->objects) meshes.push_back(&o.mesh);
-    LightFitOptions o;
-    o.map_size = size;
-    it = fits_.emplace(key, fit_light(*scene_.convention, scene_.lights[light], meshes, o).value()).first;
+    if (cascades > 0) {
+      CascadeOptions o;
+      o.count = cascades;
+      o.map_size = size;
+      it = fits_.emplace(key, scene::cascaded_light_fit(scene_, light, o)).first;
+    } else {
+      std::vector<const TriangleMesh<float>*> meshes;
+      for (const scene::Object& o : scene_.scene->objects) meshes.push_back(&o.mesh);
+      LightFitOptions o;
+      o.map_size = size;
+      it = fits_.emplace(key, fit_light(*scene_.convention, scene_.lights[light], meshes, o).value()).first;
+    }
   }
   return it->second;
 }
@@ -92,17 +103,13 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
   // own shadow whatever a map holds; no footprint or bias lights it.
   if (!(n.dot(to_light) > 0)) return Cause::Unexplained;
 
-  // The light view that decides p: the cube face of the largest component of (p − light), or the one view.
-  const LightFit& fit = fit_for(light, d.shadow_map_size);
-  std::size_t face = 0;
-  if (fit.cube) {
-    const Vec3<double> dp = p - L.head<3>() / L.w();
-    const Vec3<double> a = dp.cwiseAbs();
-    if (a.x() >= a.y() && a.x() >= a.z()) face = dp.x() >= 0 ? 0 : 1;
-    else if (a.y() >= a.z()) face = dp.y() >= 0 ? 2 : 3;
-    else face = dp.z() >= 0 ? 4 : 5;
-  }
-  const LightView& view = fit.views[face];
+  // The light view that decides p: the cube face, the cascade, or the one view (light_view_of).
+  const outputs::TechniqueName* technique = outputs::find_technique_name(d.technique);
+  const int cascades = technique && technique->cascaded ? (d.cascades ? d.cascades : kDefaultCascades) : 0;
+  const LightFit& fit = fit_for(light, d.shadow_map_size, cascades);
+  const int face = light_view_of(fit, L, p);
+  if (face < 0) return Cause::Unexplained;  // beyond every cascade: no map decides p
+  const LightView& view = fit.views[static_cast<std::size_t>(face)];
   const Mat4<double> m = view.projection * view.view;
   const Vec4<double> h = m * Vec4<double>(p.x(), p.y(), p.z(), 1.0);
   if (!(h.w() > 0)) return Cause::Unexplained;
@@ -129,30 +136,29 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
 
   // What a texel at map offset (dx, dy) may hold: the depth of the first surface along its ray, or,
   // where the map is drawn with front faces culled (as ours is, and many engines'), the depth where
-  // the ray leaves that first caster (its first back face); a miss holds "nothing": infinitely far.
-  // The shadow map calls p lit through that texel when p is not beyond the stored depth plus its
-  // bias (bias_at, `with_bias`); the texel explains a lit answer when either depth does, a shadowed
-  // one when the first does.
-  const auto lit_through = [&](double dx, double dy, bool with_bias) {
+  // the ray leaves that first caster (its first back face; none for an open caster, drawn two-sided);
+  // a miss holds "nothing": infinitely far. Each stored depth carries the bias of its own polygon
+  // (bias_at, `with_bias`). The texel gives the candidate's answer when p, compared with either
+  // stored depth, gets it: lit when p is not beyond it, shadowed when p is.
+  const auto gives = [&](double dx, double dy, bool with_bias) {
     const double mx = q.x() + dx * texel_ndc, my = q.y() + dy * texel_ndc;
     const Vec3<double> a = unproject(inv, mx, my, zn), b = unproject(inv, mx, my, zf);
     const Vec3<double> ray_dir = (b - a).normalized();
     RTCRayHit r = first_hit(embree_->handle(), a, ray_dir, static_cast<float>((b - a).norm()));
     RTCIntersectContext c;
     rtcInitIntersectContext(&c);
-    if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) return true;
+    if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) return candidate_lit;
     const auto biased = [&](double t_hit) {
       const double at = depth(a + t_hit * ray_dir);
       return at + (with_bias ? bias_at(Vec3<double>(r.hit.Ng_x, r.hit.Ng_y, r.hit.Ng_z), ray_dir, at) : 0.0);
     };
-    const double first = biased(static_cast<double>(r.ray.tfar));
-    if (!candidate_lit) return depth_p <= first + eps;
-    if (depth_p <= first + eps) return true;
+    const auto answer = [&](double stored) { return (depth_p <= stored + eps) == candidate_lit; };
+    if (answer(biased(static_cast<double>(r.ray.tfar)))) return true;
     // Front faces culled: walk on to the first face the ray leaves through (normal along the ray).
     double t = static_cast<double>(r.ray.tfar);
     for (int step = 0; step < 8; ++step) {
       const Vec3<double> ng(r.hit.Ng_x, r.hit.Ng_y, r.hit.Ng_z);
-      if (ng.dot(ray_dir) > 0) return depth_p <= biased(t) + eps;
+      if (ng.dot(ray_dir) > 0) return answer(biased(t));
       RTCRayHit next{};
       next.ray = r.ray;
       next.ray.tnear = static_cast<float>(t + eps);
@@ -168,7 +174,7 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
 
   // Depth bias: the texel of p itself, compared with the declared bias (a contact within the bias
   // comes out lit, as peter-panning shows it).
-  if (lit_through(0, 0, true) == candidate_lit && lit_through(0, 0, false) != candidate_lit) return Cause::DepthBias;
+  if (gives(0, 0, true) && !gives(0, 0, false)) return Cause::DepthBias;
   // Texel footprint: the texels whose centres lie within the square of half-width h texels around
   // p's point (probed at h and h / 2 along the axes and the diagonals), with the declared bias.
   // A nearest lookup on our own grid (light views from the pack) reads a texel whose centre is within
@@ -179,7 +185,7 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
                                                                {1, -1}, {-1, -1}}};
   for (const double r : {0.5 * radius, radius})
     for (const auto& dv : kDirs)
-      if (lit_through(dv[0] * r, dv[1] * r, true) == candidate_lit) return Cause::TexelFootprint;
+      if (gives(dv[0] * r, dv[1] * r, true)) return Cause::TexelFootprint;
   return Cause::Unexplained;
 }
 

@@ -268,10 +268,12 @@ void read_expect(const JsonNode& n, Scene& scene) {
     Expectation x;
     const JsonNode result = e.required("result");
     const std::string r = result.string();
-    if (r != "pass" && r != "fail") result.fail("must be \"pass\" or \"fail\"");
-    x.pass = r == "pass";
+    if (r != "pass" && r != "warn" && r != "fail") result.fail("must be \"pass\", \"warn\" or \"fail\"");
+    x.pass = r != "fail";
+    x.warn = r == "warn";
     if (e.has("why")) x.why = e.child("why").string();
-    if (!x.pass && x.why.empty()) e.fail_at("why", "is required (and non-empty) for an expected failure");
+    if ((!x.pass || x.warn) && x.why.empty())
+      e.fail_at("why", "is required (and non-empty) for an expected failure or warning");
     scene.expect[item.key()] = x;
   }
 }

@@ -37,6 +37,31 @@ const CameraMatrices& PreparedScene::camera_for(CameraDepth depth) const {
   return camera;
 }
 
+CascadeCamera cascade_camera(const Scene& s) {
+  CascadeCamera c;
+  c.eye = s.camera.position;
+  c.forward = (s.camera.target - s.camera.position).normalized();
+  c.fovy = s.camera.fovy_deg * std::numbers::pi / 180.0;
+  c.aspect = static_cast<double>(s.width) / s.height;
+  c.near = s.camera.near;
+  if (s.camera.far) c.far = *s.camera.far;
+  return c;
+}
+
+LightFit cascaded_light_fit(const PreparedScene& p, std::size_t light, CascadeOptions options) {
+  const Vec4<double>& L = p.lights.at(light);
+  if (L.w() != 0.0) {
+    if (options.map_size == 0 || options.map_size == p.light_fits.at(light).size) return p.light_fits[light];
+    std::vector<const TriangleMesh<float>*> meshes;
+    for (const Object& o : p.scene->objects) meshes.push_back(&o.mesh);
+    LightFitOptions fit_options;
+    fit_options.map_size = options.map_size;
+    return value_or_throw(fit_light(*p.convention, L, meshes, fit_options), "light fit");
+  }
+  if (options.map_size == 0) options.map_size = p.options.shadow_map_size ? p.options.shadow_map_size : kDirectionalAutoSize;
+  return value_or_throw(fit_cascades(*p.convention, L.head<3>(), p.bounds, cascade_camera(*p.scene), options), "cascade fit");
+}
+
 PreparedScene prepare_scene(const Scene& s, const RunConvention& c, const PrepareOptions& options) {
   PreparedScene p;
   p.scene = &s;
@@ -80,6 +105,7 @@ PreparedScene prepare_scene(const Scene& s, const RunConvention& c, const Prepar
   fit_options.map_size = options.shadow_map_size;
   fit_options.camera_tan_per_pixel = std::tan(s.camera.fovy_deg * std::numbers::pi / 360.0) / s.height;
   for (const Vec4<double>& L : p.lights) p.light_fits.push_back(value_or_throw(fit_light(c, L, meshes, fit_options), "light fit"));
+  for (std::size_t i = 0; i < p.lights.size(); ++i) p.cascade_fits.push_back(cascaded_light_fit(p, i));
   return p;
 }
 

@@ -84,7 +84,7 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
     k["scene_file"] = fs::absolute(c.scene_file).string();
     k["technique"] = c.technique;
     k["status"] = to_string(c.status);
-    k["expected"] = c.expected_pass ? "pass" : "fail";
+    k["expected"] = !c.expected_pass ? "fail" : c.expected_warning ? "warn" : "pass";
     k["why"] = c.why;
     if (!c.signature.empty()) k["signature"] = c.signature;
     k["reference_dir"] = c.reference_dir.string();

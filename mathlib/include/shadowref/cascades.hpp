@@ -18,21 +18,42 @@
 //   * snap_to_texels: a light-space position rounded to whole texels (texel = 2 r / map size), the
 //     other half of that stability: the orthographic window then moves in whole texels, so every
 //     texel keeps sampling the same world points and static edges do not shimmer.
-// Cost: O(N) and O(1). Errors: NonFinite, NearNotPositive, FarNotBeyondNear,
-// CascadeCountOutOfRange, SplitWeightOutOfRange, FovOutOfRange, ZeroAspect.
+//   * fit_cascades: the cascaded shadow map of a directional light for a camera — the splits of
+//     [camera near, min(camera far, the farthest point of the scene's box ahead)], and per cascade
+//     one orthographic view (a LightFit whose views are the cascades, light_fit.hpp): the slice's
+//     bounding sphere, its centre snapped to whole texels in a light space fixed to the scene (not
+//     to the camera), and a depth range holding the whole scene's bounding sphere, so that a caster
+//     between the light and a cascade is drawn into it even when it lies outside the camera's view
+//     and outside the slice. Every view shares one orientation and one depth range; only the window
+//     differs. Convention: the run convention's view and projection (convention.hpp), as fit_light.
+//   * light_view_of: which view of a fit decides a scene point (cube face, cascade, or the one view).
+// Cost: O(N) and O(1); fit_cascades O(N) after the scene's bounds. Errors: NonFinite,
+// NearNotPositive, FarNotBeyondNear, CascadeCountOutOfRange, SplitWeightOutOfRange, FovOutOfRange,
+// ZeroAspect.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "shadowref/conventions.hpp"
+#include "shadowref/light_fit.hpp"
 #include "shadowref/result.hpp"
 
 namespace shadowref {
 
 inline constexpr int kMaxCascades = 8;
+// The defaults of fit_cascades: four cascades (what engines ship for a sun), split three quarters
+// logarithmic: with the cascades reaching to the scene's far end, an even blend gives the first
+// cascade a quarter of the whole depth and leaves the ground at the camera's feet coarse.
+inline constexpr int kDefaultCascades = 4;
+inline constexpr double kDefaultSplitWeight = 0.75;
+// Each cascade's window is its slice's sphere widened by this many texels on every side, so that a
+// filter's taps around a point of the slice stay inside the map (the sphere may touch the window).
+inline constexpr double kCascadeMarginTexels = 2.0;
 
 // The N + 1 split distances of the practical scheme (see above), weight `lambda` in [0, 1].
 template <class T>
@@ -96,6 +117,108 @@ template <class T>
 Vec2<T> snap_to_texels(const Vec2<T>& p, T radius, int map_size) {
   const T texel = T(2) * radius / T(map_size);
   return Vec2<T>(std::round(p.x() / texel) * texel, std::round(p.y() / texel) * texel);
+}
+
+// The camera a cascaded map is fitted to: a symmetric perspective camera in scene space.
+struct CascadeCamera {
+  Vec3<double> eye = Vec3<double>::Zero();
+  Vec3<double> forward = Vec3<double>(0, 0, -1);  // the viewing direction (normalised by the fit)
+  double fovy = 0.785398;                         // vertical field of view, radians
+  double aspect = 1;                              // width / height
+  double near = 0.1;
+  double far = std::numeric_limits<double>::infinity();  // infinite: the scene's farthest point ahead
+};
+
+struct CascadeOptions {
+  int count = kDefaultCascades;
+  double split_weight = kDefaultSplitWeight;  // lambda of cascade_splits
+  int map_size = kDirectionalAutoSize;        // texels per side of each cascade's map
+  // Whole texels (false: the window follows the camera continuously, and edges shimmer as it moves).
+  bool snap = true;
+  // Each view's depth range holds the whole scene (false: only the slice's sphere, which clips the
+  // casters between the light and the slice that lie outside it: shadows go missing).
+  bool scene_depth_range = true;
+};
+
+// The cascades of the directional light toward `toward_light` (from the scene to the light) over
+// the scene box `bounds` ({min, max}) for `camera`, in the run convention `conv` (see above).
+inline Result<LightFit> fit_cascades(const RunConvention& conv, const Vec3<double>& toward_light,
+                                     const std::array<Vec3<double>, 2>& bounds, const CascadeCamera& camera,
+                                     const CascadeOptions& o = {}) {
+  if (!toward_light.allFinite() || !bounds[0].allFinite() || !bounds[1].allFinite() || !camera.eye.allFinite() ||
+      !camera.forward.allFinite() || std::isnan(camera.far))
+    return Error::NonFinite;
+  if (!(toward_light.norm() > 0) || !(camera.forward.norm() > 0)) return Error::NonFinite;
+  if (!(bounds[0].x() <= bounds[1].x() && bounds[0].y() <= bounds[1].y() && bounds[0].z() <= bounds[1].z()))
+    return Error::EmptyMesh;
+  if (!(camera.near > 0)) return Error::NearNotPositive;
+  if (o.map_size < 1) return Error::NonFinite;
+  const Vec3<double> toward = toward_light.normalized(), forward = camera.forward.normalized();
+  // The depths the cascades cover: the camera's near plane to its far plane or the farthest corner
+  // of the scene's box ahead of it, whichever is nearer (nothing beyond needs a texel).
+  double farthest = 0;
+  for (int k = 0; k < 8; ++k) {
+    const Vec3<double> c((k & 1) ? bounds[1].x() : bounds[0].x(), (k & 2) ? bounds[1].y() : bounds[0].y(),
+                         (k & 4) ? bounds[1].z() : bounds[0].z());
+    farthest = std::max(farthest, (c - camera.eye).dot(forward));
+  }
+  double far = std::min(camera.far, farthest);
+  if (!(far > camera.near * (1 + 1e-9))) far = 2 * camera.near;  // nothing ahead: any range will do
+  auto splits = cascade_splits(camera.near, far, o.count, o.split_weight);
+  if (!splits) return splits.error();
+  // Light space fixed to the scene: looking along −toward at the box's centre from 2 R away, so
+  // that the whole box lies at depths [R, 3 R] (R its bounding radius), as fit_light's single view.
+  const Vec3<double> centre = 0.5 * (bounds[0] + bounds[1]);
+  const double R = std::max(0.5 * (bounds[1] - bounds[0]).norm(), 1e-6);
+  auto view = view_from_scene<double>(conv, centre + toward * (2 * R), centre, least_aligned_axis(toward));
+  if (!view) return view.error();
+  const double axis_sign = conv.clip.hand == Handedness::Right ? -1.0 : 1.0;  // view-space z → depth
+  LightFit fit;
+  fit.size = o.map_size;
+  fit.cascade_splits = *splits;
+  fit.cascade_depth_from_scene << forward, -forward.dot(camera.eye);
+  for (int i = 0; i < o.count; ++i) {
+    const auto sphere = slice_bounding_sphere(camera.fovy, camera.aspect, (*splits)[i], (*splits)[i + 1]);
+    if (!sphere) return sphere.error();
+    const double r = o.map_size > 8 * kCascadeMarginTexels
+                         ? sphere->radius * o.map_size / (o.map_size - 2 * kCascadeMarginTexels)
+                         : sphere->radius;
+    const Vec3<double> c = camera.eye + forward * sphere->centre_depth;
+    const Vec4<double> q = *view * Vec4<double>(c.x(), c.y(), c.z(), 1.0);
+    Vec2<double> xy(q.x(), q.y());
+    if (o.snap) xy = snap_to_texels(xy, r, o.map_size);
+    double near = 0.5 * R, far_depth = 3.5 * R;
+    if (!o.scene_depth_range) {
+      near = axis_sign * q.z() - r;
+      far_depth = axis_sign * q.z() + r;
+    }
+    auto projection = ortho_for<double>(conv, xy.x() - r, xy.x() + r, xy.y() - r, xy.y() + r, near, far_depth);
+    if (!projection) return projection.error();
+    LightView v;
+    v.view = *view;
+    v.projection = *projection;
+    fit.views.push_back(std::move(v));
+  }
+  return fit;
+}
+
+// The view of `fit` that decides the scene point `p` for the light L (homogeneous): the cube face
+// of the largest component of p − light (a cube-map lookup); the cascade holding p's camera depth
+// (a depth before the first split counts as the first cascade: only clipping rounds it there); or
+// the one view. -1 when p lies beyond the last cascade. The renderer's shader makes the same choice.
+inline int light_view_of(const LightFit& fit, const Vec4<double>& L, const Vec3<double>& p) {
+  if (fit.cube) {
+    const Vec3<double> dp = p - L.head<3>() / L.w();
+    const Vec3<double> a = dp.cwiseAbs();
+    if (a.x() >= a.y() && a.x() >= a.z()) return dp.x() >= 0 ? 0 : 1;
+    if (a.y() >= a.z()) return dp.y() >= 0 ? 2 : 3;
+    return dp.z() >= 0 ? 4 : 5;
+  }
+  if (fit.cascade_splits.size() >= 2) {
+    const double depth = fit.cascade_depth_from_scene.dot(Vec4<double>(p.x(), p.y(), p.z(), 1.0));
+    return cascade_of(fit.cascade_splits, std::max(depth, fit.cascade_splits.front()));
+  }
+  return 0;
 }
 
 }  // namespace shadowref

@@ -57,10 +57,16 @@ struct LightView {
 };
 
 struct LightFit {
-  std::vector<LightView> views;     // 1, or 6 for a cube (+x, −x, +y, −y, +z, −z)
+  std::vector<LightView> views;     // 1, 6 for a cube (+x, −x, +y, −y, +z, −z), or one per cascade
   bool cube = false;
   int size = kDirectionalAutoSize;  // texels per side of every view's map
+  // Cascaded (cascades.hpp, fit_cascades): views[i] decides the scene points whose camera depth
+  // cascade_depth_from_scene · (p, 1) lies in [cascade_splits[i], cascade_splits[i + 1]) (the last
+  // closed). Empty: not cascaded.
+  std::vector<double> cascade_splits;
+  Vec4<double> cascade_depth_from_scene = Vec4<double>::Zero();
 };
+
 
 struct LightFitOptions {
   int map_size = 0;                 // texels per side; 0: automatic (see above)

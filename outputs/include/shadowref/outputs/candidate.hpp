@@ -15,9 +15,12 @@
 //     "slope_bias_texels": 2,             number >= 0: slope-scaled bias, as the depth change of the
 //                                         surface across this many texels (glPolygonOffset's factor)
 //     "constant_bias": 0.0,               number >= 0: constant bias, in world units along the light ray
-//     "light_views": "own"                "pack": the shadow maps use the pack's light view and
+//     "light_views": "own",               "pack": the shadow maps use the pack's light view and
 //                                         projection matrices (matrices.json), so their texel grid is
 //                                         known; "own": the engine fits its own (grid phase unknown)
+//     "cascades": 4                       integer in [0, 8]: cascaded techniques (csm, csm-pcf), the
+//                                         cascades per directional light, split as the pack's
+//                                         `cascades` say; 0 = the pack's count
 //   }
 // Every key is optional. Absent keys take the defaults below (for a known technique: its family's
 // defaults), and `defaulted` lists them, so the report can say which values were assumed.
@@ -42,6 +45,7 @@ struct CandidateDeclaration {
   double slope_bias_texels = 2.0;      // our renderer's glPolygonOffset factor
   double constant_bias = 0.0;
   bool light_views_from_pack = false;  // "light_views": "pack"
+  int cascades = 0;                    // cascaded techniques: cascades per directional light; 0: the pack's default
   std::vector<std::string> defaulted;  // keys that were absent
 };
 

@@ -22,10 +22,14 @@ enum class TechniqueFamily {
 struct TechniqueName {
   std::string_view name;
   TechniqueFamily family;
+  // Cascaded shadow maps: a directional light's map split along the camera's depth
+  // (mathlib/cascades.hpp), each pixel judged by the texels of its cascade; other lights as the
+  // plain shadow map.
+  bool cascaded = false;
 };
 
 // clang-format off
-inline constexpr std::array<TechniqueName, 9> kTechniques{{
+inline constexpr std::array<TechniqueName, 11> kTechniques{{
     {"planar", TechniqueFamily::ExactGeometry},
     {"volume-zpass", TechniqueFamily::ExactGeometry},
     {"volume-zfail", TechniqueFamily::ExactGeometry},
@@ -35,6 +39,8 @@ inline constexpr std::array<TechniqueName, 9> kTechniques{{
     {"shadowmap", TechniqueFamily::ShadowMap},
     {"shadowmap-pcf", TechniqueFamily::ShadowMapPcf},
     {"shadowmap-rgba8", TechniqueFamily::ShadowMap},
+    {"csm", TechniqueFamily::ShadowMap, true},
+    {"csm-pcf", TechniqueFamily::ShadowMapPcf, true},
 }};
 // clang-format on
 

@@ -5,7 +5,8 @@
 // The model simulates what a shadow map with the declared map size, filter and bias can honestly
 // answer at the pixel centre's surface point p (normal n toward the viewer) for light L. A texel holds
 // the depth of the first surface along its ray from the light (the fit of mathlib/light_fit.hpp at
-// the declared map size; for a cube, the face a lookup picks) or, where front faces are culled, the
+// the declared map size; for a cube, the face a lookup picks; for a cascaded technique, the cascade
+// of cascades.hpp holding p's camera depth, with the declared count) or, where front faces are culled, the
 // depth where the ray leaves that first caster; through it p is lit when p is not beyond that depth
 // by more than the stored polygon's bias b = constant_bias + slope_bias_texels · texel · tan θ
 // (glPolygonOffset's model: texel = one texel's width there in world units, θ between the stored
@@ -26,6 +27,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <tuple>
 #include <vector>
 
 #include "shadowref/light_fit.hpp"
@@ -57,11 +59,13 @@ class CauseModel {
   Cause explain(std::size_t light, int x, int y, const outputs::CandidateDeclaration& declared, bool candidate_lit) const;
 
  private:
-  const LightFit& fit_for(std::size_t light, int size) const;
+  // The light's views at map size `size` (0: the prepared size), cascaded with `cascades` cascades
+  // (0: not cascaded).
+  const LightFit& fit_for(std::size_t light, int size, int cascades) const;
   const scene::PreparedScene& scene_;
   std::unique_ptr<EmbreeScene> embree_;
   Mat4<double> inverse_clip_;
-  mutable std::map<std::pair<std::size_t, int>, LightFit> fits_;
+  mutable std::map<std::tuple<std::size_t, int, int>, LightFit> fits_;
 };
 
 }  // namespace shadowref::reference

@@ -102,11 +102,35 @@ struct ShadowMapFaults {
   bool half_texel_offset = false;
 };
 
+// Cascaded shadow maps (csm, csm-pcf; mathlib/cascades.hpp), directional lights only.
+struct CascadeFaults {
+  // Each cascade but the last selected only up to kCascadeGapFraction of its slice (the split the
+  // selection uses and the one the fit uses disagree): depths in between fall in no cascade and
+  // come out lit.
+  bool gap = false;
+  // Each cascade's depth range fitted to its slice's bounding sphere alone: a caster between the
+  // light and the slice that lies outside the sphere (a tree behind the camera, a cliff far to the
+  // side) is clipped from that cascade, and its shadow goes missing there.
+  bool slice_depth_range = false;
+  // The windows not snapped to whole texels: every camera move shifts the texel grid over the
+  // world, and static shadow edges crawl (shimmer). Right in any one frame.
+  bool no_snapping = false;
+  // The cascades fitted to the frustum behind the camera: its corners built with the other
+  // handedness's viewing axis (+z for −z), while the selection still uses the true view depth.
+  // Every window then holds the slice behind the eye; what the camera sees falls outside them
+  // (lit), except near the eye, where the first cascade's sphere reaches in front of it.
+  bool frustum_behind_camera = false;
+};
+
+// CascadeFaults::gap: the part of each slice its cascade is selected for.
+inline constexpr double kCascadeGapFraction = 0.85;
+
 struct Faults {
   CameraFaults camera;
   PlanarFaults planar;
   VolumeFaults volume;
   ShadowMapFaults shadow_map;
+  CascadeFaults cascade;
 };
 
 // The switches that are on, as "family.switch[=value]" joined by ", "; "" for production.

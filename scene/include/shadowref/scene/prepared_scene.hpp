@@ -12,7 +12,10 @@
 //   bounds      the axis-aligned box of every vertex;
 //   casters     per object: its welded caster (mathlib's ShadowCaster: adjacency and face planes),
 //               its bounding sphere, whether it is a closed 2-manifold — or why it casts no volume;
-//   light_fits  per light, the shadow-map views (light_fit.hpp) for the requested map size.
+//   light_fits  per light, the shadow-map views (light_fit.hpp) for the requested map size;
+//   cascade_fits per light, the views of the cascaded techniques: a directional light's cascades
+//               for the scene camera (cascades.hpp, default count and split weight), any other
+//               light's ordinary fit (cascades are a sun's technique).
 //
 // Pixel (x, y) of a W × H image (row 0 at the top) has its centre at
 //   ndc.x = 2 (x + 0.5) / W − 1,   ndc.y = 1 − 2 (y + 0.5) / H   (pixel_to_ndc in camera.hpp).
@@ -22,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "shadowref/cascades.hpp"
 #include "shadowref/convention.hpp"
 #include "shadowref/light_fit.hpp"
 #include "shadowref/scene/scene.hpp"
@@ -65,10 +69,19 @@ struct PreparedScene {
   std::array<Vec3<double>, 2> bounds;           // {min, max}
   std::vector<PreparedCaster> casters;          // scene.objects order
   std::vector<LightFit> light_fits;             // scene.lights order
+  std::vector<LightFit> cascade_fits;           // scene.lights order
   PrepareOptions options;
 
   const CameraMatrices& camera_for(CameraDepth depth) const;
 };
+
+// The camera of `scene` as fit_cascades takes it (scene space; aspect = width / height).
+CascadeCamera cascade_camera(const Scene& scene);
+
+// Light `light`'s cascaded fit with `options` (its map_size 0: the prepared map size, or
+// kDirectionalAutoSize): fit_cascades for a directional light, fit_light for any other. Throws
+// std::logic_error where a matrix cannot be built, as prepare_scene.
+LightFit cascaded_light_fit(const PreparedScene& prepared, std::size_t light, CascadeOptions options = {});
 
 // Prepares `scene` (which must outlive the result) for `convention`. Throws std::logic_error when
 // a matrix cannot be built (the loader has refused every camera and light that could cause it).

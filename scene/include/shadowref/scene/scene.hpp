@@ -72,7 +72,10 @@ struct Object {
 // limitation the catalogue wants to see detected).
 struct Expectation {
   bool pass = true;
-  std::string why;                    // non-empty when pass == false
+  // "warn": an expected quality warning (explained errors beyond the quality bound, e.g. one map
+  // over a kilometre of ground): a WARN verdict is then no warning of the run; PASS and FAIL count as usual.
+  bool warn = false;
+  std::string why;                    // non-empty when pass == false or warn
 };
 
 struct Scene {

@@ -11,7 +11,8 @@
 //          failure (our implementation); errors beyond the model make the case FAIL
 //   XPASS  expected to fail, verdict pass or warning: a broken expectation, counted as a failure
 //   ERROR  the case could not be judged (GL error, missing or unreadable candidate file)
-// Exit (docs/output-contract.md): 2 when any FAIL, XPASS or ERROR; else 1 when any WARN; else 0.
+// Exit (docs/output-contract.md): 2 when any FAIL, XPASS or ERROR; else 1 when any WARN the catalogue
+// does not expect ("result": "warn"); else 0.
 #pragma once
 
 #include <filesystem>
@@ -76,7 +77,8 @@ struct CaseResult {
   std::filesystem::path scene_file;
   std::string technique;
   bool expected_pass = true;
-  std::string why;                              // the catalogue's why (expected failures)
+  bool expected_warning = false;                // the catalogue expects a quality warning (a WARN is no warning of the run)
+  std::string why;                              // the catalogue's why (expected failures and warnings)
   std::string signature;                        // an engine's expected failure against the technique's model
   Status status = Status::Error;
   std::optional<compare::FolderComparison> comparison;
