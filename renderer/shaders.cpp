@@ -100,8 +100,8 @@ float shadow_visibility() {
   vec4 s = v_shadow;
   float layer = 0.0;
   if (u_layout == 2) {
-    // The first cascade whose range ends beyond the fragment's camera depth; none (a gap, or beyond
-    // the last): no map decides, lit.
+    // The first cascade whose range ends beyond the fragment's camera depth (the first and the last
+    // open-ended); none (a gap between them): no map decides, lit.
     float depth = dot(u_cascade_depth, vec4(v_world, 1.0));
     int c = -1;
     for (int i = 3; i >= 0; --i)

@@ -167,7 +167,7 @@ LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant varian
     map.cascade_depth = lc.cascade_depth_from_scene.cast<float>();
     for (std::size_t c = 0; c < n; ++c) {
       map.cascade_begin[c] = c == 0 ? -3e38f : static_cast<float>(s[c]);
-      double end = s[c + 1];
+      double end = c + 1 < n ? s[c + 1] : 3e38;  // the last one open-ended, as light_view_of
       // FAULT: the selection ends short of the split the next cascade begins at.
       if (frame.faults().cascade.gap && c + 1 < n) end = s[c] + kCascadeGapFraction * (s[c + 1] - s[c]);
       map.cascade_end[c] = static_cast<float>(end);

@@ -62,10 +62,7 @@ const LightFit& CauseModel::fit_for(std::size_t light, int size, int cascades) c
   auto it = fits_.find(key);
   if (it == fits_.end()) {
     if (cascades > 0) {
-      CascadeOptions o;
-      o.count = cascades;
-      o.map_size = size;
-      it = fits_.emplace(key, scene::cascaded_light_fit(scene_, light, o)).first;
+      it = fits_.emplace(key, scene::cascaded_light_fit(scene_, light, size, cascades)).first;
     } else {
       std::vector<const TriangleMesh<float>*> meshes;
       for (const scene::Object& o : scene_.scene->objects) meshes.push_back(&o.mesh);
@@ -108,7 +105,6 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
   const int cascades = technique && technique->cascaded ? (d.cascades ? d.cascades : kDefaultCascades) : 0;
   const LightFit& fit = fit_for(light, d.shadow_map_size, cascades);
   const int face = light_view_of(fit, L, p);
-  if (face < 0) return Cause::Unexplained;  // beyond every cascade: no map decides p
   const LightView& view = fit.views[static_cast<std::size_t>(face)];
   const Mat4<double> m = view.projection * view.view;
   const Vec4<double> h = m * Vec4<double>(p.x(), p.y(), p.z(), 1.0);

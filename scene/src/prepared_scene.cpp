@@ -48,17 +48,19 @@ CascadeCamera cascade_camera(const Scene& s) {
   return c;
 }
 
-LightFit cascaded_light_fit(const PreparedScene& p, std::size_t light, CascadeOptions options) {
+LightFit cascaded_light_fit(const PreparedScene& p, std::size_t light, int map_size, int count) {
   const Vec4<double>& L = p.lights.at(light);
   if (L.w() != 0.0) {
-    if (options.map_size == 0 || options.map_size == p.light_fits.at(light).size) return p.light_fits[light];
+    if (map_size == 0 || map_size == p.light_fits.at(light).size) return p.light_fits[light];
     std::vector<const TriangleMesh<float>*> meshes;
     for (const Object& o : p.scene->objects) meshes.push_back(&o.mesh);
     LightFitOptions fit_options;
-    fit_options.map_size = options.map_size;
+    fit_options.map_size = map_size;
     return value_or_throw(fit_light(*p.convention, L, meshes, fit_options), "light fit");
   }
-  if (options.map_size == 0) options.map_size = p.options.shadow_map_size ? p.options.shadow_map_size : kDirectionalAutoSize;
+  CascadeOptions options;
+  options.count = count;
+  options.map_size = map_size ? map_size : p.options.shadow_map_size ? p.options.shadow_map_size : kDirectionalAutoSize;
   return value_or_throw(fit_cascades(*p.convention, L.head<3>(), p.bounds, cascade_camera(*p.scene), options), "cascade fit");
 }
 

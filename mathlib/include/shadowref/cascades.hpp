@@ -203,9 +203,10 @@ inline Result<LightFit> fit_cascades(const RunConvention& conv, const Vec3<doubl
 }
 
 // The view of `fit` that decides the scene point `p` for the light L (homogeneous): the cube face
-// of the largest component of p − light (a cube-map lookup); the cascade holding p's camera depth
-// (a depth before the first split counts as the first cascade: only clipping rounds it there); or
-// the one view. -1 when p lies beyond the last cascade. The renderer's shader makes the same choice.
+// of the largest component of p − light (a cube-map lookup); the cascade holding p's camera depth,
+// the first and the last open-ended (a depth before the near plane or beyond the scene's far end
+// is only rounding: the last split is the farthest point of the scene ahead); or the one view.
+// The renderer's shader makes the same choice.
 inline int light_view_of(const LightFit& fit, const Vec4<double>& L, const Vec3<double>& p) {
   if (fit.cube) {
     const Vec3<double> dp = p - L.head<3>() / L.w();
@@ -216,7 +217,7 @@ inline int light_view_of(const LightFit& fit, const Vec4<double>& L, const Vec3<
   }
   if (fit.cascade_splits.size() >= 2) {
     const double depth = fit.cascade_depth_from_scene.dot(Vec4<double>(p.x(), p.y(), p.z(), 1.0));
-    return cascade_of(fit.cascade_splits, std::max(depth, fit.cascade_splits.front()));
+    return cascade_of(fit.cascade_splits, std::clamp(depth, fit.cascade_splits.front(), fit.cascade_splits.back()));
   }
   return 0;
 }

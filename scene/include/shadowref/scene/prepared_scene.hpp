@@ -78,10 +78,12 @@ struct PreparedScene {
 // The camera of `scene` as fit_cascades takes it (scene space; aspect = width / height).
 CascadeCamera cascade_camera(const Scene& scene);
 
-// Light `light`'s cascaded fit with `options` (its map_size 0: the prepared map size, or
-// kDirectionalAutoSize): fit_cascades for a directional light, fit_light for any other. Throws
-// std::logic_error where a matrix cannot be built, as prepare_scene.
-LightFit cascaded_light_fit(const PreparedScene& prepared, std::size_t light, CascadeOptions options = {});
+// Light `light`'s cascaded fit with `count` cascades of `map_size` texels (0: the prepared map size,
+// or kDirectionalAutoSize), the default split weight, snapped: fit_cascades for a directional light,
+// fit_light for any other (at map_size; 0: the prepared fit). Throws std::logic_error where a matrix
+// cannot be built, as prepare_scene.
+LightFit cascaded_light_fit(const PreparedScene& prepared, std::size_t light, int map_size = 0,
+                            int count = kDefaultCascades);
 
 // Prepares `scene` (which must outlive the result) for `convention`. Throws std::logic_error when
 // a matrix cannot be built (the loader has refused every camera and light that could cause it).
