@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -73,6 +74,42 @@ TEST(ExportCommand, PackHasEveryConventionAndTheyPutPointsOnTheSamePixel) {
     EXPECT_LT(t[0] / t[3], 1.0) << name;
     EXPECT_GT(t[2] / t[3], 0.0) << name;
     EXPECT_LT(t[2] / t[3], 1.0) << name;
+  }
+  fs::remove_all(root);
+}
+
+// The cascaded techniques' views: a directional light's splits run from the camera's near plane
+// forward and increase, the depth row gives a visible ground point a camera depth inside them, and
+// the view of the cascade that depth falls in maps the point inside its map — checked from the
+// numbers in matrices.json alone, in every convention.
+TEST(ExportCommand, PackCarriesTheCascadesOfADirectionalLight) {
+  const fs::path root = fs::temp_directory_path() / ("shadowref_export_csm_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  const test::CommandResult r = test::run_command(
+      {SHADOWREF_EXE, "export", "--scenes", "sun_horizon", "--out", (root / "pack").string(), "--cache", (root / "cache").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(root / "pack" / "sun_horizon" / "matrices.json");
+  const json m = json::parse(in);
+  const std::array<double, 3> ground{1.0, 0.0, -12.0};  // a ground point in view
+  for (const auto& [name, c] : m["conventions"].items()) {
+    ASSERT_EQ(c["cascade_views"].size(), 1u) << name;
+    const json& l = c["cascade_views"][0];
+    const json& splits = l["splits"];
+    ASSERT_EQ(splits.size(), 5u) << name;
+    ASSERT_EQ(l["views"].size(), 4u) << name;
+    EXPECT_NEAR(splits[0].get<double>(), 0.1, 1e-12) << name << ": the first split is the camera's near plane";
+    for (std::size_t i = 0; i + 1 < splits.size(); ++i) EXPECT_LT(splits[i].get<double>(), splits[i + 1].get<double>()) << name;
+    const json& row = l["camera_depth_from_scene"];
+    const double depth = row[0].get<double>() * ground[0] + row[1].get<double>() * ground[1] +
+                         row[2].get<double>() * ground[2] + row[3].get<double>();
+    EXPECT_NEAR(depth, (1.7 * 2.5 + 50.0 * 22.0) / std::hypot(1.7, 50.0), 1e-6) << name << ": the camera depth of (1, 0, -12)";
+    std::size_t cascade = 0;
+    while (cascade + 2 < splits.size() && depth >= splits[cascade + 1].get<double>()) ++cascade;
+    const auto t = apply(l["views"][cascade]["shadow_from_scene"]["canonical"], ground);
+    for (int k : {0, 1, 2}) {
+      EXPECT_GT(t[static_cast<std::size_t>(k)] / t[3], 0.0) << name << " cascade " << cascade << " coordinate " << k;
+      EXPECT_LT(t[static_cast<std::size_t>(k)] / t[3], 1.0) << name << " cascade " << cascade << " coordinate " << k;
+    }
   }
   fs::remove_all(root);
 }
