@@ -14,6 +14,7 @@
 #include "shadowref/conform/conform.hpp"
 #include "shadowref/outputs/image.hpp"
 #include "shadowref/outputs/image_io.hpp"
+#include "llvmpipe_renderer.hpp"
 #include "shadowref/renderer/renderer.hpp"
 #include "shadowref/scene/load_scene.hpp"
 #include "shadowref/scene/prepared_scene.hpp"
@@ -42,21 +43,16 @@ Fixture& fixture(const std::string& name = kScene) {
   return *f;
 }
 
-renderer::Renderer& gl() {
-  static renderer::Renderer r(renderer::GlApi::OSMesa, renderer::Driver::Llvmpipe);
-  return r;
-}
-
 // Renders the scene with `shadowmap`, applies `defect` to the mask, writes the candidate folder
 // and judges it; returns the case.
 conform::CaseResult judge(const std::string& name, const std::function<void(Image8&)>& defect,
                           const std::string& scene_name = kScene, const std::string& technique = "shadowmap") {
   Fixture& f = fixture(scene_name);
-  renderer::RenderResult r = gl().render(f.prepared, technique);
+  renderer::RenderResult r = test::llvmpipe_renderer().render(f.prepared, technique);
   defect(r.masks[0]);
   const fs::path dir = f.root / name / "candidates";
   fs::remove_all(dir);
-  renderer::write_outputs(r, gl().info(), f.scene, dir / f.scene.name);
+  renderer::write_outputs(r, test::llvmpipe_renderer().info(), f.scene, dir / f.scene.name);
   conform::ConformOptions o;
   o.scenes = {f.scene.file};
   o.techniques = {technique};

@@ -17,6 +17,7 @@
 #include "shadowref/outputs/image.hpp"
 #include "shadowref/outputs/techniques.hpp"
 #include "shadowref/reference/render.hpp"
+#include "llvmpipe_renderer.hpp"
 #include "shadowref/renderer/renderer.hpp"
 #include "shadowref/scene/load_scene.hpp"
 #include "shadowref/scene/prepared_scene.hpp"
@@ -35,11 +36,6 @@ namespace {
 // decided surface pixels (the exact-geometry fail bound), a 10-fold margin over what was seen.
 constexpr double kMaxDifferingFraction = 0.0005;
 
-renderer::Renderer& gl_renderer() {
-  static renderer::Renderer r(renderer::GlApi::OSMesa, renderer::Driver::Llvmpipe);
-  return r;
-}
-
 TEST(ConventionMasks, EveryConventionGivesTheGlMasksOnDecidedPixels) {
   const auto files = conform::select_scenes(conform::default_catalogue(), {});
   ASSERT_FALSE(files.empty());
@@ -54,9 +50,9 @@ TEST(ConventionMasks, EveryConventionGivesTheGlMasksOnDecidedPixels) {
     for (const RunConvention& c : kRunConventions)
       if (&c != &kDefaultConvention) others.push_back(scene::prepare_scene(s, c));
     for (const outputs::TechniqueName& t : outputs::kTechniques) {
-      const renderer::RenderResult base = gl_renderer().render(gl, t.name);
+      const renderer::RenderResult base = test::llvmpipe_renderer().render(gl, t.name);
       for (const scene::PreparedScene& other : others) {
-        const renderer::RenderResult r = gl_renderer().render(other, t.name);
+        const renderer::RenderResult r = test::llvmpipe_renderer().render(other, t.name);
         ASSERT_EQ(r.masks.size(), base.masks.size());
         std::size_t decided = 0, differing = 0;
         for (std::size_t l = 0; l < r.masks.size(); ++l) {

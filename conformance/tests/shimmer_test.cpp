@@ -20,6 +20,7 @@
 #include <string>
 
 #include "shadowref/conform/catalogue.hpp"
+#include "llvmpipe_renderer.hpp"
 #include "shadowref/renderer/renderer.hpp"
 #include "shadowref/scene/load_scene.hpp"
 
@@ -27,11 +28,6 @@ namespace shadowref {
 namespace {
 
 constexpr int kMapSize = 128;
-
-renderer::Renderer& gl_renderer() {
-  static renderer::Renderer r(renderer::GlApi::OSMesa, renderer::Driver::Llvmpipe);
-  return r;
-}
 
 scene::Scene overhead_scene() { return scene::load_scene(SHADOWREF_SHIMMER_SCENE); }
 
@@ -60,8 +56,8 @@ Shimmer shimmer(const std::string& technique, const renderer::Faults& faults, in
   renderer::RenderOptions o;
   o.shadow_map_size = kMapSize;
   o.faults = faults;
-  const renderer::RenderResult ra = gl_renderer().render(a, technique, o);
-  const renderer::RenderResult rb = gl_renderer().render(b, technique, o);
+  const renderer::RenderResult ra = test::llvmpipe_renderer().render(a, technique, o);
+  const renderer::RenderResult rb = test::llvmpipe_renderer().render(b, technique, o);
   Shimmer s;
   const int w = a.width, h = a.height;
   const int dx = axis == Axis::X ? k : 0, dy = axis == Axis::Z ? k : 0;
@@ -80,7 +76,7 @@ const char* name(Axis a) { return a == Axis::X ? "x" : "z"; }
 // The premise: every visible pixel is ground, lit or shadowed (no caster in view, no background),
 // and the view holds shadows (else there would be nothing to shimmer).
 TEST(Shimmer, EveryPixelIsGroundAndSomeAreInShadow) {
-  const renderer::RenderResult r = gl_renderer().render(overhead_scene(), "csm", {});
+  const renderer::RenderResult r = test::llvmpipe_renderer().render(overhead_scene(), "csm", {});
   std::size_t shadowed = 0, other = 0;
   for (const std::uint8_t v : r.masks[0].pixels) {
     shadowed += v == outputs::kMaskShadowed;
