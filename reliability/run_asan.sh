@@ -32,7 +32,12 @@ cd "$root"
 cmake --preset asan -B "$build" >/dev/null
 cmake --build "$build" -j "${JOBS:-2}"
 asan="detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1"
-export LSAN_OPTIONS="suppressions=$root/reliability/lsan.supp:print_suppressions=0"
+# The suppressions are read from outside the source tree: install.standalone hides that tree (and the
+# build folder inside it) from the installed binary it runs, which would then fail to read them.
+supp="$(mktemp --tmpdir shadowref-lsan.XXXXXX.supp)"
+trap 'rm -f "$supp"' EXIT
+cp "$root/reliability/lsan.supp" "$supp"
+export LSAN_OPTIONS="suppressions=$supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1"
 DWARF_TESTS='Folders\.RefusesBadFiles'
 status=0
