@@ -37,9 +37,10 @@
 // matrix or the −1..1 one, no offset (acne) or a large constant one (peter-panning), casters out of
 // the camera's view culled, a light fit that clips casters, cube faces swapped or upside down, and a
 // half-texel offset; for the cascades (CascadeFaults) a gap between them, depth ranges clipped to
-// the slices, no texel snapping, and a fit to the frustum behind the camera. There is no border-colour switch: every fit holds every vertex with a margin
-// (light_fit.hpp), so no catalogue fragment maps outside its map or within a PCF tap of its edge
-// (conformance/README.md: a border at the near depth changes no pixel of the catalogue).
+// the slices, no texel snapping, and a fit to the frustum behind the camera. There is no
+// border-colour switch: every fit holds every vertex with a margin (light_fit.hpp; a cascade, its
+// slice with kCascadeMarginTexels), so no catalogue fragment maps outside its map or within a PCF tap
+// of its edge (conformance/README.md: a border at the near depth changes no pixel of the catalogue).
 #include <algorithm>
 #include <cmath>
 #include <limits>
