@@ -77,8 +77,14 @@ Image8 read_image8(const std::filesystem::path& file, int channels, int width, i
   if (!std::filesystem::is_regular_file(file, ec)) throw bad("not a regular file");
   QuietStderr quiet;
   silence_uncaught_errors();
-  auto in = OIIO::ImageInput::open(file.string());
-  if (!in) throw bad("cannot open: " + first_line(OIIO::geterror(), "not an image OpenImageIO can read"));
+  // Only the reader of the file's own format (its extension): ImageInput::open falls back to every
+  // other reader when that one fails, and OpenImageIO 2.4's RLA reader aborts the process on some
+  // bytes (a fuzzed mask.png did, in RLAInput::seek_subimage), so a broken PNG must stay a PNG error.
+  const std::string extension = file.extension().string();
+  auto in = OIIO::ImageInput::create(extension.size() > 1 ? extension.substr(1) : file.string());
+  OIIO::ImageSpec opened;
+  if (!in || !in->open(file.string(), opened))
+    throw bad("cannot open: " + first_line(in ? in->geterror() : OIIO::geterror(), "not an image OpenImageIO can read"));
   const OIIO::ImageSpec& spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.depth != 1) throw bad("not a 2D image");
   if (static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) > kMaxPixels)

@@ -4,6 +4,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
 
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/outputs/image_io.hpp"
@@ -52,6 +54,20 @@ TEST(ImageIo, PngRoundTripsAndWrongChannelCountIsRefused) {
   EXPECT_EQ(back.pixels, m.pixels);
   EXPECT_THROW(read_image8(d / "m.png", 3), InputError);
   EXPECT_THROW(read_image8(d / "missing.png", 1), InputError);
+}
+
+// A file named .png is read by the PNG reader only. These bytes (found by mask_compare_fuzzer,
+// reliability/fuzz/corpus/mask_compare/rla_abort_in_oiio, minus its 4-byte length header) are no
+// PNG; OpenImageIO's fallback to its other readers reached the RLA reader, which aborted the process
+// in OpenImageIO 2.4. They must be one refused file, not a crash.
+TEST(ImageIo, ABrokenPngIsAPngErrorNotAnotherFormatsAbort) {
+  const fs::path d = fresh_dir("rla");
+  std::ifstream in(SHADOWREF_RLA_ABORT_INPUT, std::ios::binary);
+  ASSERT_TRUE(in) << SHADOWREF_RLA_ABORT_INPUT;
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(bytes.size(), 4u);
+  std::ofstream(d / "mask.png", std::ios::binary) << bytes.substr(4);
+  EXPECT_THROW(read_image8(d / "mask.png", 1), InputError);
 }
 
 TEST(StagedFolder, CommitReplacesAndAbandonLeavesTheOldFolder) {
