@@ -12,12 +12,13 @@
 //                                mirror, the bias matrix and every light's shadow-map views; per light
 //                                its parameters, homogeneous point and planar shadow matrix — every
 //                                matrix in canonical (column vectors) and D3DX (row vectors) layout
-//   <scene>/reference/           mask(_<i>).png, decided(_<i>).png, shaded.png, visibility.exr
+//   <scene>/reference/           mask(_<i>).png, decided(_<i>).png, covered.png, shaded.png, visibility(_<i>).exr
 // Every matrix comes from mathlib (view.hpp, projection.hpp, shadow_matrix.hpp, shadow_map.hpp,
 // d3dx.hpp) through scene/camera.hpp: the ones our renderer and the reference use.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -249,7 +250,15 @@ json matrices(const scene::Scene& s) {
         l["corner"] = {sl.corner.x(), sl.corner.y(), sl.corner.z()};
         l["edge_u"] = {sl.edge_u.x(), sl.edge_u.y(), sl.edge_u.z()};
         l["edge_v"] = {sl.edge_v.x(), sl.edge_v.y(), sl.edge_v.z()};
-        l["note"] = "the mask is the visibility of the parallelogram's centre (homogeneous); the reference's visibility.exr is the area light's";
+        // The light's size for soft techniques: its edges' lengths and the side of the square of equal area.
+        l["size"] = {{"edge_u_length", sl.edge_u.norm()},
+                     {"edge_v_length", sl.edge_v.norm()},
+                     {"equal_area_square_side", std::sqrt(sl.edge_u.cross(sl.edge_v).norm())},
+                     {"reference_samples_per_axis", sl.samples}};
+        l["visibility_file"] = outputs::visibility_name(i, s.lights.size());
+        l["note"] = "the mask is the visibility of the parallelogram's centre (homogeneous); the reference's visibility.exr is the "
+                    "area light's lit fraction over samples_per_axis^2 stratified points, what a soft technique's visibility.png "
+                    "is judged against";
         break;
     }
     l["mask_file"] = outputs::mask_name(i, s.lights.size());
@@ -324,7 +333,23 @@ std::string readme(const json& manifest) {
       "PCF box); `slope_bias_texels`: the slope-scaled bias as the depth change across this many texels\n"
       "(glPolygonOffset's factor); `constant_bias`: world units along the light ray; `light_views`: `pack` when your\n"
       "shadow maps use the light views of matrices.json (their texel grid is known), `own` when your engine fits its own;\n"
-      "`cascades`: cascaded techniques only, cascades per directional light (0: the pack's 4).\n\n"
+      "`cascades`: cascaded techniques only, cascades per directional light (0: the pack's 4); `light_taps`: soft\n"
+      "techniques only, the filter's taps per axis over the light's area (8 for an 8x8 filter).\n\n"
+      "## Soft shadows\n\n"
+      "A soft technique (`--technique pcss`, percentage-closer soft shadows) is judged twice. Its `mask.png` as above\n"
+      "(lit where at least half the light is), and, for every light with an area (`rect` in matrices.json, with its\n"
+      "`size`), its lit fraction:\n\n"
+      "```\n"
+      "my-renders/<scene>/visibility.png      8-bit grey, round(255 x lit fraction); the background is mask.png's 128\n"
+      "my-renders/<scene>/visibility_<i>.png  several lights: one per light, like the masks\n"
+      "```\n\n"
+      "The fraction is compared with the reference's (`reference/visibility.exr`: the fraction over the light's\n"
+      "`reference_samples_per_axis`^2 points, averaged over the pixel) on the pixels one smooth surface covers\n"
+      "(`reference/covered.png`). A pixel within the sampling tolerance 1/n + 1/light_taps + half an 8-bit step passes;\n"
+      "beyond it, a pixel is explained when your fraction lies in the range the true fraction takes over your filter's\n"
+      "footprint (`filter_radius_texels`); the rest is unexplained. FAIL: any 5x5 block unexplained, more than 3 % of\n"
+      "the penumbra unexplained, or a mean error over the penumbra above what sampling alone leaves\n"
+      "(1/(4n) + 1/(4 light_taps)): a penumbra of the wrong width. The report shows your fraction and its error image.\n\n"
       "## How to get the verdict\n\n"
       "In this folder:\n\n"
       "```sh\n"
@@ -333,7 +358,8 @@ std::string readme(const json& manifest) {
       "```\n\n"
       "`--catalogue scenes` is this pack's copy of the scene files (the references are recomputed from them into\n"
       "`my-verdict/reference-cache`); `--scenes` picks some (globs over the names below). `--technique` picks the\n"
-      "threshold (our technique names: planar, volume-*, shadowmap, shadowmap-pcf, shadowmap-rgba8; any other name\n"
+      "threshold (our technique names: planar, volume-*, shadowmap, shadowmap-pcf, shadowmap-rgba8, csm, csm-pcf, pcss;\n"
+      "any other name\n"
       "gets the strictest) and the catalogue's expectations (a scene where the technique is known to fail expects a\n"
       "FAIL: see `manifest.json`). The table, `my-verdict/report.json` and `my-verdict/report/index.html` (reference,\n"
       "your mask and the error image side by side) follow. Exit code: 0 every case PASS or XFAIL, 1 quality warnings,\n"

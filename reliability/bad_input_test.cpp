@@ -573,6 +573,8 @@ std::vector<CandidateCase> candidate_cases() {
       {"declaration_unknown_key", "one", text("candidate.json", R"({"shadowmapsize": 2048})"), "shadowmapsize"},
       {"declaration_out_of_range", "one", text("candidate.json", R"({"shadow_map_size": 100000000})"), "shadow_map_size"},
       {"declaration_not_utf8", "one", text("candidate.json", "{\"producer\": \"\xff\xfe\"}"), "@/candidate.json"},
+      {"declaration_light_taps_out_of_range", "one", text("candidate.json", R"({"light_taps": 0})"),
+       "@/candidate.json: light_taps: must be in [1, 64]"},
   };
 }
 
@@ -646,6 +648,34 @@ TEST_P(HostileCandidate, TheSceneIsAnErrorNamingTheFileTheOthersAreJudged) {
 
 INSTANTIATE_TEST_SUITE_P(Folders, HostileCandidate, ::testing::ValuesIn(candidate_cases()),
                          [](const ::testing::TestParamInfo<CandidateCase>& p) { return p.param.name; });
+
+// A soft technique's candidate judged against an area light must bring its lit fraction: without
+// visibility.png the case is an ERROR with one line naming the file, and nothing is written outside --out.
+TEST(HostileCandidateSoft, ALitFractionMissingBesideTheMaskIsOneLine) {
+  const fs::path dir = fs::temp_directory_path() / "shadowref-bad-input-soft";
+  fs::remove_all(dir);
+  std::string scene =
+      good_scene("lights", R"([{"type": "rect", "corner": [-0.5, 6, -0.5], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "samples": 2}])");
+  scene.replace(scene.find(R"("bad")"), 5, R"("soft")");
+  write_text(dir / "cat" / "soft.json", scene);
+  write_png(dir / "cand" / "soft" / "mask.png", 32, 32, 1, 255);
+  const std::vector<std::string> before = listing_without(dir, dir / "out");
+  const CommandResult r = run_command({"/usr/bin/timeout", "120", SHADOWREF_EXE, "conform", "--catalogue", (dir / "cat").string(),
+                                       "--candidate-dir", (dir / "cand").string(), "--technique", "pcss", "--spp", "1",
+                                       "--out", (dir / "out").string(), "--quiet"});
+  EXPECT_EQ(r.exit_code, 2) << r.err << r.out;
+  std::ifstream in(dir / "out" / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  ASSERT_FALSE(report.is_discarded()) << "report.json is missing or not JSON";
+  ASSERT_EQ(report.at("cases").size(), 1u);
+  const nlohmann::json& k = report.at("cases")[0];
+  EXPECT_EQ(k.at("status"), "ERROR");
+  const std::string line = k.value("error", std::string());
+  EXPECT_NE(line.find((dir / "cand" / "soft" / "visibility.png").string() + ": no such file"), std::string::npos) << line;
+  EXPECT_EQ(line.find('\n'), std::string::npos) << line;
+  EXPECT_EQ(listing_without(dir, dir / "out"), before) << "conform changed something outside --out";
+  fs::remove_all(dir);
+}
 
 // A candidate folder whose name is not UTF-8 (legal on Linux): judged as any other, and report.json
 // stays valid JSON (the name's invalid bytes become U+FFFD there).

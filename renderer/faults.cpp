@@ -1,6 +1,8 @@
 // faults.cpp — the fault switches described for messages and render.json (faults.hpp).
 #include "shadowref/renderer/faults.hpp"
 
+#include <cstdio>
+
 namespace shadowref::renderer {
 
 std::string describe(const Faults& f) {
@@ -36,6 +38,12 @@ std::string describe(const Faults& f) {
   on(f.cascade.slice_depth_range, "cascade.slice_depth_range");
   on(f.cascade.no_snapping, "cascade.no_snapping");
   on(f.cascade.frustum_behind_camera, "cascade.frustum_behind_camera");
+  on(f.soft.blocker_depth_from_receiver, "soft.blocker_depth_from_receiver");
+  if (f.soft.light_size_scale != 1.0) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "soft.light_size_scale=%g", f.soft.light_size_scale);
+    on(true, buf);
+  }
   return out;
 }
 

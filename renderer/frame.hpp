@@ -22,7 +22,8 @@ struct Program {
   GLint clip_from_world = -1, shadow_from_world = -1, colour = -1, mode = -1, shadow = -1, albedo = -1,
         ambient = -1, light = -1, light_intensity = -1, spot = -1, shadow_map = -1, packed_map = -1,
         texel = -1, offset_factor = -1, offset_units = -1, layout = -1, layer_from_world = -1, cascade_depth = -1,
-        cascade_begin = -1, cascade_end = -1, reversed = -1, lit_greater = -1;
+        cascade_begin = -1, cascade_end = -1, reversed = -1, lit_greater = -1, depth_map = -1, world_from_layer = -1,
+        inv_view_depth = -1, rect_u = -1, rect_v = -1, blocker_at_receiver = -1;
 };
 
 struct Programs {
@@ -139,5 +140,6 @@ void render_shadowmap_pcf(Frame& frame);
 void render_shadowmap_rgba8(Frame& frame);
 void render_csm(Frame& frame);
 void render_csm_pcf(Frame& frame);
+void render_pcss(Frame& frame);
 
 }  // namespace shadowref::renderer

@@ -69,6 +69,7 @@ namespace shadowref::renderer {
   X(PFNGLUNIFORM1IPROC, Uniform1i)                                        \
   X(PFNGLUNIFORM1FPROC, Uniform1f)                                        \
   X(PFNGLUNIFORM2FPROC, Uniform2f)                                        \
+  X(PFNGLUNIFORM2FVPROC, Uniform2fv)                                      \
   X(PFNGLUNIFORM3FPROC, Uniform3f)                                        \
   X(PFNGLUNIFORM4FPROC, Uniform4f)                                        \
   X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                          \

@@ -1,4 +1,5 @@
 // outputs.cpp — the files a render leaves (docs/output-contract.md): mask.png or mask_<i>.png,
+// visibility.png or visibility_<i>.png (filtered techniques),
 // shaded.png and render.json (technique, backend, GL strings, frame time), written through the
 // output contract's writers into a staged folder that is renamed into place when complete.
 #include <nlohmann/json.hpp>
@@ -26,6 +27,12 @@ void write_outputs(const RenderResult& result, const GlInfo& info, const scene::
     outputs::write_png(result.masks[i], tmp / name);
     masks.push_back(name);
   }
+  nlohmann::json visibility = nlohmann::json::array();
+  for (std::size_t i = 0; i < result.visibility.size(); ++i) {
+    const std::string name = outputs::visibility_name(i, result.visibility.size());
+    outputs::write_png(result.visibility[i], tmp / name);
+    visibility.push_back(name);
+  }
   outputs::write_png(result.shaded, tmp / "shaded.png");
   outputs::write_declaration(result.declaration, tmp);
 
@@ -42,6 +49,7 @@ void write_outputs(const RenderResult& result, const GlInfo& info, const scene::
   j["resolution"] = {scene.width, scene.height};
   j["lights"] = scene.lights.size();
   j["masks"] = masks;
+  if (!visibility.empty()) j["visibility"] = visibility;
   j["shaded"] = "shaded.png";
   j["frame_ms"] = result.median_frame_ms();
   j["frame_ms_all"] = result.frame_ms;

@@ -154,9 +154,16 @@ Program link(const GlFunctions& gl, std::initializer_list<const char*> fragment,
   p.cascade_end = loc("u_cascade_end");
   p.reversed = loc("u_reversed");
   p.lit_greater = loc("u_lit_greater");
+  p.depth_map = loc("u_depth_map");
+  p.world_from_layer = loc("u_world_from_layer[0]");
+  p.inv_view_depth = loc("u_inv_view_depth[0]");
+  p.rect_u = loc("u_rect_u");
+  p.rect_v = loc("u_rect_v");
+  p.blocker_at_receiver = loc("u_blocker_at_receiver");
   gl.UseProgram(p.id);
   if (p.shadow_map >= 0) gl.Uniform1i(p.shadow_map, 0);
   if (p.packed_map >= 0) gl.Uniform1i(p.packed_map, 1);
+  if (p.depth_map >= 0) gl.Uniform1i(p.depth_map, 2);
   gl.UseProgram(0);
   return p;
 }
@@ -416,6 +423,12 @@ constexpr Technique kTechniqueTable[] = {
     {"csm-pcf",
      "The cascaded shadow maps with the 3x3 percentage-closer filter of shadowmap-pcf in each cascade.",
      render_csm_pcf},
+    {"pcss",
+     "Percentage-closer soft shadows (Fernando 2005) for rect lights: a blocker search over the light's "
+     "rect seen through the map's near plane, the penumbra estimated from the blockers' mean depth, and "
+     "an 8x8 filter over the rect seen through that depth, every tap compared with the receiver's own "
+     "plane; writes the lit fraction as visibility.png. Other lights as shadowmap-pcf.",
+     render_pcss},
 };
 
 // The renderer implements exactly the contract's technique list, in its order.

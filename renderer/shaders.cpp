@@ -73,8 +73,8 @@ const char* const kSurfaceFragmentBody = R"glsl(
 in vec3 v_world;
 in vec4 v_shadow;
 flat in vec3 v_normal;
-uniform int u_mode;                  // 0 ambient, 1 one light's contribution, 2 the 0/1 mask
-uniform int u_shadow;                // 0 none, 1 depth compare, 2 PCF 3x3, 3 RGBA8 packed depth
+uniform int u_mode;                  // 0 ambient, 1 one light's contribution, 2 the 0/1 mask, 3 the visibility
+uniform int u_shadow;                // 0 none, 1 depth compare, 2 PCF 3x3, 3 RGBA8 packed depth, 4 PCSS
 uniform vec3 u_albedo;
 uniform float u_ambient;
 uniform vec4 u_light;                // homogeneous: w = 1 point / spot, w = 0 directional
@@ -92,7 +92,92 @@ uniform vec4 u_cascade_end;
 uniform int u_reversed;              // 1: reversed-Z maps (near 1, far 0)
 uniform int u_lit_greater;           // the RGBA8 compare: 1 lit when here >= stored (GEQUAL), 0 when
                                      // here <= stored (LEQUAL); a depth texture has its own compare function
+// PCSS (u_shadow 4): the map read raw, and the rect light it is soft for.
+uniform sampler2DArray u_depth_map;  // unit 2: the depth texture without its compare
+uniform mat4 u_world_from_layer[6];  // the inverses of u_layer_from_world
+uniform vec2 u_inv_view_depth[6];    // per layer: 1 / (depth along the view axis) = x * window depth + y
+uniform vec3 u_rect_u;               // the rect light's edges (world); u_light is its centre
+uniform vec3 u_rect_v;
+uniform int u_blocker_at_receiver;   // fault switch (renderer/faults.hpp, SoftShadowFaults)
 out vec4 o_colour;
+
+// PCSS (Fernando 2005, "Percentage-closer soft shadows") for a rect light, in the map of its centre.
+// p: the fragment in the layer's texture space (s, t, window depth), w: its depth along the light's
+// view axis. The receiver is the fragment's own plane (its face normal), carried into texture space
+// (planes stay planes under B * P * V), so every tap compares the map with the receiver's depth at
+// that tap's texel centre, where the map was rasterised: no self-shadowing at kernel scale on planar
+// receivers (Isidoro 2006's receiver-plane depth bias, exact instead of from derivatives).
+// 1. Blocker search: 6 x 6 taps over the light's rect seen from p through the nearest plane a
+//    blocker can lie on (the map's near plane, but at least a tenth of the way from the light);
+//    the blockers' mean depth d_b.
+// 2. Filter: 8 x 8 taps over the light's rect seen from p through the plane at d_b (the penumbra
+//    estimate (d_r - d_b) / d_b times the light, in the light's own shape); the unblocked fraction.
+const int kSearchTaps = 6;
+const int kFilterTaps = 8;
+vec4 receiver_plane(int layer) {
+  // A plane through (or within a hundredth of its distance of) the light's centre is seen edge-on:
+  // its depth across the map is ill-conditioned. Such a receiver is compared at its own depth, and
+  // the polygon offset's slope term protects it (plane.z = 0 selects that in blocker_at).
+  vec3 to_light = u_light.xyz - v_world;
+  if (abs(dot(v_normal, to_light)) < 0.01 * length(to_light)) return vec4(0.0);
+  vec4 world_plane = vec4(v_normal, -dot(v_normal, v_world));
+  return transpose(u_world_from_layer[layer]) * world_plane;
+}
+// The texel of the world point x (its texture coordinates), or vec3(-1) outside the map.
+vec2 tap_texel(vec3 x, int layer) {
+  vec4 t = u_layer_from_world[layer] * vec4(x, 1.0);
+  if (t.w <= 0.0) return vec2(-1.0);
+  vec2 uv = t.xy / t.w;
+  if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return vec2(-1.0);
+  return (floor(uv / u_texel) + 0.5) * u_texel;  // the texel centre
+}
+// The stored window depth at texel centre c when it holds something nearer than the receiver's
+// plane there (a blocker), else -1.
+float blocker_at(vec2 c, int layer, vec4 plane, float receiver_z) {
+  if (c.x < 0.0) return -1.0;
+  float z = plane.z != 0.0 ? -(plane.x * c.x + plane.y * c.y + plane.w) / plane.z : receiver_z;
+  float stored = texture(u_depth_map, vec3(c, float(layer))).r;
+  bool lit = u_lit_greater == 1 ? z >= stored : z <= stored;
+  return lit ? -1.0 : stored;
+}
+float view_depth(float window_depth, int layer) {
+  return 1.0 / (u_inv_view_depth[layer].x * window_depth + u_inv_view_depth[layer].y);
+}
+float pcss(vec3 p, float receiver_depth, int layer) {
+  vec4 plane = receiver_plane(layer);
+  // A light point behind the receiver's own plane is hidden by the receiver itself: an area light
+  // half below the horizon of a surface lights it by half (the soft terminator on a ball).
+  vec3 n = gl_FrontFacing ? v_normal : -v_normal;
+  // The nearest depth a blocker can have: the map's near plane (window depth 0, or 1 reversed).
+  // Not nearer than a tenth of the receiver's depth: a cube face's near plane may touch the light,
+  // where the rect's own image would fill the search.
+  float near_depth = max(view_depth(u_reversed == 1 ? 1.0 : 0.0, layer), 0.1 * receiver_depth);
+  float t_search = clamp(1.0 - near_depth / receiver_depth, 0.0, 1.0);
+  float sum = 0.0;
+  int blockers = 0;
+  for (int j = 0; j < kSearchTaps; ++j)
+    for (int i = 0; i < kSearchTaps; ++i) {
+      vec2 ab = (vec2(i, j) + 0.5) / float(kSearchTaps) - 0.5;
+      vec3 l = u_light.xyz + ab.x * u_rect_u + ab.y * u_rect_v;
+      float d = blocker_at(tap_texel(v_world + (l - v_world) * t_search, layer), layer, plane, p.z);
+      if (d >= 0.0) {
+        sum += view_depth(d, layer);
+        ++blockers;
+      }
+    }
+  float blocker_depth = blockers == 0 ? receiver_depth : sum / float(blockers);
+  if (u_blocker_at_receiver == 1) blocker_depth = receiver_depth;  // FAULT: the receiver's own depth
+  float t = clamp(1.0 - blocker_depth / receiver_depth, 0.0, 1.0);
+  float lit = 0.0;
+  for (int j = 0; j < kFilterTaps; ++j)
+    for (int i = 0; i < kFilterTaps; ++i) {
+      vec2 ab = (vec2(i, j) + 0.5) / float(kFilterTaps) - 0.5;
+      vec3 l = u_light.xyz + ab.x * u_rect_u + ab.y * u_rect_v;
+      if (dot(n, l - v_world) <= 0.0) continue;
+      if (blockers == 0 || blocker_at(tap_texel(v_world + (l - v_world) * t, layer), layer, plane, p.z) < 0.0) lit += 1.0;
+    }
+  return lit / float(kFilterTaps * kFilterTaps);
+}
 
 // Light visibility from the shadow map: 1 lit, 0 shadowed (fractions with PCF).
 float shadow_visibility() {
@@ -129,6 +214,7 @@ float shadow_visibility() {
   if (any(lessThan(p.xy, vec2(0.0))) || any(greaterThan(p.xy, vec2(1.0)))) return 1.0;
   // Beyond the light's far plane: compare as at the far plane, where nothing occludes.
   p.z = u_reversed == 1 ? max(p.z, 0.0) : min(p.z, 1.0);
+  if (u_shadow == 4) return pcss(p, s.w, int(layer));
   if (u_shadow == 1) return texture(u_shadow_map, vec4(p.xy, layer, p.z));
   if (u_shadow == 2) {
     // PCF: a 3x3 box of depth compares one texel apart, equal weights (GL_NEAREST taps).
@@ -158,10 +244,15 @@ void main() {
   // A shadow map tests occlusion only; a surface that faces away from the light is in its own
   // shadow (what a stencil volume gives it, and the reference's ray finds). The mask mode without
   // a map (u_shadow 0) is that facing test alone: planar shadows' attached-shadow mask.
-  if ((u_shadow != 0 || u_mode == 2) && n_dot_l <= 0.0) visibility = 0.0;
+  // (PCSS tests every light point it filters over itself.)
+  if ((u_shadow != 0 || u_mode == 2) && u_shadow != 4 && n_dot_l <= 0.0) visibility = 0.0;
   if (u_mode == 2) {
     float lit = visibility >= 0.5 ? 1.0 : 0.0;  // PCF: lit when at least half the taps are
     o_colour = vec4(lit, lit, lit, 1.0);
+    return;
+  }
+  if (u_mode == 3) {  // the lit fraction itself (visibility.png), rounded to 8 bits by the target
+    o_colour = vec4(visibility, visibility, visibility, 1.0);
     return;
   }
   float cone = 1.0;

@@ -66,7 +66,10 @@ constexpr float kOffsetUnits = kShadowMapOffsetUnits;
 // which detaches shadows from their contacts.
 constexpr float kPeterPanUnits = 131072.0f;
 
-enum class Variant { Depth, Pcf, Rgba8 };
+enum class Variant { Depth, Pcf, Rgba8, Pcss };
+
+// Texture unit 2: the PCSS map read raw (frame.hpp's surface program binds u_depth_map there).
+constexpr GLenum kRawDepthUnit = GL_TEXTURE2;
 
 // The compare that means "lit" in this render: the convention's (lit_when), unless a fault says otherwise.
 DepthCompare lit_compare(const RunConvention& conv, CompareFault fault) {
@@ -115,11 +118,15 @@ struct LightMap {
   // Cascades: the camera-depth row, and the depths each cascade is picked for (shader u_cascade_*).
   Vec4<float> cascade_depth = Vec4<float>::Zero();
   Vec4<float> cascade_begin = Vec4<float>::Constant(-3e38f), cascade_end = Vec4<float>::Constant(-3e38f);
+  // PCSS: the inverse of each face_from_world, and 1 / view depth = a · window depth + b per layer.
+  std::vector<Mat4<float>> world_from_face;
+  std::vector<float> inv_view_depth;  // (a, b) per layer
   LightMap() = default;
   LightMap(LightMap&& o) noexcept
       : gl(o.gl), texture(o.texture), size(o.size), layout(o.layout), shadow_from_world(o.shadow_from_world),
         face_from_world(std::move(o.face_from_world)), cascade_depth(o.cascade_depth),
-        cascade_begin(o.cascade_begin), cascade_end(o.cascade_end) {
+        cascade_begin(o.cascade_begin), cascade_end(o.cascade_end), world_from_face(std::move(o.world_from_face)),
+        inv_view_depth(std::move(o.inv_view_depth)) {
     o.texture = 0;
   }
   LightMap(const LightMap&) = delete;
@@ -188,8 +195,23 @@ LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant varian
   std::vector<Mat4<double>> projections;
   for (const LightView& v : lc.views)
     projections.push_back(faults.fit == FitFault::None ? v.projection : fit_with_fault(conv, v.projection, faults.fit));
-  for (std::size_t k = 0; k < lc.views.size(); ++k)
-    map.face_from_world.push_back(to_float(Mat4<double>(bias * projections[k] * lc.views[k].view)));
+  for (std::size_t k = 0; k < lc.views.size(); ++k) {
+    const Mat4<double> m = bias * projections[k] * lc.views[k].view;
+    map.face_from_world.push_back(to_float(m));
+    map.world_from_face.push_back(to_float(Mat4<double>(m.inverse())));
+    // Window depth is affine in 1 / (view depth) under a perspective projection: two points on the
+    // view axis (−z when right-handed) fix the line.
+    const Mat4<double> bp = bias * projections[k];
+    const double axis = conv.clip.hand == Handedness::Right ? -1.0 : 1.0;
+    const auto window = [&](double z) {
+      const Vec4<double> c = bp * Vec4<double>(0, 0, axis * z, 1);
+      return c.z() / c.w();
+    };
+    const double d1 = window(1.0), d2 = window(2.0);
+    const double a = d1 != d2 ? (1.0 - 0.5) / (d1 - d2) : 0.0;
+    map.inv_view_depth.push_back(static_cast<float>(a));
+    map.inv_view_depth.push_back(static_cast<float>(1.0 - a * d1));
+  }
   map.shadow_from_world = map.face_from_world[0];
 
   gl.GenTextures(1, &map.texture);
@@ -221,7 +243,9 @@ LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant varian
     else
       gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_DEPTH_COMPONENT24, size, size, layers, 0, GL_DEPTH_COMPONENT,
                     GL_UNSIGNED_INT, nullptr);
-    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    // PCSS reads the stored depths themselves (its blocker search averages them).
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_MODE,
+                     variant == Variant::Pcss ? GL_NONE : GL_COMPARE_REF_TO_TEXTURE);
     gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_FUNC,
                      static_cast<GLint>(gl_compare(lit_compare(conv, faults.compare))));
     gl.DrawBuffer(GL_NONE);
@@ -254,6 +278,9 @@ LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant varian
     gl.Uniform4f(p.colour, 0, 0, 0, 0);
   }
   gl.CullFace(GL_FRONT);
+  // PCSS averages the depths of the first surfaces toward the light (the blockers), so its map keeps
+  // front faces; its receiver-plane compare stands in for the culling's protection from self-shadowing.
+  const bool cull = variant != Variant::Pcss;
   for (GLsizei face = 0; face < layers; ++face) {
     const auto k = static_cast<std::size_t>(face);
     const LightView& view = lc.views[k];
@@ -276,7 +303,7 @@ LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant varian
       if (!view.draw.empty() && !view.draw[i]) continue;
       // FAULT: an object out of the camera's view culled from the light's pass too.
       if (faults.cull_casters_outside_view && frame.outside_camera_view(i)) continue;
-      if (frame.closed(i)) gl.Enable(GL_CULL_FACE);
+      if (cull && frame.closed(i)) gl.Enable(GL_CULL_FACE);
       else gl.Disable(GL_CULL_FACE);
       frame.objects[i].draw();
     }
@@ -293,7 +320,7 @@ LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant varian
 
 void bind_map(const Frame& frame, const LightMap& map, Variant variant) {
   const GlFunctions& gl = frame.gl;
-  gl.ActiveTexture(variant == Variant::Rgba8 ? GL_TEXTURE1 : GL_TEXTURE0);
+  gl.ActiveTexture(variant == Variant::Rgba8 ? GL_TEXTURE1 : variant == Variant::Pcss ? kRawDepthUnit : GL_TEXTURE0);
   gl.BindTexture(GL_TEXTURE_2D_ARRAY, map.texture);
   gl.ActiveTexture(GL_TEXTURE0);
   const Program& p = frame.programs.surface;
@@ -304,59 +331,106 @@ void bind_map(const Frame& frame, const LightMap& map, Variant variant) {
   gl.Uniform1i(p.reversed, frame.convention().clip.order == DepthOrder::Reversed ? 1 : 0);
   const DepthCompare lit = lit_compare(frame.convention(), frame.faults().shadow_map.compare);
   gl.Uniform1i(p.lit_greater, lit == DepthCompare::GreaterEqual ? 1 : 0);
-  if (map.layout != 0) {
-    static_assert(!Mat4<float>::IsRowMajor);
+  static_assert(!Mat4<float>::IsRowMajor);
+  const auto matrices = [&](GLint location, const std::vector<Mat4<float>>& all) {
     std::vector<float> m;
-    for (const Mat4<float>& f : map.face_from_world) m.insert(m.end(), f.data(), f.data() + 16);
-    gl.UniformMatrix4fv(p.layer_from_world, static_cast<GLsizei>(map.face_from_world.size()), GL_FALSE, m.data());
+    for (const Mat4<float>& f : all) m.insert(m.end(), f.data(), f.data() + 16);
+    gl.UniformMatrix4fv(location, static_cast<GLsizei>(all.size()), GL_FALSE, m.data());
+  };
+  if (variant == Variant::Pcss) {
+    matrices(p.layer_from_world, map.face_from_world);
+    matrices(p.world_from_layer, map.world_from_face);
+    gl.Uniform2fv(p.inv_view_depth, static_cast<GLsizei>(map.inv_view_depth.size() / 2), map.inv_view_depth.data());
+  }
+  if (map.layout != 0) {
+    matrices(p.layer_from_world, map.face_from_world);
     gl.Uniform4f(p.cascade_depth, map.cascade_depth.x(), map.cascade_depth.y(), map.cascade_depth.z(), map.cascade_depth.w());
     gl.Uniform4f(p.cascade_begin, map.cascade_begin.x(), map.cascade_begin.y(), map.cascade_begin.z(), map.cascade_begin.w());
     gl.Uniform4f(p.cascade_end, map.cascade_end.x(), map.cascade_end.y(), map.cascade_end.z(), map.cascade_end.w());
   }
 }
 
+// PCSS's light: the rect's edges (scaled by the light-size fault) and the blocker fault.
+void set_light_uniforms(const Frame& frame, std::size_t i, Variant variant) {
+  if (variant != Variant::Pcss) return;
+  const GlFunctions& gl = frame.gl;
+  const Program& p = frame.programs.surface;
+  const scene::Light& light = frame.scene.lights[i];
+  const SoftShadowFaults& f = frame.faults().soft;
+  const Vec3<float> u = (f.light_size_scale * light.edge_u).cast<float>();  // FAULT when the scale is not 1
+  const Vec3<float> v = (f.light_size_scale * light.edge_v).cast<float>();
+  gl.Uniform3f(p.rect_u, u.x(), u.y(), u.z());
+  gl.Uniform3f(p.rect_v, v.x(), v.y(), v.z());
+  gl.Uniform1i(p.blocker_at_receiver, f.blocker_depth_from_receiver ? 1 : 0);
+}
+
 void unbind_maps(const GlFunctions& gl) {
+  gl.ActiveTexture(kRawDepthUnit);
+  gl.BindTexture(GL_TEXTURE_2D_ARRAY, 0);
   gl.ActiveTexture(GL_TEXTURE1);
   gl.BindTexture(GL_TEXTURE_2D_ARRAY, 0);
   gl.ActiveTexture(GL_TEXTURE0);
   gl.BindTexture(GL_TEXTURE_2D_ARRAY, 0);
 }
 
-int shader_mode(Variant v) { return v == Variant::Depth ? 1 : v == Variant::Pcf ? 2 : 3; }
+int shader_mode(Variant v) {
+  switch (v) {
+    case Variant::Depth: return 1;
+    case Variant::Pcf: return 2;
+    case Variant::Rgba8: return 3;
+    case Variant::Pcss: return 4;
+  }
+  return 1;
+}
+
+// PCSS needs a light with an area: a point, spot or directional light is drawn with PCF.
+Variant variant_for_light(const scene::Light& light, Variant variant) {
+  return variant == Variant::Pcss && light.type != scene::LightType::Rect ? Variant::Pcf : variant;
+}
 
 void render_variant(Frame& frame, Variant variant, bool cascaded) {
   const GlFunctions& gl = frame.gl;
   const Mat4<float> clip = frame.camera_clip(CameraDepth::Scene);
   std::vector<LightMap> maps;
+  std::vector<Variant> variants;
   for (std::size_t i = 0; i < frame.scene.lights.size(); ++i) {
     LightFit refit;
-    maps.push_back(render_light_map(frame, cascaded ? cascade_fit(frame, i, refit) : frame.prepared.light_fits[i], variant));
+    variants.push_back(variant_for_light(frame.scene.lights[i], variant));
+    maps.push_back(
+        render_light_map(frame, cascaded ? cascade_fit(frame, i, refit) : frame.prepared.light_fits[i], variants[i]));
   }
 
-  // Masks: one camera pass per light writing the 0/1 comparison; the clear colour is "no surface".
+  // Per light, one camera pass per image: the 0/1 mask (mode 2; the clear colour is "no surface")
+  // and, for the filtered variants, the lit fraction (mode 3: visibility.png).
   const Program& p = frame.programs.surface;
-  for (std::size_t i = 0; i < maps.size(); ++i) {
-    frame.bind_target(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, static_cast<float>(outputs::kMaskNoSurface) / 255.0f);
+  const auto camera_pass = [&](std::size_t i, int mode, float clear) {
+    frame.bind_target(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, clear);
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(frame.depth_nearer());
     gl.Disable(GL_BLEND);
     gl.Disable(GL_STENCIL_TEST);
-    bind_map(frame, maps[i], variant);
+    bind_map(frame, maps[i], variants[i]);
+    set_light_uniforms(frame, i, variants[i]);
     set_matrix(gl, p.clip_from_world, clip);
     set_matrix(gl, p.shadow_from_world, maps[i].shadow_from_world);
-    gl.Uniform1i(p.mode, 2);
-    gl.Uniform1i(p.shadow, shader_mode(variant));
+    gl.Uniform1i(p.mode, mode);
+    gl.Uniform1i(p.shadow, shader_mode(variants[i]));
     const Vec4<float> l = frame.light(i).cast<float>();
     gl.Uniform4f(p.light, l.x(), l.y(), l.z(), l.w());
     for (const GpuMesh& m : frame.objects) m.draw();
-    frame.result.masks.push_back(frame.read_grey());
-  }
+    return frame.read_grey();
+  };
+  for (std::size_t i = 0; i < maps.size(); ++i)
+    frame.result.masks.push_back(camera_pass(i, 2, static_cast<float>(outputs::kMaskNoSurface) / 255.0f));
+  if (variant == Variant::Pcf || variant == Variant::Pcss)
+    for (std::size_t i = 0; i < maps.size(); ++i) frame.result.visibility.push_back(camera_pass(i, 3, 0.0f));
 
   // The shaded picture: ambient once, then each light added where its map says lit.
   frame.ambient_pass(clip);
   for (std::size_t i = 0; i < maps.size(); ++i) {
-    bind_map(frame, maps[i], variant);
-    frame.light_pass(clip, i, shader_mode(variant), &maps[i].shadow_from_world);
+    bind_map(frame, maps[i], variants[i]);
+    set_light_uniforms(frame, i, variants[i]);
+    frame.light_pass(clip, i, shader_mode(variants[i]), &maps[i].shadow_from_world);
   }
   unbind_maps(gl);
   frame.result.shaded = frame.read_rgb();
@@ -369,5 +443,6 @@ void render_shadowmap_pcf(Frame& frame) { render_variant(frame, Variant::Pcf, fa
 void render_shadowmap_rgba8(Frame& frame) { render_variant(frame, Variant::Rgba8, false); }
 void render_csm(Frame& frame) { render_variant(frame, Variant::Depth, true); }
 void render_csm_pcf(Frame& frame) { render_variant(frame, Variant::Pcf, true); }
+void render_pcss(Frame& frame) { render_variant(frame, Variant::Pcss, false); }
 
 }  // namespace shadowref::renderer

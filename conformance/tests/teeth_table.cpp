@@ -210,6 +210,25 @@ constexpr Row kRows[] = {
             "what its sphere, centred behind the eye, reaches in front of it (the near ground, the middle of the "
             "far cascades, whose spheres are large), and the shadows farther out, the wall's at the left and the "
             "tips of the pole's and the sphere's, come out lit"},
+    // ---- percentage-closer soft shadows ---------------------------------------------------------
+    {.name = "pcss-blocker-search-reads-the-receiver", .technique = "pcss",
+     .faults = on([](Faults& f) { f.soft.blocker_depth_from_receiver = true; }), .convention = "gl",
+     .scenes = "soft_penumbra",
+     .field_class = "a PCSS blocker search that returns the receiver's depth",
+     .why = "the penumbra estimate (d_receiver - d_blocker) / d_blocker is 0: every soft shadow comes out hard, "
+            "wrong by up to half the light across every penumbra"},
+    {.name = "pcss-penumbra-for-half-the-light", .technique = "pcss",
+     .faults = on([](Faults& f) { f.soft.light_size_scale = 0.5; }), .convention = "gl",
+     .scenes = "soft_penumbra",
+     .field_class = "a penumbra estimated with the wrong light size",
+     .why = "the light's half-size taken for its size: every penumbra half as wide as the truth's, too dark in its "
+            "outer half and too light in its inner half"},
+    {.name = "pcss-penumbra-for-twice-the-light", .technique = "pcss",
+     .faults = on([](Faults& f) { f.soft.light_size_scale = 2.0; }), .convention = "gl",
+     .scenes = "soft_penumbra",
+     .field_class = "a penumbra estimated with the wrong light size",
+     .why = "the light's full size taken for its half-size: every penumbra twice as wide, the far ball's umbra "
+            "gone"},
 };
 // clang-format on
 

@@ -18,7 +18,7 @@ CandidateDeclaration default_declaration(const std::string& technique) {
   CandidateDeclaration d;
   d.technique = technique;
   const TechniqueName* t = find_technique_name(technique);
-  d.filter_radius_texels = t && t->family == TechniqueFamily::ShadowMapPcf ? 1.0 : 0.0;
+  d.filter_radius_texels = t && (t->family == TechniqueFamily::ShadowMapPcf || t->family == TechniqueFamily::SoftShadow) ? 1.0 : 0.0;
   d.defaulted = {"producer", "version", "technique", "convention", "shadow_map_size", "filter_radius_texels",
                  "slope_bias_texels", "constant_bias", "light_views", "cascades"};
   return d;
@@ -37,7 +37,7 @@ CandidateDeclaration read_declaration(const std::filesystem::path& dir, const st
   if (!j.is_object()) throw bad("must be a JSON object");
   static const std::set<std::string> known{"producer", "version", "technique", "convention", "shadow_map_size",
                                            "filter_radius_texels", "slope_bias_texels", "constant_bias", "light_views",
-                                           "cascades"};
+                                           "cascades", "light_taps"};
   for (const auto& item : j.items())
     if (!known.count(item.key())) throw bad(item.key() + ": unknown key");
   std::set<std::string> given;
@@ -87,6 +87,13 @@ CandidateDeclaration read_declaration(const std::filesystem::path& dir, const st
     d.cascades = static_cast<int>(v);
     given.insert("cascades");
   }
+  if (j.contains("light_taps")) {
+    if (!j["light_taps"].is_number_integer()) throw bad("light_taps: must be an integer");
+    const auto v = j["light_taps"].get<long long>();
+    if (v < 1 || v > kMaxLightTaps) throw bad("light_taps: must be in [1, " + std::to_string(kMaxLightTaps) + "]");
+    d.light_taps = static_cast<int>(v);
+    given.insert("light_taps");
+  }
   d.defaulted.clear();
   for (const std::string& k : known)
     if (!given.count(k)) d.defaulted.push_back(k);
@@ -105,6 +112,7 @@ void write_declaration(const CandidateDeclaration& d, const std::filesystem::pat
   j["constant_bias"] = d.constant_bias;
   j["light_views"] = d.light_views_from_pack ? "pack" : "own";
   j["cascades"] = d.cascades;
+  j["light_taps"] = d.light_taps;
   std::ofstream f(dir / kCandidateFile, std::ios::binary);
   f << json_text(j, 2) << "\n";
   if (!f) throw FileError((dir / kCandidateFile).string() + ": cannot write");

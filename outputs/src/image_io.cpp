@@ -110,6 +110,27 @@ Image8 read_image8(const std::filesystem::path& file, int channels, int width, i
   return image;
 }
 
+std::vector<float> read_exr(const std::filesystem::path& file, int width, int height) {
+  const auto bad = [&](const std::string& what) { return InputError(InputError::Kind::BadInput, file.string() + ": " + what); };
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) throw bad("no such file");
+  QuietStderr quiet;
+  silence_uncaught_errors();
+  auto in = OIIO::ImageInput::create("exr");
+  OIIO::ImageSpec opened;
+  if (!in || !in->open(file.string(), opened))
+    throw bad("cannot open: " + first_line(in ? in->geterror() : OIIO::geterror(), "not an OpenEXR file"));
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width != width || spec.height != height || spec.depth != 1 || spec.nchannels != 1)
+    throw bad("is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " with " +
+              std::to_string(spec.nchannels) + " channel(s), expected " + std::to_string(width) + "x" +
+              std::to_string(height) + " with 1");
+  std::vector<float> pixels(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  if (!in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, pixels.data()) || !in->close())
+    throw bad("cannot read pixels: " + first_line(in->geterror(), "decoding failed"));
+  return pixels;
+}
+
 void write_png(const Image8& image, const std::filesystem::path& file) {
   if (image.pixels.size() != image.pixel_count() * static_cast<std::size_t>(image.channels))
     throw std::logic_error(file.string() + ": image buffer does not match its size");

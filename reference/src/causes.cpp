@@ -186,3 +186,59 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
 }
 
 }  // namespace shadowref::reference
+
+namespace shadowref::reference {
+
+CauseModel::Band CauseModel::visibility_band(std::size_t light, int x, int y,
+                                             const outputs::CandidateDeclaration& d) const {
+  Band band;
+  const scene::Scene& s = *scene_.scene;
+  const Vec2<double> ndc = scene::pixel_to_ndc<double>(x, y, 0.5, 0.5, s.width, s.height);
+  const double zn = near_ndc_z(*scene_.convention), zf = far_ndc_z(*scene_.convention);
+  const Vec3<double> o = unproject(inverse_clip_, ndc.x(), ndc.y(), zn);
+  const Vec3<double> dir = (unproject(inverse_clip_, ndc.x(), ndc.y(), 0.5 * (zn + zf)) - o).normalized();
+  const RTCRayHit rh = first_hit(embree_->handle(), o, dir, std::numeric_limits<float>::infinity());
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return band;
+  const auto& mesh = s.objects[rh.hit.geomID].mesh;
+  const auto& tri = mesh.triangles[rh.hit.primID];
+  const Vec3<double> v0 = mesh.positions[tri[0]].cast<double>(), v1 = mesh.positions[tri[1]].cast<double>(),
+                     v2 = mesh.positions[tri[2]].cast<double>();
+  const Vec3<double> p = v0 + rh.hit.u * (v1 - v0) + rh.hit.v * (v2 - v0);
+  Vec3<double> n = (v1 - v0).cross(v2 - v0);
+  if (!(n.norm() > 0)) return band;
+  n.normalize();
+  if (n.dot(dir) > 0) n = -n;
+  const scene::Light& source = s.lights[light];
+  const auto add = [&](const Vec3<double>& at) {
+    const double v = lit_fraction(*embree_, at, n, source);
+    band.lo = std::min(band.lo, v);
+    band.hi = std::max(band.hi, v);
+  };
+  add(p);
+  // The texels around p's in the map of the light's centre (the one view, or the cube face p is in).
+  const Vec4<double>& L = scene_.lights[light];
+  const LightFit& fit = fit_for(light, d.shadow_map_size, 0);
+  const LightView& view = fit.views[static_cast<std::size_t>(light_view_of(fit, L, p))];
+  const Mat4<double> m = view.projection * view.view;
+  const Vec4<double> h = m * Vec4<double>(p.x(), p.y(), p.z(), 1.0);
+  if (!(h.w() > 0)) return band;
+  const Vec3<double> q = h.head<3>() / h.w();
+  const Mat4<double> inv = m.inverse();
+  const double texel_ndc = 2.0 / fit.size;
+  const double radius = (d.light_views_from_pack ? 0.5 : 1.0) + d.filter_radius_texels;
+  static constexpr std::array<std::array<double, 2>, 8> kDirs{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, 1},
+                                                               {1, -1}, {-1, -1}}};
+  for (const double r : {0.5 * radius, radius})
+    for (const auto& dv : kDirs) {
+      const double mx = q.x() + dv[0] * r * texel_ndc, my = q.y() + dv[1] * r * texel_ndc;
+      const Vec3<double> a = unproject(inv, mx, my, zn), b = unproject(inv, mx, my, zf);
+      // Where that texel's ray crosses p's tangent plane (the receiver a filter compares against).
+      const double denom = n.dot(b - a);
+      if (std::abs(denom) < 1e-12) continue;
+      const double t = n.dot(p - a) / denom;
+      add(a + t * (b - a));
+    }
+  return band;
+}
+
+}  // namespace shadowref::reference

@@ -296,6 +296,7 @@ class Renderer {
     }
     out_.visibility[out] = hits > 0 ? vis_sum / static_cast<float>(lights_.size()) : -1.0f;
     out_.decided[out] = all_decided ? 255 : 0;
+    out_.covered[out] = c.hit && one_surface && hits == static_cast<int>(samples_per_pixel_ - 1) ? 255 : 0;
     colour /= samples;
     for (int ch = 0; ch < 3; ++ch) out_.shaded[3 * out + static_cast<std::size_t>(ch)] = outputs::encode_srgb8(colour[ch]);
   }
@@ -335,6 +336,7 @@ Images render(const scene::PreparedScene& prepared, const Options& options, Stat
   }
   img.visibility.assign(n, -1.0f);
   img.decided.assign(n, 0);
+  img.covered.assign(n, 0);
   img.shaded.assign(3 * n, 0);
 
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);

@@ -34,6 +34,7 @@ std::vector<std::string> write_images(const Images& images, const std::filesyste
   }
   // The aggregates (equal to the one light's images for one light).
   grey(outputs::decided_name(0, 1), images.decided);
+  grey(outputs::kCoveredName, images.covered);
   exr(outputs::per_light_name("visibility", "exr", 0, 1), images.visibility);
   outputs::write_png(outputs::Image8{w, h, 3, images.shaded}, dir / "shaded.png");
   names.push_back("shaded.png");

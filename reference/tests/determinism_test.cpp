@@ -26,6 +26,7 @@ void expect_identical(const Images& a, const Images& b) {
   }
   EXPECT_EQ(a.shaded, b.shaded);
   EXPECT_EQ(a.decided, b.decided);
+  EXPECT_EQ(a.covered, b.covered);
   EXPECT_EQ(0, std::memcmp(a.visibility.data(), b.visibility.data(), a.visibility.size() * sizeof(float)));
 }
 
@@ -61,7 +62,7 @@ TEST(Determinism, FilesAreByteIdentical) {
   const auto names = write_images(render(s, o), dir / "a");
   o.threads = 1;
   EXPECT_EQ(write_images(render(s, o), dir / "b"), names);
-  ASSERT_EQ(names.size(), 9u);  // 3 per light, the two aggregates and shaded.png
+  ASSERT_EQ(names.size(), 10u);  // 3 per light, the two aggregates, covered.png and shaded.png
   for (const auto& n : names) {
     EXPECT_FALSE(bytes(dir / "a" / n).empty()) << n;
     EXPECT_EQ(bytes(dir / "a" / n), bytes(dir / "b" / n)) << n;

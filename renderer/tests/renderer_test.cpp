@@ -11,6 +11,7 @@
 #include <string>
 
 #include "shadowref/reference/render.hpp"
+#include "shadowref/outputs/techniques.hpp"
 #include "shadowref/renderer/renderer.hpp"
 #include "shadowref/scene/load_scene.hpp"
 
@@ -188,6 +189,11 @@ TEST(Renderer, EveryTechniqueRendersEveryCatalogueScene) {
       RenderResult r;
       ASSERT_NO_THROW(r = renderer().render(s, t.name, o));
       EXPECT_EQ(r.masks.size(), s.lights.size());
+      // The filtered techniques also write their lit fraction, one image per light.
+      const outputs::TechniqueName* named = outputs::find_technique_name(t.name);
+      const bool filtered = named && (named->family == outputs::TechniqueFamily::ShadowMapPcf ||
+                                      named->family == outputs::TechniqueFamily::SoftShadow);
+      EXPECT_EQ(r.visibility.size(), filtered ? s.lights.size() : 0u);
     }
   }
 }

@@ -295,9 +295,50 @@ FolderComparison compare_folders(const std::filesystem::path& reference_dir,
     if (!threshold.bands) o.explain = nullptr;  // exact techniques: no texel or bias band
     out.per_light.push_back(compare_mask(ref, dec, cand, (candidate_dir / name).string(), i, o));
     out.total += out.per_light.back().metrics;
+    // Soft shadows: the lit fraction of a light with an area.
+    const bool soft = i < options.visibility_tolerance.size() && options.visibility_tolerance[i] >= 0;
+    out.visibility.emplace_back();
+    if (!soft) continue;
+    const std::string vis = outputs::visibility_name(i, out.masks.size());
+    if (!std::filesystem::exists(candidate_dir / vis, ec))
+      throw CompareError(CompareError::Kind::BadInput, (candidate_dir / vis).string() +
+                                                           ": no such file (a soft technique's lit fraction, 8-bit grey, "
+                                                           "beside its mask)");
+    const Image8 covered = read_image8(reference_dir / outputs::kCoveredName, 1, ref.width, ref.height);
+    const std::vector<float> fraction =
+        outputs::read_exr(reference_dir / outputs::per_light_name("visibility", "exr", i, out.masks.size()), ref.width, ref.height);
+    const Image8 cand_vis = read_image8(candidate_dir / vis, 1, ref.width, ref.height);
+    out.visibility.back() = compare_visibility(fraction, covered, cand_vis, cand, options.visibility_tolerance[i],
+                                               options.visibility_mean_error_bound.at(i), options.explain_visibility, i);
+    if (!out.visibility_total) out.visibility_total = VisibilityMetrics{};
+    *out.visibility_total += out.visibility.back()->metrics;
   }
   out.judgement = judge(out.total, threshold);
+  if (out.visibility_total) judge_visibility(*out.visibility_total, out.judgement);
   return out;
+}
+
+void judge_visibility(const VisibilityMetrics& m, Judgement& j) {
+  char buf[256];
+  const auto fail = [&](const std::string& reason) {
+    j.verdict = Verdict::Fail;
+    j.reasons.push_back(reason);
+  };
+  if (m.unexplained_core > 0) {
+    std::snprintf(buf, sizeof buf, "visibility: %zu unexplained core pixel(s) (a 5x5 block off by more than sampling)",
+                  m.unexplained_core);
+    fail(buf);
+  }
+  if (m.unexplained_ratio() > kPenumbra.unexplained_fail) {
+    std::snprintf(buf, sizeof buf, "visibility: %.2f %% of the penumbra unexplained (bound %.2f %%)",
+                  100.0 * m.unexplained_ratio(), 100.0 * kPenumbra.unexplained_fail);
+    fail(buf);
+  }
+  if (m.mean_penumbra_error() > m.mean_error_bound) {
+    std::snprintf(buf, sizeof buf, "visibility: mean error over the penumbra %.3f (bound %.3f, what sampling alone leaves)",
+                  m.mean_penumbra_error(), m.mean_error_bound);
+    fail(buf);
+  }
 }
 
 std::vector<std::string> write_error_images(const FolderComparison& c, const std::filesystem::path& dir) {
@@ -306,6 +347,12 @@ std::vector<std::string> write_error_images(const FolderComparison& c, const std
   for (std::size_t i = 0; i < c.per_light.size(); ++i) {
     const std::string name = outputs::per_light_name("error", "png", i, c.per_light.size());
     outputs::write_png(c.per_light[i].error, dir / name);
+    names.push_back(name);
+  }
+  for (std::size_t i = 0; i < c.visibility.size(); ++i) {
+    if (!c.visibility[i]) continue;
+    const std::string name = outputs::per_light_name("visibility_error", "png", i, c.visibility.size());
+    outputs::write_png(c.visibility[i]->error, dir / name);
     names.push_back(name);
   }
   return names;

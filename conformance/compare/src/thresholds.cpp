@@ -7,7 +7,7 @@
 namespace shadowref::compare {
 namespace {
 
-constexpr const Threshold* kAll[] = {&kExactGeometry, &kShadowMap, &kShadowMapPcf};
+constexpr const Threshold* kAll[] = {&kExactGeometry, &kShadowMap, &kShadowMapPcf, &kSoftShadow};
 
 }  // namespace
 
@@ -18,6 +18,7 @@ const Threshold& threshold_for(std::string_view technique) {
     case outputs::TechniqueFamily::ExactGeometry: return kExactGeometry;
     case outputs::TechniqueFamily::ShadowMap: return kShadowMap;
     case outputs::TechniqueFamily::ShadowMapPcf: return kShadowMapPcf;
+    case outputs::TechniqueFamily::SoftShadow: return kSoftShadow;
   }
   return kExactGeometry;
 }

@@ -169,6 +169,8 @@ TEST(Thresholds, EveryRendererTechniqueHasOneAndEachHasAReason) {
   EXPECT_EQ(&threshold_for("shadowmap"), &kShadowMap);
   EXPECT_EQ(&threshold_for("shadowmap-rgba8"), &kShadowMap);
   EXPECT_EQ(&threshold_for("shadowmap-pcf"), &kShadowMapPcf);
+  EXPECT_EQ(&threshold_for("csm-pcf"), &kShadowMapPcf);
+  EXPECT_EQ(&threshold_for("pcss"), &kSoftShadow);
   EXPECT_EQ(&threshold_for("an-engine-technique"), &kExactGeometry);
   EXPECT_FALSE(kExactGeometry.bands) << "exact techniques get no texel or bias band";
   for (const Threshold* t : all_thresholds()) {

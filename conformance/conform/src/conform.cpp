@@ -21,6 +21,7 @@
 #include "shadowref/scene/prepared_scene.hpp"
 #include "shadowref/outputs/candidate.hpp"
 #include "shadowref/outputs/file_names.hpp"
+#include "shadowref/outputs/techniques.hpp"
 #include "shadowref/reference/causes.hpp"
 
 namespace shadowref::conform {
@@ -234,6 +235,24 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
             return model.explain(light, x, y, declared, candidate_lit);
           };
           copt.explain = &explainer;
+        }
+        // Soft techniques: the lit fraction of every light with an area, judged in visibility units.
+        compare::VisibilityExplainer visibility_explainer;
+        const outputs::TechniqueName* named = outputs::find_technique_name(judged_as);
+        if (named && named->family == outputs::TechniqueFamily::SoftShadow) {
+          if (!causes[si]) causes[si] = std::make_unique<reference::CauseModel>(prepared[si]);
+          const reference::CauseModel& model = *causes[si];
+          const outputs::CandidateDeclaration& declared = c.declaration;
+          visibility_explainer = [&model, &declared](std::size_t light, int x, int y) {
+            const reference::CauseModel::Band b = model.visibility_band(light, x, y, declared);
+            return std::make_pair(b.lo, b.hi);
+          };
+          copt.explain_visibility = &visibility_explainer;
+          for (const scene::Light& l : s.lights) {
+            const bool area = l.type == scene::LightType::Rect;
+            copt.visibility_tolerance.push_back(area ? compare::visibility_sampling_tolerance(l.samples, declared.light_taps) : -1.0);
+            copt.visibility_mean_error_bound.push_back(area ? compare::visibility_mean_error_bound(l.samples, declared.light_taps) : 0.0);
+          }
         }
         c.comparison = compare::compare_folders(c.reference_dir, c.candidate_dir, threshold, copt);
         if (!gl) {

@@ -104,7 +104,7 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
                         {"convention", d.convention}, {"shadow_map_size", d.shadow_map_size},
                         {"filter_radius_texels", d.filter_radius_texels}, {"slope_bias_texels", d.slope_bias_texels},
                         {"constant_bias", d.constant_bias}, {"light_views", d.light_views_from_pack ? "pack" : "own"},
-                        {"defaulted", d.defaulted}};
+                        {"cascades", d.cascades}, {"light_taps", d.light_taps}, {"defaulted", d.defaulted}};
     }
     if (c.comparison) {
       k["comparison"] = report::to_json(*c.comparison);
@@ -123,6 +123,15 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
                                                                        : c.candidate_dir / c.error_images[i];
         l["error"] = copy_in(err, report_dir, base + fs::path(c.error_images[i]).filename().string());
         l["metrics"] = report::to_json(c.comparison->per_light[i].metrics);
+        if (i < c.comparison->visibility.size() && c.comparison->visibility[i]) {
+          // Soft shadows: the candidate's lit fraction and its error in visibility units.
+          const std::size_t n = c.comparison->masks.size();
+          const std::string vis = outputs::visibility_name(i, n);
+          const std::string vis_err = outputs::per_light_name("visibility_error", "png", i, n);
+          l["candidate_visibility"] = copy_in(c.candidate_dir / vis, report_dir, base + "candidate_" + vis);
+          l["visibility_error"] = copy_in(err.parent_path() / vis_err, report_dir, base + vis_err);
+          l["visibility"] = report::to_json(c.comparison->visibility[i]->metrics);
+        }
         lights.push_back(l);
       }
       k["lights"] = lights;

@@ -27,6 +27,22 @@ nlohmann::json to_json(const compare::MaskMetrics& m) {
           {"invariant_pixels", m.invariant_pixels}};
 }
 
+nlohmann::json to_json(const compare::VisibilityMetrics& m) {
+  return {{"judged", m.judged},
+          {"penumbra", m.penumbra},
+          {"beyond_sampling", m.beyond_sampling},
+          {"explained_footprint", m.explained},
+          {"unexplained", m.unexplained},
+          {"unexplained_core", m.unexplained_core},
+          {"unexplained_percent_of_penumbra", 100.0 * m.unexplained_ratio()},
+          {"mean_penumbra_error", m.mean_penumbra_error()},
+          {"max_error", m.max_error},
+          {"bounds",
+           {{"unexplained_fail_percent_of_penumbra", 100.0 * compare::kPenumbra.unexplained_fail},
+            {"mean_penumbra_error_fail", m.mean_error_bound},
+            {"why", compare::kPenumbra.why}}}};
+}
+
 nlohmann::json to_json(const compare::Threshold& t) {
   return {{"name", t.name},
           {"bands", t.bands},
@@ -39,13 +55,17 @@ nlohmann::json to_json(const compare::Threshold& t) {
 nlohmann::json to_json(const compare::FolderComparison& c) {
   nlohmann::json masks = nlohmann::json::array();
   for (std::size_t i = 0; i < c.masks.size(); ++i)
+  {
     masks.push_back({{"mask", c.masks[i]}, {"metrics", to_json(c.per_light[i].metrics)}});
+    if (i < c.visibility.size() && c.visibility[i]) masks.back()["visibility"] = to_json(c.visibility[i]->metrics);
+  }
   nlohmann::json j;
   j["verdict"] = compare::to_string(c.judgement.verdict);
   j["reasons"] = c.judgement.reasons;
   j["threshold"] = c.threshold ? to_json(*c.threshold) : nlohmann::json();
   j["total"] = to_json(c.total);
   j["masks"] = masks;
+  if (c.visibility_total) j["visibility"] = to_json(*c.visibility_total);
   return j;
 }
 

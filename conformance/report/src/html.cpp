@@ -217,6 +217,24 @@ void metrics_table(std::ostringstream& h, const json& m) {
   h << "</table>";
 }
 
+// Soft shadows: the lit fraction's numbers (comparison_json.hpp), in visibility units.
+void visibility_table(std::ostringstream& h, const json& v) {
+  h << "<table class=\"metrics\"><tr><td colspan=\"2\"><b>lit fraction (visibility units)</b></td></tr>";
+  const auto row = [&](const char* label, const std::string& value) {
+    h << "<tr><td>" << label << "</td><td>" << escape_html(value) << "</td></tr>";
+  };
+  const json b = v.value("bounds", json::object());
+  row("mean error over the penumbra", num(v, "mean_penumbra_error", "%.3f") + " (bound " +
+                                          num(b, "mean_penumbra_error_fail", "%.3f") + ")");
+  row("unexplained", str(v, "unexplained") + " px (" + num(v, "unexplained_percent_of_penumbra") + " % of " +
+                         str(v, "penumbra") + " penumbra px; bound " + num(b, "unexplained_fail_percent_of_penumbra") +
+                         " %), core " + str(v, "unexplained_core") + " px");
+  row("explained", str(v, "explained_footprint") + " px within the filter footprint's range");
+  row("largest error", num(v, "max_error", "%.3f"));
+  row("judged px", str(v, "judged") + " (covered by one surface)");
+  h << "</table>";
+}
+
 }  // namespace
 
 std::string escape_html(const std::string& text) {
@@ -312,7 +330,13 @@ std::string render_html(const json& r) {
     << "<span><i style=\"background:rgb(30,200,200)\"></i>explained: depth bias</span>"
     << "<span><i style=\"background:rgb(70,105,70)\"></i>undecided: not judged</span>"
     << "<span><i style=\"background:rgb(150,150,150)\"></i><i style=\"background:rgb(55,55,55)\"></i>"
-    << "<i style=\"background:rgb(28,28,42)\"></i>dimmed reference: lit, shadowed, no surface</span></div></section>\n";
+    << "<i style=\"background:rgb(28,28,42)\"></i>dimmed reference: lit, shadowed, no surface</span></div>"
+    << "<div class=\"legend\" style=\"margin-top:8px\"><span>visibility error (soft shadows), brighter for larger |error|:</span>"
+    << "<span><i style=\"background:rgb(235,50,50)\"></i>too dark, unexplained</span>"
+    << "<span><i style=\"background:rgb(40,120,255)\"></i>too light, unexplained</span>"
+    << "<span><i style=\"background:rgb(240,170,20)\"></i>within the filter footprint's range</span>"
+    << "<span><i style=\"background:rgb(70,105,70)\"></i>not judged: not covered by one surface</span>"
+    << "<span>grey: the reference's lit fraction, dimmed</span></div></section>\n";
 
   // Cases, one row each.
   h << "<section><h2>Cases</h2><div class=\"filters\" style=\"margin-bottom:10px\">"
@@ -338,7 +362,8 @@ std::string render_html(const json& r) {
       for (const auto& k : d.value("defaulted", json::array())) defaulted += (defaulted.empty() ? "" : ", ") + k.get<std::string>();
       h << "<div class=\"notes\">candidate: " << escape_html(str(d, "producer")) << " " << escape_html(str(d, "version"))
         << " · " << escape_html(str(d, "convention")) << " · map " << escape_html(str(d, "shadow_map_size"))
-        << " · filter " << escape_html(str(d, "filter_radius_texels")) << " texel · slope bias "
+        << " · filter " << escape_html(str(d, "filter_radius_texels")) << " texel · light taps "
+        << escape_html(str(d, "light_taps", "8")) << " · slope bias "
         << escape_html(str(d, "slope_bias_texels")) << " · constant bias " << escape_html(str(d, "constant_bias"))
         << (defaulted.empty() ? std::string() : " (defaulted: " + escape_html(defaulted) + ")") << "</div>";
     }
@@ -348,6 +373,7 @@ std::string render_html(const json& r) {
       h << "</ul>";
     }
     if (cmp.contains("total")) metrics_table(h, cmp["total"]);
+    if (cmp.contains("visibility")) visibility_table(h, cmp["visibility"]);
     if (c.contains("notes") && !c["notes"].empty()) {
       h << "<div class=\"notes\">";
       for (const auto& n : c["notes"]) h << "note: " << escape_html(n.get<std::string>()) << "<br>";
@@ -367,6 +393,13 @@ std::string render_html(const json& r) {
         figure(h, str(l, "error", ""), "error" + suffix + ": " + str(l.value("metrics", json::object()), "wrong") + " wrong");
         viewer(h, l);
         if (i == 0) figure(h, str(c, "shaded", ""), "candidate shaded");
+        if (l.contains("visibility")) {
+          const json& v = l["visibility"];
+          figure(h, str(l, "candidate_visibility", ""), "candidate lit fraction" + suffix);
+          figure(h, str(l, "visibility_error", ""),
+                 "visibility error" + suffix + ": mean " + num(v, "mean_penumbra_error", "%.3f") + " over the penumbra, " +
+                     str(v, "unexplained") + " px unexplained");
+        }
         h << "</div>";
       }
     } else {

@@ -21,6 +21,10 @@
 //     "cascades": 4                       integer in [0, 8]: cascaded techniques (csm, csm-pcf), the
 //                                         cascades per directional light, split as the pack's
 //                                         `cascades` say; 0 = the pack's count
+//     "light_taps": 8                     integer in [1, 64]: soft techniques (pcss), the taps per axis
+//                                         of the filter over the light's area: its fraction moves in
+//                                         steps of about 1 / light_taps across a boundary (the
+//                                         visibility judgement's sampling tolerance)
 //   }
 // Every key is optional. Absent keys take the defaults below (for a known technique: its family's
 // defaults), and `defaulted` lists them, so the report can say which values were assumed.
@@ -32,6 +36,9 @@
 #include <vector>
 
 namespace shadowref::outputs {
+
+// The most light_taps a declaration may give.
+inline constexpr int kMaxLightTaps = 64;
 
 inline constexpr const char* kCandidateFile = "candidate.json";
 
@@ -46,6 +53,7 @@ struct CandidateDeclaration {
   double constant_bias = 0.0;
   bool light_views_from_pack = false;  // "light_views": "pack"
   int cascades = 0;                    // cascaded techniques: cascades per directional light; 0: the pack's default
+  int light_taps = 8;                  // soft techniques: filter taps per axis over the light (ours: 8 x 8)
   std::vector<std::string> defaulted;  // keys that were absent
 };
 

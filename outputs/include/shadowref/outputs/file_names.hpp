@@ -23,6 +23,13 @@ inline std::string mask_name(std::size_t light, std::size_t light_count) {
 inline std::string decided_name(std::size_t light, std::size_t light_count) {
   return per_light_name("decided", "png", light, light_count);
 }
+// The reference's coverage image (one for all lights): 255 where one smooth surface covers the pixel.
+inline constexpr const char* kCoveredName = "covered.png";
+
+// The 8-bit lit fraction of a filtered technique (candidates) — the reference's is visibility.exr.
+inline std::string visibility_name(std::size_t light, std::size_t light_count) {
+  return per_light_name("visibility", "png", light, light_count);
+}
 
 // The mask file names present in `dir`: {"mask.png"} or {"mask_0.png", …, "mask_<n-1>.png"} (the
 // run of consecutive indices from 0). Throws InputError(BadInput) when `dir` is not a folder, has

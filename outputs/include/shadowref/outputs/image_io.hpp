@@ -14,6 +14,7 @@
 #pragma once
 
 #include <filesystem>
+#include <vector>
 
 #include "shadowref/outputs/image.hpp"
 
@@ -26,6 +27,10 @@ Image8 read_image8(const std::filesystem::path& file, int channels);
 // another size is InputError(SizeMismatch) "<file>: candidate is WxH, reference is WxH", known from
 // the header before any pixel is decoded, so a decompression bomb costs no memory.
 Image8 read_image8(const std::filesystem::path& file, int channels, int width, int height);
+
+// Reads a single-channel float image (the reference's visibility.exr) that must be width × height.
+// Throws InputError(BadInput) for a missing, unreadable or mis-sized file.
+std::vector<float> read_exr(const std::filesystem::path& file, int width, int height);
 
 // Writes `image` as PNG.
 void write_png(const Image8& image, const std::filesystem::path& file);

@@ -17,6 +17,7 @@ enum class TechniqueFamily {
   ExactGeometry,  // rasterises the very triangles the reference traces: planar, stencil volumes
   ShadowMap,      // one depth compare per pixel against a map of texels
   ShadowMapPcf,   // a filtered compare (percentage-closer filtering)
+  SoftShadow,     // a filtered compare whose filter follows the light's size (PCSS): judged as visibility too
 };
 
 struct TechniqueName {
@@ -29,7 +30,7 @@ struct TechniqueName {
 };
 
 // clang-format off
-inline constexpr std::array<TechniqueName, 11> kTechniques{{
+inline constexpr std::array<TechniqueName, 12> kTechniques{{
     {"planar", TechniqueFamily::ExactGeometry},
     {"volume-zpass", TechniqueFamily::ExactGeometry},
     {"volume-zfail", TechniqueFamily::ExactGeometry},
@@ -41,6 +42,7 @@ inline constexpr std::array<TechniqueName, 11> kTechniques{{
     {"shadowmap-rgba8", TechniqueFamily::ShadowMap},
     {"csm", TechniqueFamily::ShadowMap, true},
     {"csm-pcf", TechniqueFamily::ShadowMapPcf, true},
+    {"pcss", TechniqueFamily::SoftShadow},
 }};
 // clang-format on
 

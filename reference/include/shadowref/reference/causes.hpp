@@ -58,6 +58,17 @@ class CauseModel {
   // caches light fits per declared map size).
   Cause explain(std::size_t light, int x, int y, const outputs::CandidateDeclaration& declared, bool candidate_lit) const;
 
+  // Soft shadows (the visibility judgement, compare.hpp): the range [lo, hi] of the true lit
+  // fraction of light `light` (over its samples, shadow_ray.hpp's lit_fraction) at the pixel
+  // centre's surface point p and at the points of p's tangent plane that the declared map's texels
+  // within R = (0.5 or 1) + filter_radius_texels of p's texel look at (probed at R and R/2 in 8
+  // directions, as explain()): what a filter of that footprint may honestly average over. An empty
+  // range (lo > hi) when the centre sees no surface. Cost: 17 · samples² shadow rays.
+  struct Band {
+    double lo = 1, hi = 0;
+  };
+  Band visibility_band(std::size_t light, int x, int y, const outputs::CandidateDeclaration& declared) const;
+
  private:
   // The light's views at map size `size` (0: the prepared size), cascaded with `cascades` cascades
   // (0: not cascaded).

@@ -65,6 +65,11 @@ struct Images {
   std::vector<LightImages> lights;     // one per scene light, in scene order
   std::vector<float> visibility;       // the mean over lights (equal to lights[0] for one light)
   std::vector<std::uint8_t> decided;   // the AND over lights
+  // 255 where the pixel is fully covered by one smooth surface (the last rule of `decided`, without
+  // the light): every sub-pixel sample hits the centre's object within kCreaseSine of its tangent
+  // plane. The visibility judgement (soft shadows) compares only these: elsewhere the reference's
+  // fraction mixes surfaces that a candidate's centre sample cannot.
+  std::vector<std::uint8_t> covered;
   std::vector<std::uint8_t> shaded;    // width · height · 3, RGB
 };
 

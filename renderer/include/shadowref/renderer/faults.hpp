@@ -125,12 +125,24 @@ struct CascadeFaults {
 // CascadeFaults::gap: the part of each slice its cascade is selected for.
 inline constexpr double kCascadeGapFraction = 0.85;
 
+// Percentage-closer soft shadows (pcss), rect lights only.
+struct SoftShadowFaults {
+  // The blocker search averages the receiver's own depth instead of the blockers' (the search
+  // compares nothing, or reads the wrong value): the penumbra estimate (d_receiver - d_blocker) /
+  // d_blocker is 0 everywhere, and every soft shadow comes out hard.
+  bool blocker_depth_from_receiver = false;
+  // The light size the penumbra is estimated with, as a multiple of the true one (1: right): a
+  // light's half-size used for its size, or a unit mix-up.
+  double light_size_scale = 1.0;
+};
+
 struct Faults {
   CameraFaults camera;
   PlanarFaults planar;
   VolumeFaults volume;
   ShadowMapFaults shadow_map;
   CascadeFaults cascade;
+  SoftShadowFaults soft;
 };
 
 // The switches that are on, as "family.switch[=value]" joined by ", "; "" for production.

@@ -52,6 +52,9 @@ struct RenderOptions {
 struct RenderResult {
   std::string technique;
   std::vector<Image8> masks;   // one per light (grey)
+  // The filtered techniques' lit fraction per light (grey, round(255 · fraction); the background is
+  // mask.png's to say): visibility.png / visibility_<i>.png. Empty for the others.
+  std::vector<Image8> visibility;
   Image8 shaded;               // RGB
   std::vector<double> frame_ms;  // the time of each frame, all passes to glFinish and read-back
   std::vector<std::string> notes;  // what the technique could not do on this scene, and why

@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,7 @@
 #include "shadowref/outputs/errors.hpp"
 #include "shadowref/outputs/image_io.hpp"
 #include "shadowref/compare/thresholds.hpp"
+#include "shadowref/compare/visibility.hpp"
 
 namespace shadowref::compare {
 
@@ -106,6 +108,12 @@ struct CompareOptions {
   // The scene's invariant holds on every surface pixel (the camera at the light sees no cast
   // shadow): undecided pixels where the reference is lit are judged too, for false shadows.
   bool no_cast_shadow_invariant = false;
+  // Soft shadows (visibility.hpp): per light, the sampling tolerance of its lit fraction, or a
+  // negative value where the light has no area (its fraction is the mask's). Empty: the technique's
+  // fraction is not judged. Judged lights need visibility.png (visibility_<i>.png) from the candidate.
+  std::vector<double> visibility_tolerance;
+  std::vector<double> visibility_mean_error_bound;  // per light, the same way
+  const VisibilityExplainer* explain_visibility = nullptr;
 };
 
 // Compares one mask. All three images are 1-channel and of the same size; throws
@@ -131,6 +139,9 @@ struct FolderComparison {
   std::vector<std::string> masks;          // mask file names, in light order
   std::vector<MaskComparison> per_light;   // same order
   MaskMetrics total;                       // summed over lights
+  // Soft shadows: per light, the comparison of its lit fraction (nullopt: not judged), and the sum.
+  std::vector<std::optional<VisibilityComparison>> visibility;
+  std::optional<VisibilityMetrics> visibility_total;
   Judgement judgement;
   const Threshold* threshold = nullptr;
 };
@@ -141,7 +152,12 @@ FolderComparison compare_folders(const std::filesystem::path& reference_dir,
                                  const std::filesystem::path& candidate_dir, const Threshold& threshold,
                                  const CompareOptions& options = {});
 
-// Writes error.png (one light) or error_<i>.png into `dir`; returns the names written.
+// The verdict of a soft technique's fractions (thresholds.hpp, kPenumbra): FAIL on any unexplained
+// core, or beyond the unexplained-ratio or mean-error bound; merged into `judgement`.
+void judge_visibility(const VisibilityMetrics& metrics, Judgement& judgement);
+
+// Writes error.png (one light) or error_<i>.png into `dir`, and visibility_error.png
+// (visibility_error_<i>.png) for judged fractions; returns the names written.
 std::vector<std::string> write_error_images(const FolderComparison& c, const std::filesystem::path& dir);
 
 }  // namespace shadowref::compare

@@ -80,6 +80,33 @@ inline constexpr Threshold kShadowMapPcf{
     "shadow-map-pcf", true, 0.03, 0.5,
     "as shadow-map, with the footprint widened by the declared filter radius (3x3 PCF: 1 texel)"};
 
+// PCSS: its mask as PCF's (the filter's 3x3 floor), and its visibility judged in visibility units
+// where the light has an area (compare.hpp, compare_visibility).
+inline constexpr Threshold kSoftShadow{
+    "soft-shadow", true, 0.03, 0.5,
+    "the mask as shadow-map-pcf (3x3 floor of the filter); the lit fraction, where the light has an area, in "
+    "visibility units (kPenumbra)"};
+
+// Soft shadows in visibility units (visibility.hpp): the bound on the unexplained part of a soft
+// technique's penumbra. (Its other bound, the mean error over the penumbra, follows from the light's
+// and the filter's sampling: visibility_mean_error_bound.)
+// Measured (llvmpipe, soft_penumbra: 8 x 8 light samples, PCSS's 8 x 8 taps; 256², 512², 1024²,
+// 256 x 384, every convention, maps of 1024 and 2048): correct pcss leaves at most 0.48 % of the
+// penumbra unexplained (mean error <= 0.049 against the bound 0.0625); its wrong variants 25.3 %
+// (the blocker search reads the receiver) and 14.4 % (twice the light's size), each with 5x5 cores;
+// half the light's size stays at 1.0 % and is caught by the mean (0.093). Hence 3 %: 6 times the
+// worst correct case, 5 times below the mildest variant the ratio catches.
+struct VisibilityThreshold {
+  double unexplained_fail;   // unexplained / penumbra pixels above this: FAIL
+  std::string_view why;
+};
+inline constexpr VisibilityThreshold kPenumbra{
+    0.03,
+    "a soft technique's lit fraction: beyond the light's and the filter's sampling (1/n + 1/n' + half an 8-bit step) "
+    "an error must lie in the range the truth takes over the declared filter footprint; FAIL on a 5x5 unexplained "
+    "core, above 3 % of the penumbra unexplained (correct pcss <= 0.48 %, a hard shadow 25 %), or a mean error over "
+    "the penumbra above 1/(4n) + 1/(4n') (correct <= 0.049 of 0.0625, half the light size 0.093)"};
+
 // The threshold of a technique (outputs::kTechniques); an unknown name
 // (an engine team's own technique) gets the strictest, kExactGeometry.
 const Threshold& threshold_for(std::string_view technique);

@@ -11,9 +11,12 @@ namespace shadowref::report {
 // {"pixels", "decided", "decided_surface", "wrong", "wrong_percent", "false_shadow",
 //  "false_light", "coverage", "off_values", "regions", "largest_region"}
 nlohmann::json to_json(const compare::MaskMetrics& m);
+// Soft shadows: {"judged", "penumbra", "beyond_sampling", "explained_footprint", "unexplained",
+//  "unexplained_core", "unexplained_percent_of_penumbra", "mean_penumbra_error", "max_error", "bounds"}
+nlohmann::json to_json(const compare::VisibilityMetrics& m);
 // {"name", "pass_fraction", "fail_fraction", "pass_region", "fail_region", "why"}
 nlohmann::json to_json(const compare::Threshold& t);
-// {"verdict", "reasons", "threshold", "total", "masks": [{"mask", "metrics"}]}
+// {"verdict", "reasons", "threshold", "total", "masks": [{"mask", "metrics", "visibility"?}], "visibility"?}
 nlohmann::json to_json(const compare::FolderComparison& c);
 
 }  // namespace shadowref::report

@@ -1,0 +1,74 @@
+// shadowref/compare/visibility.hpp — soft shadows judged in visibility units: a candidate's lit
+// fraction (visibility.png, 8-bit) against the reference's (visibility.exr: the mean over the
+// light's samples and the pixel's sub-samples), for a light with an area (docs/tolerance-model.md).
+//
+// Judged pixels: those the reference marks covered by one smooth surface (covered.png) where the
+// candidate has a surface too; elsewhere the reference's fraction mixes surfaces a centre sample
+// cannot. The error e = candidate − reference. A pixel is
+//   within sampling  |e| <= tolerance: the reference samples the light at n × n points and a
+//                    filter at n' × n' taps, each fraction off by at most 1/n (1/n') across a
+//                    straight boundary, plus the 8-bit step — the caller's per-light tolerance;
+//   explained        beyond that, but the candidate's fraction lies within the tolerance of the
+//                    range of the true fraction over the declared filter footprint around the pixel
+//                    centre's surface point (reference/causes.hpp, visibility_band): what a filter
+//                    of that footprint may honestly average over;
+//   unexplained      otherwise: red where the candidate is too dark, blue where too light.
+// The scale errors are judged against is the penumbra: judged pixels whose reference fraction lies
+// strictly between 0 and 1. Its pixel count and the unexplained count both grow with the area of
+// the penumbrae, so their ratio means the same at any resolution; so does the mean |e| over it,
+// which catches a penumbra of the wrong width, whose error is spread thin over the whole band.
+// Speed: one pass over the pixels; the explainer only for pixels beyond the tolerance.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <utility>
+#include <vector>
+
+#include "shadowref/outputs/image.hpp"
+
+namespace shadowref::compare {
+
+struct VisibilityMetrics {
+  std::size_t judged = 0;            // covered surface pixels, a surface in the candidate too
+  std::size_t penumbra = 0;          // judged, reference fraction strictly between 0 and 1: the denominator
+  std::size_t beyond_sampling = 0;   // |e| beyond the sampling tolerance
+  std::size_t explained = 0;         // of those, within the filter footprint's band
+  std::size_t unexplained = 0;       // of those, not
+  std::size_t unexplained_core = 0;  // unexplained pixels whose (2 kCoreRadius + 1)² neighbourhood is all unexplained
+  double sum_penumbra_error = 0;     // sum of |e| over the penumbra
+  double max_error = 0;              // largest |e| over the judged pixels
+  double mean_error_bound = 0;       // visibility_mean_error_bound of the light (the largest over lights)
+
+  double unexplained_ratio() const;     // unexplained / penumbra (0 without a penumbra)
+  double mean_penumbra_error() const;   // sum_penumbra_error / penumbra (0 without a penumbra)
+  VisibilityMetrics& operator+=(const VisibilityMetrics& other);
+};
+
+struct VisibilityComparison {
+  VisibilityMetrics metrics;
+  outputs::Image8 error;  // RGB: unexplained red (too dark) / blue (too light), explained orange, brightness ∝ |e|
+};
+
+// The sampling tolerance of a light sampled at `reference_samples` × `reference_samples` points by
+// the reference and filtered at `candidate_taps` × `candidate_taps` taps by the candidate: across a
+// straight boundary each stratified fraction is off by at most one row of its grid, 1/n, and the
+// 8-bit fraction by half a step: 1/n + 1/n' + 0.5/255.
+double visibility_sampling_tolerance(int reference_samples, int candidate_taps);
+// The mean |e| over a penumbra that sampling alone can leave: each stratified fraction's error is
+// at most uniform over one step, of mean 1/(4n): 1/(4n) + 1/(4n') (the 8-bit step is negligible).
+double visibility_mean_error_bound(int reference_samples, int candidate_taps);
+
+// [lo, hi] of the true fraction over the declared footprint of pixel (x, y) for light `light`
+// (reference::CauseModel::visibility_band); lo > hi: no surface there.
+using VisibilityExplainer = std::function<std::pair<double, double>(std::size_t light, int x, int y)>;
+
+// Compares one light's fractions. `reference` is width · height floats (−1: no surface), `covered`,
+// `candidate` (round(255 · fraction)) and `candidate_mask` (its 128 = no surface) are grey images of
+// that size (the caller has checked the sizes). `explain` may be null: nothing is explained.
+VisibilityComparison compare_visibility(const std::vector<float>& reference, const outputs::Image8& covered,
+                                        const outputs::Image8& candidate, const outputs::Image8& candidate_mask,
+                                        double tolerance, double mean_error_bound, const VisibilityExplainer* explain,
+                                        std::size_t light);
+
+}  // namespace shadowref::compare

@@ -1,0 +1,115 @@
+// visibility.cpp — soft shadows judged in visibility units (visibility.hpp).
+#include "shadowref/compare/visibility.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "shadowref/compare/compare.hpp"
+
+namespace shadowref::compare {
+namespace {
+
+enum Code : std::uint8_t { kNotJudged, kWithin, kExplained, kUnexplained };
+
+}  // namespace
+
+double visibility_sampling_tolerance(int reference_samples, int candidate_taps) {
+  return 1.0 / std::max(1, reference_samples) + 1.0 / std::max(1, candidate_taps) + 0.5 / 255.0;
+}
+
+double visibility_mean_error_bound(int reference_samples, int candidate_taps) {
+  return 0.25 / std::max(1, reference_samples) + 0.25 / std::max(1, candidate_taps);
+}
+
+double VisibilityMetrics::unexplained_ratio() const {
+  return penumbra == 0 ? 0.0 : static_cast<double>(unexplained) / static_cast<double>(penumbra);
+}
+
+double VisibilityMetrics::mean_penumbra_error() const {
+  return penumbra == 0 ? 0.0 : sum_penumbra_error / static_cast<double>(penumbra);
+}
+
+VisibilityMetrics& VisibilityMetrics::operator+=(const VisibilityMetrics& o) {
+  judged += o.judged;
+  penumbra += o.penumbra;
+  beyond_sampling += o.beyond_sampling;
+  explained += o.explained;
+  unexplained += o.unexplained;
+  unexplained_core += o.unexplained_core;
+  sum_penumbra_error += o.sum_penumbra_error;
+  max_error = std::max(max_error, o.max_error);
+  mean_error_bound = std::max(mean_error_bound, o.mean_error_bound);
+  return *this;
+}
+
+VisibilityComparison compare_visibility(const std::vector<float>& reference, const outputs::Image8& covered,
+                                        const outputs::Image8& candidate, const outputs::Image8& candidate_mask,
+                                        double tolerance, double mean_error_bound, const VisibilityExplainer* explain,
+                                        std::size_t light) {
+  const int w = covered.width, h = covered.height;
+  const std::size_t n = covered.pixel_count();
+  VisibilityComparison out;
+  VisibilityMetrics& m = out.metrics;
+  m.mean_error_bound = mean_error_bound;
+  std::vector<std::uint8_t> code(n, kNotJudged);
+  std::vector<float> error(n, 0.0f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+      const float r = reference[i];
+      if (covered.pixels[i] != 255 || r < 0 || candidate_mask.pixels[i] == outputs::kMaskNoSurface) continue;
+      ++m.judged;
+      const double c = candidate.pixels[i] / 255.0;
+      const double e = c - static_cast<double>(r);
+      error[i] = static_cast<float>(e);
+      m.max_error = std::max(m.max_error, std::abs(e));
+      if (r > 0 && r < 1) {
+        ++m.penumbra;
+        m.sum_penumbra_error += std::abs(e);
+      }
+      if (std::abs(e) <= tolerance) {
+        code[i] = kWithin;
+        continue;
+      }
+      ++m.beyond_sampling;
+      bool explained = false;
+      if (explain && *explain) {
+        const auto [lo, hi] = (*explain)(light, x, y);
+        explained = lo <= hi && c >= lo - tolerance && c <= hi + tolerance;
+      }
+      code[i] = explained ? kExplained : kUnexplained;
+      ++(explained ? m.explained : m.unexplained);
+    }
+  // Cores: a (2 kCoreRadius + 1)² block of unexplained pixels (compare.hpp).
+  for (int y = kCoreRadius; y + kCoreRadius < h; ++y)
+    for (int x = kCoreRadius; x + kCoreRadius < w; ++x) {
+      bool core = true;
+      for (int dy = -kCoreRadius; dy <= kCoreRadius && core; ++dy)
+        for (int dx = -kCoreRadius; dx <= kCoreRadius && core; ++dx)
+          core = code[static_cast<std::size_t>(y + dy) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x + dx)] ==
+                 kUnexplained;
+      if (core) ++m.unexplained_core;
+    }
+  // The error image over the dimmed reference fraction.
+  out.error = outputs::Image8{w, h, 3, std::vector<std::uint8_t>(3 * n)};
+  const ErrorColours& k = kErrorColours;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint8_t* px = &out.error.pixels[3 * i];
+    const double grey = reference[i] < 0 ? 0.15 : 0.2 + 0.3 * static_cast<double>(reference[i]);
+    double rgb[3] = {grey, grey, grey};
+    const double strength = std::min(1.0, 0.35 + 1.3 * std::abs(static_cast<double>(error[i])));
+    const unsigned char* colour = nullptr;
+    if (code[i] == kNotJudged && reference[i] >= 0) colour = k.undecided;
+    if (code[i] == kExplained) colour = k.texel;
+    if (code[i] == kUnexplained) colour = error[i] < 0 ? k.false_shadow : k.false_light;
+    if (colour) {
+      const double a = code[i] == kNotJudged ? 1.0 : strength;
+      for (int ch = 0; ch < 3; ++ch) rgb[ch] = a * colour[ch] / 255.0 + (1 - a) * rgb[ch];
+    }
+    for (int ch = 0; ch < 3; ++ch) px[ch] = static_cast<std::uint8_t>(std::lround(255.0 * std::clamp(rgb[ch], 0.0, 1.0)));
+  }
+  return out;
+}
+
+}  // namespace shadowref::compare
