@@ -120,6 +120,11 @@ int run_conform_command(const ConformArgs& a) {
     if (c.comparison && c.status == conform::Status::XFail)
       std::printf(" (wrong %.3g %%, unexplained %zu px = %.3g %% of edges, core %zu px)", c.comparison->total.wrong_percent(),
                   c.comparison->total.unexplained, 100 * c.comparison->total.unexplained_ratio(), c.comparison->total.unexplained_core);
+    if (c.comparison && c.comparison->visibility_total && c.status == conform::Status::XFail) {
+      const compare::VisibilityMetrics& v = *c.comparison->visibility_total;
+      std::printf(" (lit fraction: mean error %.3f over the penumbra, unexplained %zu px = %.3g %% of it, core %zu px)",
+                  v.mean_penumbra_error(), v.unexplained, 100 * v.unexplained_ratio(), v.unexplained_core);
+    }
     if (c.comparison && !c.comparison->judgement.reasons.empty() && c.status != conform::Status::XFail) {
       std::string reasons;
       for (const std::string& reason : c.comparison->judgement.reasons) reasons += (reasons.empty() ? "" : "; ") + reason;
