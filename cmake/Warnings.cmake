@@ -14,3 +14,9 @@ if(SHADOWREF_SANITIZE)
   add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
   add_link_options(-fsanitize=address,undefined)
 endif()
+# ThreadSanitizer (preset `tsan`, reliability/run_tsan.sh): our code and the inline parts of the
+# headers we include; Debian's libtbb, Embree and Mesa are not instrumented (reliability/README.md).
+if(SHADOWREF_SANITIZE_THREAD)
+  add_compile_options(-fsanitize=thread -fno-omit-frame-pointer)
+  add_link_options(-fsanitize=thread)
+endif()

@@ -11,6 +11,11 @@
 //   shadowmap-rgba8  no depth texture: the light pass packs its depth into an RGBA8 colour target
 //                    (mathlib/depth_packing.hpp, mirrored in GLSL) and the camera pass unpacks and
 //                    compares 24-bit integers — the method of hardware without depth textures.
+//   pcss             percentage-closer soft shadows for rect lights (shaders.cpp: a blocker search,
+//                    the penumbra estimate, a filter over the light's rect, every tap compared with
+//                    the receiver's own plane), the map read raw and drawn with front faces (its
+//                    depths are the blockers'); other lights as shadowmap-pcf.
+// shadowmap-pcf and pcss also write the lit fraction (visibility.png).
 // Bias: the depth pass culls front faces of closed casters (the map then holds back faces, so a
 // lit surface is never compared against itself) and uses glPolygonOffset(kOffsetFactor,
 // kOffsetUnits); open meshes (a ground quad, a leaf) are drawn two-sided, since culling would

@@ -114,6 +114,33 @@ TEST(ExportCommand, PackCarriesTheCascadesOfADirectionalLight) {
   fs::remove_all(root);
 }
 
+// A rect light's size for soft techniques: its edges, the side of the square of equal area, the
+// reference's samples, and the lit-fraction file a soft candidate writes; the reference's
+// covered.png (the pixels a lit fraction is judged on) travels with the pack.
+TEST(ExportCommand, PackCarriesTheSizeOfAnAreaLight) {
+  const fs::path root = fs::temp_directory_path() / ("shadowref_export_soft_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  const test::CommandResult r = test::run_command(
+      {SHADOWREF_EXE, "export", "--scenes", "soft_penumbra", "--out", (root / "pack").string(), "--cache", (root / "cache").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(root / "pack" / "soft_penumbra" / "matrices.json");
+  const json m = json::parse(in);
+  ASSERT_EQ(m["lights"].size(), 1u);
+  const json& l = m["lights"][0];
+  EXPECT_EQ(l["type"], "rect");
+  EXPECT_NEAR(l["size"]["edge_u_length"].get<double>(), 1.2, 1e-12);
+  EXPECT_NEAR(l["size"]["edge_v_length"].get<double>(), 1.2, 1e-12);
+  EXPECT_NEAR(l["size"]["equal_area_square_side"].get<double>(), 1.2, 1e-12);
+  EXPECT_EQ(l["size"]["reference_samples_per_axis"], 8);
+  EXPECT_EQ(l["visibility_file"], "visibility.png");
+  EXPECT_TRUE(fs::is_regular_file(root / "pack" / "soft_penumbra" / "reference" / "covered.png"));
+  EXPECT_TRUE(fs::is_regular_file(root / "pack" / "soft_penumbra" / "reference" / "visibility.exr"));
+  std::ifstream readme(root / "pack" / "README.md");
+  const std::string text((std::istreambuf_iterator<char>(readme)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("## Soft shadows"), std::string::npos);
+  fs::remove_all(root);
+}
+
 // Without --cache, export writes nothing outside --out (no cache in the working folder, none left in
 // the pack), and the pack's README gives what an engine team needs with the commands run from the pack.
 TEST(ExportCommand, WritesOnlyUnderOutAndItsReadmeStandsAlone) {

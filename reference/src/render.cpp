@@ -6,6 +6,11 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+
+#ifdef SHADOWREF_PLAIN_THREADS
+#include <atomic>
+#include <thread>
+#endif
 #include <xmmintrin.h>
 
 #include <Eigen/Geometry>
@@ -352,11 +357,28 @@ Images render(const scene::PreparedScene& prepared, const Options& options, Stat
     const auto t1 = Clock::now();
     const Renderer renderer(prepared, options, *embree, img);
     const int tiles_x = (scene.width + kTile - 1) / kTile, tiles_y = (scene.height + kTile - 1) / kTile;
+#ifndef SHADOWREF_PLAIN_THREADS
     tbb::enumerable_thread_specific<TileBuffers> buffers;
     tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y, 1), [&](const tbb::blocked_range<int>& r) {
       TileBuffers& buf = buffers.local();
       for (int t = r.begin(); t < r.end(); ++t) renderer.tile((t % tiles_x) * kTile, (t / tiles_x) * kTile, buf);
     });
+#else
+    // The ThreadSanitizer build (preset tsan): the same tiles on plain std::threads taking tile
+    // numbers from one atomic counter, each with its own buffers. Debian's libtbb is not
+    // instrumented, so TSan cannot see its hand-offs and would report every TBB task as a race;
+    // threads it can see leave only the races of our own code to report.
+    const int workers = options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    std::vector<TileBuffers> buffers(static_cast<std::size_t>(workers));
+    std::atomic<int> next{0};
+    std::vector<std::thread> pool;
+    for (int w = 0; w < workers; ++w)
+      pool.emplace_back([&, w] {
+        for (int t; (t = next.fetch_add(1)) < tiles_x * tiles_y;)
+          renderer.tile((t % tiles_x) * kTile, (t / tiles_x) * kTile, buffers[static_cast<std::size_t>(w)]);
+      });
+    for (std::thread& t : pool) t.join();
+#endif
     total.seconds_render = seconds_since(t1);
     for (const auto& b : buffers) {
       total.primary_rays += b.stats.primary_rays;
