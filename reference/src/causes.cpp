@@ -74,7 +74,7 @@ const LightFit& CauseModel::fit_for(std::size_t light, int size, int cascades) c
   return it->second;
 }
 
-Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::CandidateDeclaration& d, bool candidate_lit) const {
+std::optional<CauseModel::Surface> CauseModel::surface_at(int x, int y) const {
   const scene::Scene& s = *scene_.scene;
   // The pixel centre's surface, as the reference finds it (render.hpp).
   const Vec2<double> ndc = scene::pixel_to_ndc<double>(x, y, 0.5, 0.5, s.width, s.height);
@@ -82,16 +82,26 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
   const Vec3<double> o = unproject(inverse_clip_, ndc.x(), ndc.y(), zn);
   const Vec3<double> dir = (unproject(inverse_clip_, ndc.x(), ndc.y(), 0.5 * (zn + zf)) - o).normalized();
   const RTCRayHit rh = first_hit(embree_->handle(), o, dir, std::numeric_limits<float>::infinity());
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return Cause::Unexplained;
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
   const auto& mesh = s.objects[rh.hit.geomID].mesh;
   const auto& tri = mesh.triangles[rh.hit.primID];
   const Vec3<double> v0 = mesh.positions[tri[0]].cast<double>(), v1 = mesh.positions[tri[1]].cast<double>(),
                      v2 = mesh.positions[tri[2]].cast<double>();
-  const Vec3<double> p = v0 + rh.hit.u * (v1 - v0) + rh.hit.v * (v2 - v0);
-  Vec3<double> n = (v1 - v0).cross(v2 - v0);
-  if (!(n.norm() > 0)) return Cause::Unexplained;
-  n.normalize();
-  if (n.dot(dir) > 0) n = -n;
+  Surface out;
+  out.p = v0 + rh.hit.u * (v1 - v0) + rh.hit.v * (v2 - v0);
+  out.n = (v1 - v0).cross(v2 - v0);
+  if (!(out.n.norm() > 0)) return std::nullopt;
+  out.n.normalize();
+  if (out.n.dot(dir) > 0) out.n = -out.n;  // toward the viewer
+  return out;
+}
+
+Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::CandidateDeclaration& d, bool candidate_lit) const {
+  const std::optional<Surface> surface = surface_at(x, y);
+  if (!surface) return Cause::Unexplained;
+  const Vec3<double>& p = surface->p;
+  const Vec3<double>& n = surface->n;
+  const double zn = near_ndc_z(*scene_.convention), zf = far_ndc_z(*scene_.convention);
 
   const Vec4<double>& L = scene_.lights[light];
   const double eps = embree_->epsilon();
@@ -192,23 +202,12 @@ namespace shadowref::reference {
 CauseModel::Band CauseModel::visibility_band(std::size_t light, int x, int y,
                                              const outputs::CandidateDeclaration& d) const {
   Band band;
-  const scene::Scene& s = *scene_.scene;
-  const Vec2<double> ndc = scene::pixel_to_ndc<double>(x, y, 0.5, 0.5, s.width, s.height);
+  const std::optional<Surface> surface = surface_at(x, y);
+  if (!surface) return band;
+  const Vec3<double>& p = surface->p;
+  const Vec3<double>& n = surface->n;
   const double zn = near_ndc_z(*scene_.convention), zf = far_ndc_z(*scene_.convention);
-  const Vec3<double> o = unproject(inverse_clip_, ndc.x(), ndc.y(), zn);
-  const Vec3<double> dir = (unproject(inverse_clip_, ndc.x(), ndc.y(), 0.5 * (zn + zf)) - o).normalized();
-  const RTCRayHit rh = first_hit(embree_->handle(), o, dir, std::numeric_limits<float>::infinity());
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return band;
-  const auto& mesh = s.objects[rh.hit.geomID].mesh;
-  const auto& tri = mesh.triangles[rh.hit.primID];
-  const Vec3<double> v0 = mesh.positions[tri[0]].cast<double>(), v1 = mesh.positions[tri[1]].cast<double>(),
-                     v2 = mesh.positions[tri[2]].cast<double>();
-  const Vec3<double> p = v0 + rh.hit.u * (v1 - v0) + rh.hit.v * (v2 - v0);
-  Vec3<double> n = (v1 - v0).cross(v2 - v0);
-  if (!(n.norm() > 0)) return band;
-  n.normalize();
-  if (n.dot(dir) > 0) n = -n;
-  const scene::Light& source = s.lights[light];
+  const scene::Light& source = scene_.scene->lights[light];
   const auto add = [&](const Vec3<double>& at) {
     const double v = lit_fraction(*embree_, at, n, source);
     band.lo = std::min(band.lo, v);

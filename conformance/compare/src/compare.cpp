@@ -117,6 +117,21 @@ MaskMetrics& MaskMetrics::operator+=(const MaskMetrics& o) {
   return *this;
 }
 
+std::size_t count_cores(const std::vector<std::uint8_t>& flagged, int w, int h, std::size_t flagged_count) {
+  const std::size_t core_area = (2 * kCoreRadius + 1) * (2 * kCoreRadius + 1);
+  std::size_t cores = 0;
+  for (int y = kCoreRadius; flagged_count >= core_area && y + kCoreRadius < h; ++y)
+    for (int x = kCoreRadius; x + kCoreRadius < w; ++x) {
+      if (!flagged[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)]) continue;  // most pixels
+      bool core = true;
+      for (int dy = -kCoreRadius; dy <= kCoreRadius && core; ++dy)
+        for (int dx = -kCoreRadius; dx <= kCoreRadius && core; ++dx)
+          core = flagged[static_cast<std::size_t>(y + dy) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x + dx)] != 0;
+      cores += core;
+    }
+  return cores;
+}
+
 MaskComparison compare_mask(const Image8& reference, const Image8& decided, const Image8& candidate,
                             const std::string& what, std::size_t light, const CompareOptions& options) {
   for (const Image8* i : {&reference, &decided, &candidate})
@@ -207,18 +222,7 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
   m.off_values = off_values;
   m.decided = decided_count;
   m.decided_surface = decided_surface;
-  // Thick cores: unexplained pixels whose whole (2 kCoreRadius + 1)² neighbourhood (inside the
-  // image) is unexplained too.
-  const std::size_t core_area = (2 * kCoreRadius + 1) * (2 * kCoreRadius + 1);
-  for (int y = kCoreRadius; m.unexplained >= core_area && y + kCoreRadius < h; ++y)
-    for (int x = kCoreRadius; x + kCoreRadius < w; ++x) {
-      if (!unexplained[static_cast<std::size_t>(y) * stride + static_cast<std::size_t>(x)]) continue;  // most pixels
-      bool core = true;
-      for (int dy = -kCoreRadius; dy <= kCoreRadius && core; ++dy)
-        for (int dx = -kCoreRadius; dx <= kCoreRadius && core; ++dx)
-          core = unexplained[static_cast<std::size_t>(y + dy) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x + dx)] != 0;
-      m.unexplained_core += core;
-    }
+  m.unexplained_core = count_cores(unexplained, w, h, m.unexplained);
   if (m.off_values) {
     // The contract allows three values and nothing is rounded: a mask written as 10 / 250 is a
     // broken writer, not a near miss (docs/output-contract.md).

@@ -82,15 +82,9 @@ VisibilityComparison compare_visibility(const std::vector<float>& reference, con
       ++(explained ? m.explained : m.unexplained);
     }
   // Cores: a (2 kCoreRadius + 1)² block of unexplained pixels (compare.hpp).
-  for (int y = kCoreRadius; y + kCoreRadius < h; ++y)
-    for (int x = kCoreRadius; x + kCoreRadius < w; ++x) {
-      bool core = true;
-      for (int dy = -kCoreRadius; dy <= kCoreRadius && core; ++dy)
-        for (int dx = -kCoreRadius; dx <= kCoreRadius && core; ++dx)
-          core = code[static_cast<std::size_t>(y + dy) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x + dx)] ==
-                 kUnexplained;
-      if (core) ++m.unexplained_core;
-    }
+  std::vector<std::uint8_t> unexplained(n);
+  for (std::size_t i = 0; i < n; ++i) unexplained[i] = code[i] == kUnexplained;
+  m.unexplained_core = count_cores(unexplained, w, h, m.unexplained);
   // The error image over the dimmed reference fraction.
   out.error = outputs::Image8{w, h, 3, std::vector<std::uint8_t>(3 * n)};
   const ErrorColours& k = kErrorColours;

@@ -27,6 +27,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <tuple>
 #include <vector>
 
@@ -70,6 +71,12 @@ class CauseModel {
   Band visibility_band(std::size_t light, int x, int y, const outputs::CandidateDeclaration& declared) const;
 
  private:
+  // The surface seen through pixel (x, y)'s centre (as the reference finds it): its point and its
+  // face normal turned toward the viewer; nullopt when the centre sees none.
+  struct Surface {
+    Vec3<double> p, n;
+  };
+  std::optional<Surface> surface_at(int x, int y) const;
   // The light's views at map size `size` (0: the prepared size), cascaded with `cascades` cascades
   // (0: not cascaded).
   const LightFit& fit_for(std::size_t light, int size, int cascades) const;

@@ -80,6 +80,10 @@ struct MaskMetrics {
 // blatant error (an 8 × 8 swapped tile holds 16 such cores at any resolution).
 inline constexpr int kCoreRadius = 2;
 
+// The unexplained cores of a w × h image of flags (non-zero: unexplained), `flagged_count` of them:
+// the flagged pixels whose whole (2 kCoreRadius + 1)² neighbourhood, inside the image, is flagged.
+std::size_t count_cores(const std::vector<std::uint8_t>& flagged, int w, int h, std::size_t flagged_count);
+
 struct MaskComparison {
   MaskMetrics metrics;
   Image8 error;  // RGB: wrong pixels by kind over the dimmed reference (colours in kErrorColours)
