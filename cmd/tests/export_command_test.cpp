@@ -141,6 +141,48 @@ TEST(ExportCommand, PackCarriesTheSizeOfAnAreaLight) {
   fs::remove_all(root);
 }
 
+// An engine team's soft shadows, judged from the pack alone: our renderer stands in for the engine
+// (pcss into my-renders/<scene>/: mask.png, visibility.png, candidate.json). soft_penumbra PASSes;
+// on cornell_box, where pcss is an expected failure, the candidate's masks are held against the
+// technique's own model and the case is an XFAIL, not an ERROR; and a candidate whose lit fraction
+// is the hard mask (no penumbra at all) FAILs in visibility units.
+TEST(ExportCommand, ASoftCandidateIsJudgedFromThePackAlone) {
+  const fs::path root = fs::temp_directory_path() / ("shadowref_export_soft_judged_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  const fs::path pack = root / "pack";
+  ASSERT_EQ(test::run_command({SHADOWREF_EXE, "export", "--scenes", "soft_penumbra,cornell_box", "--out", pack.string(),
+                               "--cache", (root / "cache").string()})
+                .exit_code,
+            0);
+  for (const char* scene : {"soft_penumbra", "cornell_box"}) {
+    const test::CommandResult r = test::run_command({SHADOWREF_EXE, "render", "--scene", (pack / "scenes" / (std::string(scene) + ".json")).string(),
+                                                     "--technique", "pcss", "--out", (root / "my-renders" / scene).string()});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  const auto judge = [&](const std::string& out) {
+    return test::run_command({SHADOWREF_EXE, "conform", "--catalogue", (pack / "scenes").string(), "--candidate-dir",
+                              (root / "my-renders").string(), "--technique", "pcss", "--out", (root / out).string(),
+                              "--cache", (root / "cache").string()});
+  };
+  const test::CommandResult good = judge("verdict");
+  EXPECT_EQ(good.exit_code, 0) << good.out << good.err;
+  {
+    std::ifstream in(root / "verdict" / "report.json");
+    const json report = json::parse(in);
+    for (const json& c : report["cases"]) {
+      EXPECT_EQ(c["status"], c["scene"] == "cornell_box" ? "XFAIL" : "PASS") << c["scene"] << ": " << c.value("error", "");
+      EXPECT_TRUE(c["comparison"].contains("visibility")) << c["scene"] << ": the lit fraction was judged";
+    }
+  }
+  // The lit fraction replaced by the hard mask (background 0): every penumbra is wrong.
+  fs::copy_file(root / "my-renders" / "soft_penumbra" / "mask.png", root / "my-renders" / "soft_penumbra" / "visibility.png",
+                fs::copy_options::overwrite_existing);
+  const test::CommandResult hard = judge("verdict-hard");
+  EXPECT_EQ(hard.exit_code, 2) << hard.out;
+  EXPECT_NE(hard.out.find("FAIL   soft_penumbra x pcss: visibility:"), std::string::npos) << hard.out;
+  fs::remove_all(root);
+}
+
 // Without --cache, export writes nothing outside --out (no cache in the working folder, none left in
 // the pack), and the pack's README gives what an engine team needs with the commands run from the pack.
 TEST(ExportCommand, WritesOnlyUnderOutAndItsReadmeStandsAlone) {
