@@ -29,6 +29,7 @@ struct Program {
 struct Programs {
   Program flat;           // kSceneVertex + kFlatFragment
   Program surface;        // kSceneVertex + kSurfaceFragment
+  Program surface_soft;   // the same with PCSS compiled in (shaders::kPcssDefine): pcss only
   Program packed_depth;   // kSceneVertex + kPackedDepthFragment
 };
 
@@ -78,7 +79,10 @@ struct Frame {
   const RenderOptions& options;
   RenderResult& result;
   const std::vector<GpuMesh>& objects;        // scene.objects, same order
-  GLuint target_fbo = 0;                      // W × H, RGBA8 + depth/stencil (24-bit, or 32F for reversed-z)
+  GLuint target_fbo = 0;
+  // The surface program this technique draws with (pcss: programs.surface_soft); null: programs.surface.
+  const Program* surface = nullptr;
+  const Program& surface_program() const { return surface ? *surface : programs.surface; }                      // W × H, RGBA8 + depth/stencil (24-bit, or 32F for reversed-z)
 
   int width() const { return scene.width; }
   int height() const { return scene.height; }

@@ -259,8 +259,8 @@ void Frame::ambient_pass(const Mat4<float>& clip) const {
   gl.Disable(GL_CULL_FACE);
   gl.Enable(GL_DEPTH_TEST);
   gl.DepthFunc(depth_nearer());
-  gl.UseProgram(programs.surface.id);
-  const Program& p = programs.surface;
+  const Program& p = surface_program();
+  gl.UseProgram(p.id);
   set_matrix(gl, p.clip_from_world, clip);
   set_matrix(gl, p.shadow_from_world, Mat4<float>::Identity());
   gl.Uniform1i(p.mode, 0);
@@ -284,7 +284,7 @@ void Frame::light_pass(const Mat4<float>& clip, std::size_t light_index, int sha
   gl.Enable(GL_BLEND);
   gl.BlendFunc(GL_ONE, GL_ONE);  // lights add up
   gl.Disable(GL_CULL_FACE);
-  const Program& p = programs.surface;
+  const Program& p = surface_program();
   gl.UseProgram(p.id);
   set_matrix(gl, p.clip_from_world, clip);
   set_matrix(gl, p.shadow_from_world, shadow_from_world ? *shadow_from_world : Mat4<float>::Identity());
@@ -332,7 +332,7 @@ Image8 Frame::read_stencil_mask(std::uint8_t value, bool value_is_lit) const {
 
 std::vector<Image8> Frame::facing_masks(const Mat4<float>& clip) const {
   std::vector<Image8> masks;
-  const Program& p = programs.surface;
+  const Program& p = surface_program();
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
     bind_target(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, static_cast<float>(outputs::kMaskNoSurface) / 255.0f);
     gl.Enable(GL_DEPTH_TEST);
@@ -471,6 +471,8 @@ struct Renderer::Impl {
     info.version = str(GL_VERSION);
     programs.flat = link(gl, {shaders::kFlatFragment}, "flat");
     programs.surface = link(gl, {shaders::kVersion, shaders::kDepthPacking, shaders::kSurfaceFragmentBody}, "surface");
+    programs.surface_soft =
+        link(gl, {shaders::kVersion, shaders::kPcssDefine, shaders::kDepthPacking, shaders::kSurfaceFragmentBody}, "surface (pcss)");
     programs.packed_depth =
         link(gl, {shaders::kVersion, shaders::kDepthPacking, shaders::kPackedDepthFragmentBody}, "packed depth");
   }
@@ -478,6 +480,7 @@ struct Renderer::Impl {
     context->make_current();
     gl.DeleteProgram(programs.flat.id);
     gl.DeleteProgram(programs.surface.id);
+    gl.DeleteProgram(programs.surface_soft.id);
     gl.DeleteProgram(programs.packed_depth.id);
   }
 };

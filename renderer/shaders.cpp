@@ -56,6 +56,8 @@ uint unpack_depth_rgba8(vec4 texel) {
 
 const char* const kVersion = "#version 330 core\n";
 
+const char* const kPcssDefine = "#define SHADOWREF_PCSS\n";
+
 const char* const kPackedDepthFragmentBody = R"glsl(
 // glPolygonOffset done by hand (RGBA8 has no depth to offset): o = factor * m + units * r, with
 // m = max(|dz/dx|, |dz/dy|) and r = 2^-24, the 24-bit step that the packing keeps.
@@ -101,6 +103,7 @@ uniform vec3 u_rect_v;
 uniform int u_blocker_at_receiver;   // fault switch (renderer/faults.hpp, SoftShadowFaults)
 out vec4 o_colour;
 
+#ifdef SHADOWREF_PCSS  // only in the soft program (kPcssDefine): llvmpipe pays for dead branches
 // PCSS (Fernando 2005, "Percentage-closer soft shadows") for a rect light, in the map of its centre.
 // p: the fragment in the layer's texture space (s, t, window depth), w: its depth along the light's
 // view axis. The receiver is the fragment's own plane (its face normal), carried into texture space
@@ -179,6 +182,8 @@ float pcss(vec3 p, float receiver_depth, int layer) {
   return lit / float(kFilterTaps * kFilterTaps);
 }
 
+#endif
+
 // Light visibility from the shadow map: 1 lit, 0 shadowed (fractions with PCF).
 float shadow_visibility() {
   if (u_shadow == 0) return 1.0;
@@ -214,7 +219,9 @@ float shadow_visibility() {
   if (any(lessThan(p.xy, vec2(0.0))) || any(greaterThan(p.xy, vec2(1.0)))) return 1.0;
   // Beyond the light's far plane: compare as at the far plane, where nothing occludes.
   p.z = u_reversed == 1 ? max(p.z, 0.0) : min(p.z, 1.0);
+#ifdef SHADOWREF_PCSS
   if (u_shadow == 4) return pcss(p, s.w, int(layer));
+#endif
   if (u_shadow == 1) return texture(u_shadow_map, vec4(p.xy, layer, p.z));
   if (u_shadow == 2) {
     // PCF: a 3x3 box of depth compares one texel apart, equal weights (GL_NEAREST taps).

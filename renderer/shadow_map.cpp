@@ -328,7 +328,7 @@ void bind_map(const Frame& frame, const LightMap& map, Variant variant) {
   gl.ActiveTexture(variant == Variant::Rgba8 ? GL_TEXTURE1 : variant == Variant::Pcss ? kRawDepthUnit : GL_TEXTURE0);
   gl.BindTexture(GL_TEXTURE_2D_ARRAY, map.texture);
   gl.ActiveTexture(GL_TEXTURE0);
-  const Program& p = frame.programs.surface;
+  const Program& p = frame.surface_program();
   gl.UseProgram(p.id);
   const float texel = 1.0f / static_cast<float>(map.size);
   gl.Uniform2f(p.texel, texel, texel);
@@ -359,7 +359,7 @@ void bind_map(const Frame& frame, const LightMap& map, Variant variant) {
 void set_light_uniforms(const Frame& frame, std::size_t i, Variant variant) {
   if (variant != Variant::Pcss) return;
   const GlFunctions& gl = frame.gl;
-  const Program& p = frame.programs.surface;
+  const Program& p = frame.surface_program();
   const scene::Light& light = frame.scene.lights[i];
   const SoftShadowFaults& f = frame.faults().soft;
   const Vec3<float> u = (f.light_size_scale * light.edge_u).cast<float>();  // FAULT when the scale is not 1
@@ -395,6 +395,8 @@ Variant variant_for_light(const scene::Light& light, Variant variant) {
 
 void render_variant(Frame& frame, Variant variant, bool cascaded) {
   const GlFunctions& gl = frame.gl;
+  // PCSS's code lives in its own program; every other variant draws with the plain one.
+  if (variant == Variant::Pcss) frame.surface = &frame.programs.surface_soft;
   const Mat4<float> clip = frame.camera_clip(CameraDepth::Scene);
   std::vector<LightMap> maps;
   std::vector<Variant> variants;
@@ -407,7 +409,7 @@ void render_variant(Frame& frame, Variant variant, bool cascaded) {
 
   // Per light, one camera pass per image: the 0/1 mask (mode 2; the clear colour is "no surface")
   // and, for the filtered variants, the lit fraction (mode 3: visibility.png).
-  const Program& p = frame.programs.surface;
+  const Program& p = frame.surface_program();
   const auto camera_pass = [&](std::size_t i, int mode, float clear) {
     frame.bind_target(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, clear);
     gl.Enable(GL_DEPTH_TEST);
