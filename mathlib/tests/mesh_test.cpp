@@ -52,6 +52,26 @@ TYPED_TEST(MeshTest, WeldMapPointsEveryCopyAtTheFirstIndex) {
   EXPECT_EQ(map, (std::vector<std::uint32_t>{0, 1, 0, 1, 4}));
 }
 
+// NaN equals nothing: an (unused) NaN position is its own representative, and the others still
+// weld to their smallest index around it (a sort by coordinates breaks here: NaN has no order).
+TYPED_TEST(MeshTest, WeldMapKeepsNaNApartAndWeldsAroundIt) {
+  using T = TypeParam;
+  const T nan = std::numeric_limits<T>::quiet_NaN();
+  std::vector<Vec3<T>> p;
+  for (int i = 0; i < 40; ++i)  // x NaN for every third; z -0 or +0 (they weld)
+    p.emplace_back(i % 3 == 0 ? nan : T(i % 5), T(i % 2), i % 4 == 0 ? -T(0) : T(0));
+  const auto map = weld_map(p);
+  for (std::size_t v = 0; v < p.size(); ++v) {
+    std::uint32_t first = static_cast<std::uint32_t>(v);
+    for (std::size_t u = 0; u < v; ++u)
+      if (p[u] == p[v]) {
+        first = static_cast<std::uint32_t>(u);
+        break;
+      }
+    EXPECT_EQ(map[v], first) << "vertex " << v;
+  }
+}
+
 TYPED_TEST(MeshTest, WeldOfSplitCubeGivesTheCube) {
   using T = TypeParam;
   const TriangleMesh<T> split = test::split_cube<T>();

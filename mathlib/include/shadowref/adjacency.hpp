@@ -4,9 +4,10 @@
 //
 // Edges are matched on WELDED vertices (mesh.hpp, weld_map): a mesh exported with split vertices
 // (UV seams, flat normals) still gets its adjacency, while every index this header hands out is
-// an index of the original mesh. Matching is sort-based, once per mesh (O(T log T)); the flat
-// arrays it leaves (edge_offsets, edge_uses) are what the shadow caster's edge list is built from
-// (silhouette.hpp), with no hashing and no allocation per light.
+// an index of the original mesh. Matching is a counting sort on the welded vertices, once per
+// mesh (O(V + T), build_adjacency); the flat arrays it leaves (edge_offsets, edge_uses) are what
+// the shadow caster's edge list is built from (silhouette.hpp), with no hashing and no allocation
+// per light.
 //
 // Edge slot e of triangle (v0, v1, v2) is the directed edge v[e] -> v[(e + 1) % 3]:
 // slot 0 = v0->v1, slot 1 = v1->v2, slot 2 = v2->v0 (the order of the adjacency index buffer).
@@ -84,69 +85,123 @@ struct MeshAdjacency {
 // MeshTooLarge, IndexOutOfRange, NonFinite). Degenerate triangles: one with a repeated welded
 // vertex takes part in no edge (it encloses nothing and would fake non-manifold edges) and has
 // kNoNeighbor on all three slots; a zero-area one with three distinct vertices keeps its edges, so
-// that its neighbours stay connected. Cost: O(V log V + T log T) time, about 16 bytes per triangle
-// edge of scratch; done once per mesh.
+// that its neighbours stay connected.
+// Algorithm: the edge uses, keyed by their welded pair (lo, hi), are grouped by a counting sort on
+// lo (distribution counting, Knuth, TAOCP vol. 3, §5.2, Algorithm D: one histogram pass over the
+// triangles, a prefix sum over the vertices, one scatter pass), then each vertex's bucket, about
+// six uses, is sorted by hi (insertion sort; std::sort on (hi, use) for a large bucket such as a
+// pole). The counting sort is stable and the uses are emitted in increasing order, so the result
+// is the one of sorting the (lo, hi, use) triples: edges by welded pair, uses in triangle order,
+// deterministic. Cost: O(V + T) expected time (plus the sorts of buckets of more than 32 uses),
+// about 8 bytes per triangle edge and 4 per vertex of scratch besides the result; done once per
+// mesh.
 template <class T>
 Result<MeshAdjacency> build_adjacency(const TriangleMesh<T>& mesh) {
   if (const auto bad = validate_mesh(mesh)) return *bad;
   MeshAdjacency adj;
   adj.weld = weld_map(mesh.positions);
-  const std::size_t nt = mesh.triangles.size();
+  const std::uint32_t* weld = adj.weld.data();
+  const std::size_t nv = mesh.positions.size(), nt = mesh.triangles.size();
   adj.neighbors.assign(nt, {kNoNeighbor, kNoNeighbor, kNoNeighbor});
   adj.neighbor_slots.assign(nt, {0, 0, 0});
   MeshReport& rep = adj.report;
-  rep.vertices = mesh.positions.size();
+  rep.vertices = nv;
   rep.triangles = nt;
 
-  // One (key, use) pair per edge of every non-degenerate triangle; key = lo << 32 | hi.
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed;
-  keyed.reserve(3 * nt);
-  std::vector<std::uint8_t> used(mesh.positions.size(), 0);
+  // Pass 1, the histogram: next[v] counts the uses whose smaller welded vertex is v; its top bit
+  // says that v is used at all (by any triangle, degenerate ones included).
+  constexpr std::uint32_t kUsed = 0x80000000u;  // uses < 3 * kMaxMeshTriangles < kUsed
+  std::vector<std::uint32_t> next(nv, 0);
+  std::uint32_t* count = next.data();
   for (std::uint32_t t = 0; t < nt; ++t) {
     const auto& tri = mesh.triangles[t];
-    const std::array<std::uint32_t, 3> w{adj.weld[tri[0]], adj.weld[tri[1]], adj.weld[tri[2]]};
-    for (std::uint32_t v : w) used[v] = 1;
-    const bool repeated = w[0] == w[1] || w[1] == w[2] || w[2] == w[0];
+    const std::uint32_t w0 = weld[tri[0]], w1 = weld[tri[1]], w2 = weld[tri[2]];
+    count[w0] |= kUsed, count[w1] |= kUsed, count[w2] |= kUsed;
+    const bool repeated = w0 == w1 || w1 == w2 || w2 == w0;
     const Vec3<T>& p0 = mesh.positions[tri[0]];
     const bool zero_area =
         !repeated && (mesh.positions[tri[1]] - p0).cross(mesh.positions[tri[2]] - p0).squaredNorm() == T(0);
-    if (repeated || zero_area) adj.degenerate_triangles.push_back(t);
+    if (repeated || zero_area) [[unlikely]] adj.degenerate_triangles.push_back(t);
     if (repeated) continue;
-    for (std::uint32_t s = 0; s < 3; ++s) {
-      const std::uint32_t a = w[s], b = w[(s + 1) % 3];
-      const std::uint64_t key = std::uint64_t{std::min(a, b)} << 32 | std::max(a, b);
-      keyed.emplace_back(key, EdgeUse::pack(t, a > b, s));
-    }
+    ++count[std::min(w0, w1)], ++count[std::min(w1, w2)], ++count[std::min(w2, w0)];
   }
   rep.degenerate_triangles = adj.degenerate_triangles.size();
-  for (std::uint8_t u : used) rep.welded_vertices += u;
-  std::sort(keyed.begin(), keyed.end());  // by key, then by use: deterministic triangle order
-
-  adj.edge_uses.resize(keyed.size());
-  adj.edge_offsets.reserve(keyed.size() / 2 + 1);
-  for (std::size_t i = 0; i < keyed.size();) {
-    std::size_t j = i;
-    while (j < keyed.size() && keyed[j].first == keyed[i].first) {
-      adj.edge_uses[j] = keyed[j].second;
-      ++j;
-    }
-    adj.edge_offsets.push_back(static_cast<std::uint32_t>(i));
-    const std::size_t count = j - i;
-    if (count == 1) ++rep.open_edges;
-    else if (count > 2) ++rep.non_manifold_edges;
-    else {
-      const std::uint32_t u = keyed[i].second, v = keyed[i + 1].second;
-      if (EdgeUse::reversed(u) == EdgeUse::reversed(v)) ++rep.miswound_edges;
-      const std::uint32_t tu = EdgeUse::triangle(u), tv = EdgeUse::triangle(v);
-      const std::uint32_t su = EdgeUse::slot(u), sv = EdgeUse::slot(v);
-      adj.neighbors[tu][su] = tv;
-      adj.neighbor_slots[tu][su] = static_cast<std::uint8_t>(sv);
-      adj.neighbors[tv][sv] = tu;
-      adj.neighbor_slots[tv][sv] = static_cast<std::uint8_t>(su);
-    }
-    i = j;
+  // Prefix sum: next[v] = where bucket v starts.
+  std::uint32_t uses = 0;
+  for (std::size_t v = 0; v < nv; ++v) {
+    const std::uint32_t c = count[v];
+    rep.welded_vertices += c >> 31;
+    count[v] = uses;
+    uses += c & ~kUsed;
   }
-  adj.edge_offsets.push_back(static_cast<std::uint32_t>(keyed.size()));
+
+  // Pass 2, the scatter: the uses in increasing order, each to the end of its bucket. After it
+  // next[v] is where bucket v ends (and v + 1's begins).
+  adj.edge_uses.resize(uses);
+  std::vector<std::uint32_t> his(uses);
+  std::uint32_t* use_of = adj.edge_uses.data();
+  std::uint32_t* hi_of = his.data();
+  const std::uint32_t* degenerate = adj.degenerate_triangles.data();
+  const std::uint32_t* degenerate_end = degenerate + adj.degenerate_triangles.size();
+  for (std::uint32_t t = 0; t < nt; ++t) {
+    const auto& tri = mesh.triangles[t];
+    const std::array<std::uint32_t, 3> w{weld[tri[0]], weld[tri[1]], weld[tri[2]]};
+    if (degenerate != degenerate_end && *degenerate == t) [[unlikely]] {
+      ++degenerate;
+      if (w[0] == w[1] || w[1] == w[2] || w[2] == w[0]) continue;
+    }
+    for (std::uint32_t s = 0; s < 3; ++s) {
+      const std::uint32_t a = w[s], b = w[s == 2 ? 0 : s + 1];
+      const std::uint32_t i = count[std::min(a, b)]++;
+      hi_of[i] = std::max(a, b);
+      use_of[i] = EdgeUse::pack(t, a > b, s);
+    }
+  }
+
+  // Each bucket sorted by hi, then its runs of equal hi are the edges.
+  adj.edge_offsets.reserve(uses / 2 + 1);
+  std::vector<std::uint64_t> big;  // a large bucket as (hi, use) pairs for std::sort
+  std::uint32_t first = 0;
+  for (std::size_t v = 0; v < nv; ++v) {
+    const std::uint32_t last = count[v];
+    if (last - first > 32) [[unlikely]] {
+      big.resize(last - first);
+      for (std::uint32_t k = first; k < last; ++k) big[k - first] = std::uint64_t{hi_of[k]} << 32 | use_of[k];
+      std::sort(big.begin(), big.end());
+      for (std::uint32_t k = first; k < last; ++k) {
+        hi_of[k] = static_cast<std::uint32_t>(big[k - first] >> 32);
+        use_of[k] = static_cast<std::uint32_t>(big[k - first]);
+      }
+    } else {
+      for (std::uint32_t k = first + 1; k < last; ++k) {  // stable: equal his keep their use order
+        const std::uint32_t h = hi_of[k], u = use_of[k];
+        std::uint32_t j = k;
+        for (; j > first && hi_of[j - 1] > h; --j) hi_of[j] = hi_of[j - 1], use_of[j] = use_of[j - 1];
+        hi_of[j] = h, use_of[j] = u;
+      }
+    }
+    for (std::uint32_t i = first; i < last;) {
+      std::uint32_t j = i + 1;
+      while (j < last && hi_of[j] == hi_of[i]) ++j;
+      adj.edge_offsets.push_back(i);
+      const std::uint32_t n = j - i;
+      if (n == 1) ++rep.open_edges;
+      else if (n > 2) ++rep.non_manifold_edges;
+      else {
+        const std::uint32_t u = use_of[i], w = use_of[i + 1];
+        if (EdgeUse::reversed(u) == EdgeUse::reversed(w)) ++rep.miswound_edges;
+        const std::uint32_t tu = EdgeUse::triangle(u), tw = EdgeUse::triangle(w);
+        const std::uint32_t su = EdgeUse::slot(u), sw = EdgeUse::slot(w);
+        adj.neighbors[tu][su] = tw;
+        adj.neighbor_slots[tu][su] = static_cast<std::uint8_t>(sw);
+        adj.neighbors[tw][sw] = tu;
+        adj.neighbor_slots[tw][sw] = static_cast<std::uint8_t>(su);
+      }
+      i = j;
+    }
+    first = last;
+  }
+  adj.edge_offsets.push_back(uses);
   rep.edges = adj.edge_count();
   return adj;
 }

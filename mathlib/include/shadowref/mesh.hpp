@@ -10,10 +10,12 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <limits>
 #include <numeric>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 #include "shadowref/conventions.hpp"
@@ -53,32 +55,62 @@ std::optional<Error> validate_mesh(const TriangleMesh<T>& mesh) {
   return std::nullopt;
 }
 
+namespace mesh_detail {
+
+// The bits one coordinate is hashed by: exactly equal coordinates give equal bits. + 0 first:
+// -0 + +0 = +0 (round to nearest), so -0 and +0, which are equal and weld, hash alike (one more
+// reason the project builds without -ffast-math). Scalars other than float are hashed through
+// double: equal values convert to equal doubles, and weld_map's exact comparison decides.
+template <class T>
+std::uint64_t coordinate_bits(T x) {
+  x += T(0);
+  if constexpr (std::is_same_v<T, float>) return std::bit_cast<std::uint32_t>(x);
+  else return std::bit_cast<std::uint64_t>(static_cast<double>(x));
+}
+
+}  // namespace mesh_detail
+
 // For every vertex, the representative of its position: the smallest vertex index whose position
-// is exactly equal (==, so -0 and +0 weld; the caller has rejected NaN). A vertex that is its own
-// representative has map[v] == v. Exact equality on purpose: welding by a tolerance would change
-// the topology depending on the mesh's scale, and an exporter that split a vertex wrote the same
-// bits twice. Precondition: positions finite (validate_mesh). Cost: O(V log V), one sort of
-// indices, built once per mesh.
+// is exactly equal (==, so -0 and +0 weld). A vertex that is its own representative has
+// map[v] == v. Exact equality on purpose: welding by a tolerance would change the topology
+// depending on the mesh's scale, and an exporter that split a vertex wrote the same bits twice.
+// A NaN position equals nothing, not even itself: it is its own representative (validate_mesh
+// rejects NaN only where a triangle uses it).
+// Algorithm: one pass in index order through an open-addressing hash table of vertex indices
+// (linear probing and multiplicative hashing, Knuth, TAOCP vol. 3, §6.4, Algorithm L; load at
+// most 1/2) that keeps the first vertex of every position: the hash-table weld of meshoptimizer's
+// indexgenerator.cpp (buildPositionRemap, hashLookup), but on values rather than bytes, so that
+// -0 and +0 weld. Cost: O(V) expected time (no sort), a table of 2 to 4 uint32 per vertex as
+// scratch; built once per mesh.
 template <class T>
 std::vector<std::uint32_t> weld_map(const std::vector<Vec3<T>>& positions) {
   const auto n = static_cast<std::uint32_t>(positions.size());
-  std::vector<std::uint32_t> order(n);
-  std::iota(order.begin(), order.end(), 0u);
-  const auto less = [&](std::uint32_t a, std::uint32_t b) {
-    const Vec3<T>& p = positions[a];
-    const Vec3<T>& q = positions[b];
-    if (p.x() != q.x()) return p.x() < q.x();
-    if (p.y() != q.y()) return p.y() < q.y();
-    if (p.z() != q.z()) return p.z() < q.z();
-    return a < b;  // equal positions sorted by index: the first of a run is the smallest
-  };
-  std::sort(order.begin(), order.end(), less);
   std::vector<std::uint32_t> map(n);
-  for (std::uint32_t i = 0; i < n;) {
-    std::uint32_t j = i + 1;
-    while (j < n && positions[order[j]] == positions[order[i]]) ++j;
-    for (std::uint32_t k = i; k < j; ++k) map[order[k]] = order[i];
-    i = j;
+  constexpr std::uint32_t kEmpty = 0xFFFFFFFFu;  // n <= kMaxMeshVertices < kEmpty
+  unsigned bits = 4;
+  while ((std::size_t{1} << bits) < 2 * std::size_t{n}) ++bits;
+  const std::size_t mask = (std::size_t{1} << bits) - 1;
+  std::vector<std::uint32_t> table(mask + 1, kEmpty);
+  for (std::uint32_t v = 0; v < n; ++v) {
+    const Vec3<T>& p = positions[v];
+    std::uint64_t h = (mesh_detail::coordinate_bits(p.x()) * 0x9E3779B97F4A7C15ull) ^
+                      (mesh_detail::coordinate_bits(p.y()) * 0xC2B2AE3D27D4EB4Full) ^
+                      (mesh_detail::coordinate_bits(p.z()) * 0x165667B19E3779F9ull);
+    h = (h ^ (h >> 31)) * 0x9E3779B97F4A7C15ull;  // the top bits, the slot, depend on every input bit
+    std::size_t i = static_cast<std::size_t>(h >> (64 - bits));
+    std::uint32_t rep = v;
+    for (;; i = (i + 1) & mask) {
+      const std::uint32_t e = table[i];
+      if (e == kEmpty) {
+        table[i] = v;
+        break;
+      }
+      if (positions[e] == p) {
+        rep = e;
+        break;
+      }
+    }
+    map[v] = rep;
   }
   return map;
 }
@@ -86,7 +118,7 @@ std::vector<std::uint32_t> weld_map(const std::vector<Vec3<T>>& positions) {
 // A copy of `mesh` with equal positions merged into one vertex (the first one, in index order) and
 // unused positions dropped; `remap`, when given, receives for every old vertex its new index.
 // Triangles keep their order and winding; degenerate ones are kept. Precondition: finite
-// positions. Cost: O(V log V + T).
+// positions. Cost: O(V + T) expected (weld_map).
 template <class T>
 TriangleMesh<T> weld(const TriangleMesh<T>& mesh, std::vector<std::uint32_t>* remap = nullptr) {
   const std::vector<std::uint32_t> rep = weld_map(mesh.positions);
