@@ -1,13 +1,17 @@
 // geometry_bench.cpp — shadow-volume geometry on closed meshes (UV spheres) from 10k to 4M
 // triangles: adjacency (ours against meshoptimizer's meshopt_generateAdjacencyIndexBuffer, the
 // same index buffer out), silhouette extraction, and the whole per-light work (silhouette + the
-// infinite volume with both caps, and with sides only: the z-pass case). Target: under 10 ms per
-// light at 1M triangles on one core.
+// infinite volume with both caps, and with sides only: the z-pass case), and the streaming floor
+// of that per-light work (BM_VolumePerLight_Floor, BM_VolumePerLight_SidesOnly_Floor: the bytes it
+// must move, below). Targets: under 10 ms per light at 1M triangles on one core; adjacency at
+// least 4x meshoptimizer at 1M and 4M triangles, 1x at 10k; the per-light passes within 1.5x of
+// their floor at 100k, 1M and 4M.
 #include <benchmark/benchmark.h>
 #include <meshoptimizer.h>
 
 #include <cmath>
 #include <map>
+#include <utility>
 #include <vector>
 
 #include "bench_support.hpp"
@@ -110,6 +114,78 @@ void BM_VolumePerLight_SidesOnly(benchmark::State& state) {
   state.counters["volume_triangles"] = static_cast<double>(vol.ranges.triangle_count());
 }
 
+// The streaming floor of a per-light pass: the bytes BM_VolumePerLight (capped) or
+// BM_VolumePerLight_SidesOnly must read and write for this sphere and light, counted from the real
+// structures after one real pass, streamed with plain loops (reads XOR-folded 32-bit words, writes
+// stores of 32-bit words), every buffer allocated and touched before the timed loop. It streams:
+//   read   the caster's face planes: 4 arrays of T floats (16 B per triangle; classify_faces);
+//   read   the caster's edge_use_pairs: 2 uint32 per edge (8 B per edge; the silhouette test);
+//   read   the lit faces' triangles: 12 B per lit face (the caps name them; capped only);
+//   read   the used vertices' positions: 12 B per volume vertex source (the vertex buffer's input);
+//   write  the lit flags: 1 B per triangle (Silhouette::lit, an output of find_silhouette);
+//   write  the silhouette edges: 8 B each;
+//   write  the volume: 4 B per index, 16 B per vertex (Vec4<float>), 4 B per source entry.
+// Not counted: what the algorithm adds on its own (reading the lit flags again for the edge test
+// and the caps, the volume_vertex numbering, the named edges' triangles). The lit faces' triangles
+// and the used positions are streamed as that many contiguous bytes from the start of the arrays
+// (the real ones are scattered: a floor). The ratio ours / floor is what geometry goal B tracks.
+struct FloorSpans {
+  std::vector<std::pair<const std::uint32_t*, std::size_t>> reads;  // (words, count)
+  std::vector<std::vector<std::uint32_t>> writes;                   // one buffer per output, touched
+  std::size_t bytes = 0;
+};
+
+FloorSpans floor_spans(const Caster& c, const shadowref::VolumeOptions<float>& options) {
+  shadowref::Silhouette<float> sil;
+  shadowref::ShadowVolume<float> vol;
+  (void)shadowref::find_silhouette(c, kLight, sil).value();
+  (void)shadowref::build_shadow_volume(c, sil, options, vol).value();
+  const bool caps = options.light_cap || options.dark_cap;
+  const std::size_t nt = c.mesh.triangles.size();
+  FloorSpans f;
+  const auto words = [](const float* p) { return reinterpret_cast<const std::uint32_t*>(p); };
+  const auto read = [&](const std::uint32_t* p, std::size_t n) { f.reads.emplace_back(p, n), f.bytes += 4 * n; };
+  const auto write = [&](std::size_t bytes) { f.writes.emplace_back((bytes + 3) / 4, 1u), f.bytes += 4 * ((bytes + 3) / 4); };
+  for (const auto* plane : {&c.face_planes.x, &c.face_planes.y, &c.face_planes.z, &c.face_planes.w}) read(words(plane->data()), nt);
+  read(c.edge_use_pairs.data(), c.edge_use_pairs.size());
+  if (caps) read(c.mesh.triangles[0].data(), 3 * sil.lit_count);
+  read(words(c.mesh.positions[0].data()), 3 * vol.source.size());
+  write(nt);
+  write(sizeof(shadowref::SilhouetteEdge) * sil.edges.size());
+  write(sizeof(std::uint32_t) * vol.indices.size());
+  write(sizeof(shadowref::Vec4<float>) * vol.vertices.size());
+  write(sizeof(std::uint32_t) * vol.source.size());
+  return f;
+}
+
+void run_floor(benchmark::State& state, const shadowref::VolumeOptions<float>& options) {
+  const Caster& c = caster(state.range(0));
+  FloorSpans f = floor_spans(c, options);
+  for (auto _ : state) {
+    std::uint32_t fold = 0;
+    for (const auto& [p, n] : f.reads)
+      for (std::size_t i = 0; i < n; ++i) fold ^= p[i];
+    benchmark::DoNotOptimize(fold);
+    for (auto& w : f.writes) {
+      std::uint32_t* d = w.data();
+      for (std::size_t i = 0, n = w.size(); i < n; ++i) d[i] = static_cast<std::uint32_t>(i) ^ fold;
+    }
+    benchmark::ClobberMemory();
+  }
+  finish(state, c.mesh.triangles.size());
+  state.counters["floor_MB"] = static_cast<double>(f.bytes) / 1e6;
+  state.counters["floor_bytes_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()) * static_cast<double>(f.bytes),
+                                                          benchmark::Counter::kIsRate);
+}
+
+void BM_VolumePerLight_Floor(benchmark::State& state) { run_floor(state, shadowref::VolumeOptions<float>{}); }
+
+void BM_VolumePerLight_SidesOnly_Floor(benchmark::State& state) {
+  shadowref::VolumeOptions<float> sides_only;
+  sides_only.light_cap = sides_only.dark_cap = false;
+  run_floor(state, sides_only);
+}
+
 void mesh_sizes(benchmark::internal::Benchmark* b) {
   for (std::int64_t n : {10000, 100000, 1000000, 4000000}) b->Arg(n);
   b->ArgName("tris")->Unit(benchmark::kMillisecond);
@@ -119,6 +195,8 @@ BENCHMARK(BM_Adjacency_Meshopt)->Apply(mesh_sizes);
 BENCHMARK(BM_Silhouette)->Apply(mesh_sizes);
 BENCHMARK(BM_VolumePerLight)->Apply(mesh_sizes);
 BENCHMARK(BM_VolumePerLight_SidesOnly)->Apply(mesh_sizes);
+BENCHMARK(BM_VolumePerLight_Floor)->Apply(mesh_sizes);
+BENCHMARK(BM_VolumePerLight_SidesOnly_Floor)->Apply(mesh_sizes);
 
 }  // namespace
 
