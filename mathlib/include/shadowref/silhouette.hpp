@@ -27,6 +27,7 @@
 #include <array>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <optional>
 #include <vector>
 
@@ -74,7 +75,7 @@ struct ShadowCaster {
 };
 
 // Validates the mesh, builds the adjacency, the face planes and the edge list. Errors: those of
-// build_adjacency. Cost: O(V log V + T log T), once per mesh.
+// build_adjacency. Cost: O(V + T) (build_adjacency's), once per mesh.
 template <class T>
 Result<ShadowCaster<T>> make_shadow_caster(TriangleMesh<T> mesh) {
   auto adj = build_adjacency(mesh);
@@ -183,9 +184,10 @@ void emit_edge(const ShadowCaster<T>& caster, const std::uint8_t* lit, std::size
 // directional; any w > 0 is the point xyz / w), with the rules and orientation at the top of this
 // file, in the order of the adjacency's edges. Fills `out` (facing and edges). Errors: those of
 // validate_light. Cost: O(T + E), no allocation once `out` has grown. The edge pass is a flat
-// loop over edge_use_pairs (two lit lookups and a compare per edge, no branch) that collects, a
-// block at a time, the few edges whose two faces differ; only those are named (one random access
-// each), and the irregular edges are walked by all their uses.
+// loop over edge_use_pairs, 64 edges at a time: one load of the pair, two lit lookups and an xor
+// per edge, stored as a byte, with no branch; the bytes are then scanned eight at a time, and only
+// the few differing edges are named (one random access each). The irregular edges are walked by
+// all their uses, in edge order.
 template <class T>
 Result<std::size_t> find_silhouette(const ShadowCaster<T>& caster, const Vec4<T>& light, Silhouette<T>& out) {
   if (const auto bad = validate_light(light)) return *bad;
@@ -196,24 +198,33 @@ Result<std::size_t> find_silhouette(const ShadowCaster<T>& caster, const Vec4<T>
   const std::uint32_t* irregular = caster.irregular_edges.data();
   const std::uint32_t* irregular_end = irregular + caster.irregular_edges.size();
   const std::size_t ne = caster.adjacency.edge_count();
-  constexpr std::size_t kBlock = 512;
-  std::uint32_t candidates[kBlock];
+  constexpr std::size_t kBlock = 64;  // edges tested before the differing ones are named
+  alignas(8) std::uint8_t differ[kBlock];  // per edge of the block: 1 when its two faces differ
   for (std::size_t base = 0; base < ne; base += kBlock) {
     const std::size_t end = std::min(ne, base + kBlock);
-    std::size_t k = 0;
-    for (std::size_t e = base; e < end; ++e) {
-      candidates[k] = static_cast<std::uint32_t>(e);
-      k += lit[EdgeUse::triangle(pairs[2 * e])] != lit[EdgeUse::triangle(pairs[2 * e + 1])] ? 1 : 0;
+    const std::uint32_t* p = pairs + 2 * base;
+    const std::size_t n = end - base;
+    if (n % 8 != 0) std::memset(differ + (n & ~std::size_t{7}), 0, 8);  // a partial last word reads as "same"
+    for (std::size_t i = 0; i < n; ++i) {
+      std::uint64_t pair;  // both uses in one load (in either order: the xor is symmetric)
+      std::memcpy(&pair, p + 2 * i, sizeof pair);
+      differ[i] = lit[EdgeUse::triangle(static_cast<std::uint32_t>(pair))] ^ lit[EdgeUse::triangle(static_cast<std::uint32_t>(pair >> 32))];
     }
-    for (std::size_t i = 0; i < k; ++i) {
-      const std::uint32_t e = candidates[i];
-      while (irregular != irregular_end && *irregular < e)
-        silhouette_detail::emit_edge(caster, lit, *irregular++, out.edges);
-      // A regular edge with one lit face: one quad, named by the lit use (as emit_edge would).
-      const std::uint32_t u = lit[EdgeUse::triangle(pairs[2 * e])] ? pairs[2 * e] : pairs[2 * e + 1];
-      const auto& tri = caster.mesh.triangles[EdgeUse::triangle(u)];
-      const std::uint32_t s = EdgeUse::slot(u);
-      out.edges.push_back(SilhouetteEdge{tri[(s + 1) % 3], tri[s]});  // opposite to the lit face's walk
+    for (std::size_t word = 0; word < n; word += 8) {
+      std::uint64_t bits;  // eight 0/1 bytes: all zero but near the silhouette
+      std::memcpy(&bits, differ + word, sizeof bits);
+      if (bits == 0) [[likely]] continue;
+      for (std::size_t i = word; i < std::min(n, word + 8); ++i) {
+        if (!differ[i]) continue;
+        const auto e = static_cast<std::uint32_t>(base + i);
+        while (irregular != irregular_end && *irregular < e)
+          silhouette_detail::emit_edge(caster, lit, *irregular++, out.edges);
+        // A regular edge with one lit face: one quad, named by the lit use (as emit_edge would).
+        const std::uint32_t u = lit[EdgeUse::triangle(pairs[2 * e])] ? pairs[2 * e] : pairs[2 * e + 1];
+        const auto& tri = caster.mesh.triangles[EdgeUse::triangle(u)];
+        const std::uint32_t s = EdgeUse::slot(u);
+        out.edges.push_back(SilhouetteEdge{tri[(s + 1) % 3], tri[s]});  // opposite to the lit face's walk
+      }
     }
     while (irregular != irregular_end && *irregular < end)
       silhouette_detail::emit_edge(caster, lit, *irregular++, out.edges);

@@ -27,6 +27,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <optional>
 #include <vector>
 
@@ -132,12 +133,10 @@ Result<VolumeRanges> build_shadow_volume(const ShadowCaster<T>& caster, const Si
   std::uint32_t used = 0;
   const auto use = [&](std::uint32_t v) {
     const std::uint32_t j = number[v];
-    const bool fresh = j == kNoVolumeVertex;
-    const std::uint32_t k = fresh ? used : j;
-    number[v] = k;
+    if (j != kNoVolumeVertex) [[likely]] return j;  // most uses: a vertex shared with an earlier face
+    number[v] = used;
     source[used] = v;
-    used += fresh ? 1u : 0u;
-    return k;
+    return used++;
   };
   const std::uint32_t ext = single_apex ? 0 : 1;  // volume index of j: j << ext; of its extrusion: (j << 1) + 1
 
@@ -156,14 +155,33 @@ Result<VolumeRanges> build_shadow_volume(const ShadowCaster<T>& caster, const Si
   const auto& tris = caster.mesh.triangles;
   std::uint32_t* light_w = w;
   std::uint32_t* dark_w = w + (options.light_cap ? 3 * lit : 0);
-  if (caps)
-    for (std::size_t t = 0; t < tris.size(); ++t) {
-      if (!sil.lit[t]) continue;
-      const auto& tri = tris[t];
-      const std::uint32_t a = use(tri[0]) << ext, b = use(tri[1]) << ext, c = use(tri[2]) << ext;
-      if (options.light_cap) *light_w++ = a, *light_w++ = b, *light_w++ = c;
-      if (dark) *dark_w++ = a + 1, *dark_w++ = c + 1, *dark_w++ = b + 1;
+  const auto cap = [&](std::size_t t) {
+    const auto& tri = tris[t];
+    const std::uint32_t a = use(tri[0]) << ext, b = use(tri[1]) << ext, c = use(tri[2]) << ext;
+    if (options.light_cap) *light_w++ = a, *light_w++ = b, *light_w++ = c;
+    if (dark) *dark_w++ = a + 1, *dark_w++ = c + 1, *dark_w++ = b + 1;
+  };
+  if (caps) {
+    // The lit flags eight at a time: lit and unlit faces come in runs (a mesh's neighbouring
+    // triangles are mostly near in index), so most words are all 0 (skipped) or all 1.
+    const std::size_t nt = tris.size();
+    const std::uint8_t* flags = sil.lit.data();
+    constexpr std::uint64_t kAllLit = 0x0101010101010101ull;  // lit flags are 0 or 1
+    std::size_t t = 0;
+    for (; t + 8 <= nt; t += 8) {
+      std::uint64_t word;
+      std::memcpy(&word, flags + t, sizeof word);
+      if (word == 0) continue;
+      if (word == kAllLit) {
+        for (std::size_t k = t; k < t + 8; ++k) cap(k);
+      } else {
+        for (std::size_t k = t; k < t + 8; ++k)
+          if (flags[k]) cap(k);
+      }
     }
+    for (; t < nt; ++t)
+      if (flags[t]) cap(t);
+  }
   assert((dark ? dark_w : light_w) == out.indices.data() + out.indices.size());
   if (single_apex)
     for (std::size_t i = 2; i < side_indices; i += 3) out.indices[i] = used;
