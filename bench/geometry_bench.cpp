@@ -126,9 +126,13 @@ void BM_VolumePerLight_SidesOnly(benchmark::State& state) {
 //   write  the silhouette edges: 8 B each;
 //   write  the volume: 4 B per index, 16 B per vertex (Vec4<float>), 4 B per source entry.
 // Not counted: what the algorithm adds on its own (reading the lit flags again for the edge test
-// and the caps, the volume_vertex numbering, the named edges' triangles). The lit faces' triangles
-// and the used positions are streamed as that many contiguous bytes from the start of the arrays
-// (the real ones are scattered: a floor). The ratio ours / floor is what geometry goal B tracks.
+// and the caps, the volume_vertex numbering, the named edges' triangles, the caster's
+// edge_block_faces ranges). The lit faces' triangles and the used positions are streamed as that
+// many contiguous bytes from the start of the arrays (the real ones are scattered: a floor). The
+// floor is that of a pass that reads all of its inputs: find_silhouette skips the edge blocks
+// whose faces are all lit or all unlit (silhouette.hpp) and so reads only the pairs of the blocks
+// near the silhouette, which is why it can beat the floor's share of them. The ratio ours / floor
+// is what geometry goal B tracks.
 struct FloorSpans {
   std::vector<std::pair<const std::uint32_t*, std::size_t>> reads;  // (words, count)
   std::vector<std::vector<std::uint32_t>> writes;                   // one buffer per output, touched

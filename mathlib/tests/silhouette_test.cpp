@@ -154,10 +154,17 @@ TYPED_TEST(SilhouetteTest, FlatEdgePassEqualsTheWalkOverAllEdges) {
   using T = TypeParam;
   auto fin_and_crack = test::cube_with_fin<T>();
   fin_and_crack.triangles.erase(fin_and_crack.triangles.begin() + 2);  // an open −x edge too
-  const std::vector<TriangleMesh<T>> meshes{test::open_box<T>(), test::cube_with_fin<T>(), test::miswound_cube<T>(),
-                                            test::split_cube<T>(), fin_and_crack, make_uv_sphere(T(1), 40, 21).value()};
+  // Large enough for whole edge blocks to be skipped (all their faces lit, or all unlit), with
+  // irregular edges among them: four holes (one by the south pole, in the last edge block) and a
+  // fin.
+  auto holed = make_uv_sphere(T(1), 120, 61).value();
+  for (std::size_t t : {14395u, 7000u, 3001u, 50u}) holed.triangles.erase(holed.triangles.begin() + static_cast<std::ptrdiff_t>(t));
+  holed.triangles.push_back(holed.triangles[4000]);
+  const std::vector<TriangleMesh<T>> meshes{test::open_box<T>(),   test::cube_with_fin<T>(), test::miswound_cube<T>(),
+                                            test::split_cube<T>(), fin_and_crack,            make_uv_sphere(T(1), 40, 21).value(),
+                                            holed};
   const std::vector<Vec4<T>> lights{Vec4<T>(3, 4, 5, 1), Vec4<T>(T(0.3), T(0.2), 10, 1), Vec4<T>(1, 2, -3, 0),
-                                    Vec4<T>(-10, T(0.5), -1, 1)};
+                                    Vec4<T>(-10, T(0.5), -1, 1), Vec4<T>(T(0.5), -10, T(0.3), 1)};
   for (const auto& m : meshes) {
     const auto caster = make_shadow_caster(m).value();
     Silhouette<T> s;

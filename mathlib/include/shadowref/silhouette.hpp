@@ -72,7 +72,20 @@ struct ShadowCaster {
   // irregular_edges: the loop visits each of them by all its uses.
   std::vector<std::uint32_t> edge_use_pairs;
   std::vector<std::uint32_t> irregular_edges;
+  // The faces of each block of kSilhouetteEdgeBlock edges (block k: edges [64k, 64k + 64)), as a
+  // few triangle ranges that hold every triangle its edges name: [edge_block_faces[2i],
+  // edge_block_faces[2i + 1]) for i in [edge_block_face_offsets[k], edge_block_face_offsets[k + 1]).
+  // When every lit flag in them is the same, no regular edge of the block joins a lit and an
+  // unlit face, and find_silhouette skips the block without reading its pairs (it still walks its
+  // irregular edges): most blocks, because the triangles around a vertex are near in index and
+  // lit faces come in runs. A block whose triangles would need more than 4 ranges or 256
+  // triangles has no ranges and is always tested.
+  std::vector<std::uint32_t> edge_block_face_offsets;
+  std::vector<std::uint32_t> edge_block_faces;
 };
+
+// The edges find_silhouette tests at once, and skips at once (ShadowCaster::edge_block_faces).
+inline constexpr std::size_t kSilhouetteEdgeBlock = 64;
 
 // Validates the mesh, builds the adjacency, the face planes and the edge list. Errors: those of
 // build_adjacency. Cost: O(V + T) (build_adjacency's), once per mesh.
@@ -80,7 +93,7 @@ template <class T>
 Result<ShadowCaster<T>> make_shadow_caster(TriangleMesh<T> mesh) {
   auto adj = build_adjacency(mesh);
   if (!adj) return adj.error();
-  ShadowCaster<T> c{std::move(mesh), std::move(adj).value(), {}, {}, {}};
+  ShadowCaster<T> c{std::move(mesh), std::move(adj).value(), {}, {}, {}, {}, {}};
   const std::size_t nt = c.mesh.triangles.size();
   FacePlanes<T>& fp = c.face_planes;
   fp.x.resize(nt), fp.y.resize(nt), fp.z.resize(nt), fp.w.resize(nt);
@@ -103,6 +116,37 @@ Result<ShadowCaster<T>> make_shadow_caster(TriangleMesh<T> mesh) {
       c.irregular_edges.push_back(static_cast<std::uint32_t>(e));
     }
   }
+  // Each block's triangles, sorted, merged into runs (gaps of up to 8 triangles are taken in: a
+  // few more flags to check, fewer ranges).
+  constexpr std::size_t kMaxRanges = 4, kMaxSpan = 4 * kSilhouetteEdgeBlock;
+  constexpr std::uint32_t kGap = 8;
+  const std::size_t blocks = (ne + kSilhouetteEdgeBlock - 1) / kSilhouetteEdgeBlock;
+  c.edge_block_face_offsets.assign(blocks + 1, 0);
+  std::vector<std::uint32_t> faces;
+  for (std::size_t k = 0; k < blocks; ++k) {
+    const std::size_t first = k * kSilhouetteEdgeBlock, last = std::min(ne, first + kSilhouetteEdgeBlock);
+    const std::size_t mark = c.edge_block_faces.size();
+    c.edge_block_face_offsets[k] = static_cast<std::uint32_t>(mark / 2);
+    faces.clear();
+    for (std::size_t e = first; e < last; ++e)
+      if (c.edge_use_pairs[2 * e] != c.edge_use_pairs[2 * e + 1])  // a regular edge (irregular ones: 0, 0)
+        faces.push_back(EdgeUse::triangle(c.edge_use_pairs[2 * e])), faces.push_back(EdgeUse::triangle(c.edge_use_pairs[2 * e + 1]));
+    if (faces.empty()) continue;
+    std::sort(faces.begin(), faces.end());
+    std::size_t span = 0;
+    for (const std::uint32_t t : faces) {
+      if (c.edge_block_faces.size() > mark && t <= c.edge_block_faces.back() + kGap) {
+        span += std::max(c.edge_block_faces.back(), t + 1) - c.edge_block_faces.back();
+        c.edge_block_faces.back() = std::max(c.edge_block_faces.back(), t + 1);
+      } else {
+        c.edge_block_faces.push_back(t);
+        c.edge_block_faces.push_back(t + 1);
+        span += 1;
+      }
+    }
+    if (c.edge_block_faces.size() - mark > 2 * kMaxRanges || span > kMaxSpan) c.edge_block_faces.resize(mark);
+  }
+  c.edge_block_face_offsets[blocks] = static_cast<std::uint32_t>(c.edge_block_faces.size() / 2);
   return c;
 }
 
@@ -142,9 +186,12 @@ void classify_faces(const ShadowCaster<T>& caster, const Vec4<T>& light, Silhoue
   const T* __restrict pz = fp.z.data();
   const T* __restrict pw = fp.w.data();
   std::uint8_t* __restrict lit = out.lit.data();
-  for (std::size_t t = 0; t < nt; ++t) lit[t] = ((px[t] * lx + pz[t] * lz) + (py[t] * ly + pw[t] * lw)) >= T(0);
-  std::size_t count = 0;
-  for (std::size_t t = 0; t < nt; ++t) count += lit[t];
+  std::uint32_t count = 0;  // nt <= kMaxMeshTriangles
+  for (std::size_t t = 0; t < nt; ++t) {
+    const std::uint8_t l = ((px[t] * lx + pz[t] * lz) + (py[t] * ly + pw[t] * lw)) >= T(0);
+    lit[t] = l;
+    count += l;
+  }
   // A zero plane would be lit by the tie rule (0 >= 0); degenerate faces are never lit.
   for (std::uint32_t t : caster.adjacency.degenerate_triangles) {
     count -= lit[t];
@@ -183,11 +230,12 @@ void emit_edge(const ShadowCaster<T>& caster, const std::uint8_t* lit, std::size
 // The silhouette edges of `caster` for the homogeneous light `light` (w = 1 point, w = 0
 // directional; any w > 0 is the point xyz / w), with the rules and orientation at the top of this
 // file, in the order of the adjacency's edges. Fills `out` (facing and edges). Errors: those of
-// validate_light. Cost: O(T + E), no allocation once `out` has grown. The edge pass is a flat
-// loop over edge_use_pairs, 64 edges at a time: one load of the pair, two lit lookups and an xor
-// per edge, stored as a byte, with no branch; the bytes are then scanned eight at a time, and only
-// the few differing edges are named (one random access each). The irregular edges are walked by
-// all their uses, in edge order.
+// validate_light. Cost: O(T + E), no allocation once `out` has grown. The edge pass goes 64 edges
+// at a time: a block whose faces are all lit or all unlit (edge_block_faces: a few runs of lit
+// flags, checked eight at a time) is skipped; the others are a flat loop over their
+// edge_use_pairs: one load of the pair, two lit lookups and an xor per edge, stored as a byte,
+// with no branch; the bytes are scanned eight at a time, and only the few differing edges are
+// named (one random access each). The irregular edges are walked by all their uses, in edge order.
 template <class T>
 Result<std::size_t> find_silhouette(const ShadowCaster<T>& caster, const Vec4<T>& light, Silhouette<T>& out) {
   if (const auto bad = validate_light(light)) return *bad;
@@ -198,10 +246,38 @@ Result<std::size_t> find_silhouette(const ShadowCaster<T>& caster, const Vec4<T>
   const std::uint32_t* irregular = caster.irregular_edges.data();
   const std::uint32_t* irregular_end = irregular + caster.irregular_edges.size();
   const std::size_t ne = caster.adjacency.edge_count();
-  constexpr std::size_t kBlock = 64;  // edges tested before the differing ones are named
+  constexpr std::size_t kBlock = kSilhouetteEdgeBlock;
   alignas(8) std::uint8_t differ[kBlock];  // per edge of the block: 1 when its two faces differ
+  const std::uint32_t* range_offsets = caster.edge_block_face_offsets.data();
+  const std::uint32_t* ranges = caster.edge_block_faces.data();
   for (std::size_t base = 0; base < ne; base += kBlock) {
     const std::size_t end = std::min(ne, base + kBlock);
+    // Skip the block when all the faces its edges name are lit, or all unlit.
+    if (const std::uint32_t* r = ranges + 2 * range_offsets[base / kBlock], *r_end = ranges + 2 * range_offsets[base / kBlock + 1];
+        r != r_end) {
+      const std::uint8_t first = lit[r[0]];
+      const std::uint64_t same = first * 0x0101010101010101ull;  // eight copies of the flag
+      std::uint64_t seen = 0;  // a bit of a flag that differs from `first`
+      for (; r != r_end; r += 2) {
+        const std::uint32_t a = r[0], b = r[1];
+        if (b - a < 8) {
+          for (std::uint32_t t = a; t < b; ++t) seen |= lit[t] ^ first;
+          continue;
+        }
+        std::uint64_t word;
+        for (std::uint32_t t = a; t + 8 <= b; t += 8) {
+          std::memcpy(&word, lit + t, sizeof word);
+          seen |= word ^ same;
+        }
+        std::memcpy(&word, lit + b - 8, sizeof word);  // the last eight, overlapping
+        seen |= word ^ same;
+      }
+      if (seen == 0) {  // no regular edge of the block is a silhouette edge
+        while (irregular != irregular_end && *irregular < end)
+          silhouette_detail::emit_edge(caster, lit, *irregular++, out.edges);
+        continue;
+      }
+    }
     const std::uint32_t* p = pairs + 2 * base;
     const std::size_t n = end - base;
     if (n % 8 != 0) std::memset(differ + (n & ~std::size_t{7}), 0, 8);  // a partial last word reads as "same"

@@ -123,7 +123,7 @@ Result<VolumeRanges> build_shadow_volume(const ShadowCaster<T>& caster, const Si
   const std::size_t side_indices = (single_apex ? 3 : 6) * sil.edges.size();
   out.indices.resize(side_indices + (options.light_cap ? 3 * lit : 0) + (dark ? 3 * lit : 0));
   const std::size_t most = std::min(n, 2 * sil.edges.size() + (caps ? 3 * lit : 0));  // vertices used, at most
-  out.source.resize(most + 1);  // + 1: the branch-free append below writes one past the end
+  out.source.resize(most);
   out.vertices.reserve(single_apex ? most + 1 : 2 * most);
   if (out.volume_vertex.size() < n) out.volume_vertex.resize(n, kNoVolumeVertex);
 
