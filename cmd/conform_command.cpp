@@ -136,10 +136,12 @@ int run_conform_command(const ConformArgs& a) {
     if (!c.error.empty()) std::printf(": %s", c.error.c_str());
     std::printf("\n");
   }
-  std::printf("\n%zu cases: %zu PASS, %zu XFAIL, %zu FAIL, %zu XPASS, %zu WARN, %zu ERROR in %.1f s (references %.1f s)%s%s\n",
+  std::printf("\n%zu cases: %zu PASS, %zu XFAIL, %zu FAIL, %zu XPASS, %zu WARN, %zu ERROR in %.1f s (references %.1f s, "
+              "drawing %.1f s, writing %.1f s, judging %.1f s, error images %.1f s)%s%s\n",
               r.cases.size(), r.count(conform::Status::Pass), r.count(conform::Status::XFail),
               r.count(conform::Status::Fail), r.count(conform::Status::XPass), r.count(conform::Status::Warn),
-              r.count(conform::Status::Error), r.seconds, r.reference_seconds,
+              r.count(conform::Status::Error), r.seconds, r.reference_seconds, r.phases.render, r.phases.write,
+              r.phases.judge, r.phases.error_images,
               r.gl_renderer.empty() ? "" : ", ", r.gl_renderer.c_str());
   std::size_t linked = 0;
   for (const conform::CaseResult& c : r.cases) linked += c.read_through_links.size();

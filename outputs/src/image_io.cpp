@@ -135,6 +135,10 @@ void write_png(const Image8& image, const std::filesystem::path& file) {
   if (image.pixels.size() != image.pixel_count() * static_cast<std::size_t>(image.channels))
     throw std::logic_error(file.string() + ": image buffer does not match its size");
   OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::UINT8);
+  // zlib level 1 instead of libpng's 6: a conformance run writes several images per case, and at
+  // 1024² the level-6 deflate was a quarter of the run's CPU time (bench/README.md, "conform at
+  // 1024²"); masks are large flat regions, which level 1 still compresses well.
+  spec.attribute("png:compressionLevel", 1);
   write_image(file, spec, image.pixels.data());
 }
 

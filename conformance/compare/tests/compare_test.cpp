@@ -247,11 +247,12 @@ TEST_F(Folders, RefusesBadFiles) {
   Image8 rgb{4, 4, 3, std::vector<std::uint8_t>(48, 255)};
   outputs::write_png(rgb, root / "cand" / "mask.png");
   EXPECT_EQ(kind_of(), CompareError::Kind::BadInput);  // three channels
-  outputs::write_png(grey(64, 64, 255), root / "cand" / "mask.png");
+  outputs::write_png(grey(4, 4, 255), root / "cand" / "mask.png");
   {
-    // Truncate a valid PNG to half its bytes.
+    // Truncate a valid PNG of the right size inside its pixel data: the 12-byte IEND chunk and
+    // the last 8 bytes of IDAT go, the header stays (so the size check passes and decoding fails).
     const auto size = std::filesystem::file_size(root / "cand" / "mask.png");
-    std::filesystem::resize_file(root / "cand" / "mask.png", size / 2);
+    std::filesystem::resize_file(root / "cand" / "mask.png", size - 20);
   }
   EXPECT_EQ(kind_of(), CompareError::Kind::BadInput);  // truncated
   {

@@ -214,13 +214,18 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
           c.candidate_dir = std::filesystem::absolute(o.out / "renders" / s.name / technique);
           renderer::RenderOptions render_options;
           if (extra) render_options.faults = extra->faults;
+          auto t = Clock::now();
           const renderer::RenderResult r = gl->render(prepared[si], extra ? extra->renders : technique, render_options);
+          result.phases.render += since(t);
+          t = Clock::now();
           renderer::write_outputs(r, gl->info(), s, c.candidate_dir);
+          result.phases.write += since(t);
           c.notes = r.notes;
           c.frame_ms = r.median_frame_ms();
         } else {
           c.candidate_dir = std::filesystem::absolute(candidate_folder(*o.candidate_dir, s.name, technique));
         }
+        const auto judge_start = Clock::now();
         // What the candidate declares (candidate.json, ours written by the renderer), defaults otherwise.
         c.declaration = outputs::read_declaration(c.candidate_dir, judged_as);
         const compare::Threshold& threshold = compare::threshold_for(judged_as);
@@ -262,7 +267,11 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
         }
         const std::filesystem::path error_dir =
             gl ? c.candidate_dir : std::filesystem::absolute(o.out / "errors" / s.name / technique);
+        result.phases.judge += since(judge_start);
+        const auto images_start = Clock::now();
         c.error_images = compare::write_error_images(*c.comparison, error_dir);
+        result.phases.error_images += since(images_start);
+        const auto signature_start = Clock::now();
         if (!gl) c.candidate_dir = std::filesystem::absolute(c.candidate_dir);
         c.status = status_of(c.comparison->judgement.verdict, c.expected_pass);
         if (!gl) {
@@ -296,6 +305,7 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
             c.signature = "the errors are the ones the technique's own model of its failure predicts (our " + judged_as + ")";
           }
         }
+        result.phases.judge += since(signature_start);
       } catch (const std::exception& e) {
         c.status = Status::Error;
         c.error = e.what();

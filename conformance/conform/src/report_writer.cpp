@@ -67,6 +67,8 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
                     {"cache", fs::absolute(cache).string()}};
   j["seconds"] = r.seconds;
   j["reference_seconds"] = r.reference_seconds;
+  j["phase_seconds"] = {{"render", r.phases.render}, {"write", r.phases.write}, {"judge", r.phases.judge},
+                        {"error_images", r.phases.error_images}};
   json thresholds = json::array();
   for (const compare::Threshold* t : compare::all_thresholds()) thresholds.push_back(report::to_json(*t));
   j["thresholds"] = thresholds;

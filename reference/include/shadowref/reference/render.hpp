@@ -80,6 +80,13 @@ struct Stats {
   double seconds_render = 0;           // everything after the build
   double seconds_shadow_calls = 0;     // summed over threads: inside rtcOccluded1M only
   double seconds_shadow_phase = 0;     // summed over threads: building, tracing and reading shadow rays
+  double seconds_primary_calls = 0;    // summed over threads: inside rtcIntersect1M only
+  // Summed over threads: the whole ray work of the tiles — building and tracing the primary rays,
+  // the surfaces from their hits, building and tracing the shadow rays (the decided test's nudged
+  // rays included); not the gathering of the answers into pixels. Over seconds_primary_calls +
+  // seconds_shadow_calls it is the cost of the reference's rays against bare Embree on the very
+  // same rays (reference_bench reports it).
+  double seconds_ray_work = 0;
 };
 
 // Renders the reference of the prepared scene (its camera matrices, in its run convention: rays

@@ -94,12 +94,21 @@ struct CaseResult {
   double seconds = 0;
 };
 
+// Where a run's time went, in seconds of wall time summed over the cases (bench/README.md reports
+// these for the catalogue at 1024²): drawing (our renderer, llvmpipe), writing the candidate's
+// files, judging (reading both folders, comparing, the cause model, the expected-failure signature)
+// and writing the error images.
+struct PhaseSeconds {
+  double render = 0, write = 0, judge = 0, error_images = 0;
+};
+
 struct ConformResult {
   std::vector<CaseResult> cases;
   std::vector<std::string> scenes, techniques;  // table order
   std::string gl_vendor, gl_renderer, gl_version;
   std::string convention;
   double seconds = 0, reference_seconds = 0;
+  PhaseSeconds phases;
   std::filesystem::path report_json, report_html;
   int exit_code() const;
   std::size_t count(Status s) const;
