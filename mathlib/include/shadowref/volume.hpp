@@ -91,6 +91,60 @@ struct ShadowVolume {
   std::vector<std::uint32_t> volume_vertex;
 };
 
+namespace volume_detail {
+
+// The numbering of the volume's vertices in order of first use: number[v] is mesh vertex v's j
+// (kNoVolumeVertex before its first use), source[j] the mesh vertex of j.
+struct Numbering {
+  std::uint32_t* number;
+  std::uint32_t* source;
+  std::uint32_t used;
+  std::uint32_t operator()(std::uint32_t v) {
+    const std::uint32_t j = number[v];
+    if (j != kNoVolumeVertex) [[likely]] return j;  // most uses: a vertex shared with an earlier face
+    number[v] = used;
+    source[used] = v;
+    return used++;
+  }
+};
+
+// Both caps in one pass over the triangles: for each lit face, in order, with a, b, c its
+// vertices' numbers << kShift (their volume indices), the light cap (a, b, c) and the dark cap
+// (a + 1, c + 1, b + 1), the extrusions walked backwards (see build_shadow_volume).
+// The lit flags are read eight at a time: lit and unlit faces come in runs (a mesh's neighbouring
+// triangles are mostly near in index), so most words are all 0 (skipped) or all 1. One copy per
+// kind of cap, with the choices out of the loop (it was most of a capped volume's cost).
+template <bool kLight, bool kDark, unsigned kShift>
+void write_caps(const std::vector<std::array<std::uint32_t, 3>>& tris, const std::uint8_t* flags, Numbering& numbering,
+                std::uint32_t* light_w, std::uint32_t* dark_w) {
+  Numbering use = numbering;  // a local copy: `used` stays in a register
+  const auto cap = [&](std::size_t t) {
+    const auto& tri = tris[t];
+    const std::uint32_t a = use(tri[0]) << kShift, b = use(tri[1]) << kShift, c = use(tri[2]) << kShift;
+    if constexpr (kLight) light_w[0] = a, light_w[1] = b, light_w[2] = c, light_w += 3;
+    if constexpr (kDark) dark_w[0] = a + 1, dark_w[1] = c + 1, dark_w[2] = b + 1, dark_w += 3;
+  };
+  const std::size_t nt = tris.size();
+  constexpr std::uint64_t kAllLit = 0x0101010101010101ull;  // lit flags are 0 or 1
+  std::size_t t = 0;
+  for (; t + 8 <= nt; t += 8) {
+    std::uint64_t word;
+    std::memcpy(&word, flags + t, sizeof word);
+    if (word == 0) continue;
+    if (word == kAllLit) {
+      for (std::size_t k = t; k < t + 8; ++k) cap(k);
+    } else {
+      for (std::size_t k = t; k < t + 8; ++k)
+        if (flags[k]) cap(k);
+    }
+  }
+  for (; t < nt; ++t)
+    if (flags[t]) cap(t);
+  numbering = use;
+}
+
+}  // namespace volume_detail
+
 // Builds the volume of `caster` for the light and silhouette in `sil` (find_silhouette's output
 // for the same caster) into `out`, reusing its buffers (no allocation once they have grown).
 // Sides: 2 triangles per silhouette edge (from, to, to', from'), or 1 triangle (from, to, ∞) for a
@@ -130,15 +184,7 @@ Result<VolumeRanges> build_shadow_volume(const ShadowCaster<T>& caster, const Si
   // Number the used vertices in order of first use: j for a new vertex, its number otherwise.
   std::uint32_t* number = out.volume_vertex.data();
   std::uint32_t* source = out.source.data();
-  std::uint32_t used = 0;
-  const auto use = [&](std::uint32_t v) {
-    const std::uint32_t j = number[v];
-    if (j != kNoVolumeVertex) [[likely]] return j;  // most uses: a vertex shared with an earlier face
-    number[v] = used;
-    source[used] = v;
-    return used++;
-  };
-  const std::uint32_t ext = single_apex ? 0 : 1;  // volume index of j: j << ext; of its extrusion: (j << 1) + 1
+  volume_detail::Numbering use{number, source, 0};
 
   // Indices: sides (their far corners once K is known when single_apex), light cap, dark cap.
   std::uint32_t* w = out.indices.data();
@@ -151,38 +197,17 @@ Result<VolumeRanges> build_shadow_volume(const ShadowCaster<T>& caster, const Si
       *w++ = 2 * a, *w++ = 2 * b + 1, *w++ = 2 * a + 1;
     }
   }
-  // Both caps in one pass over the triangles.
-  const auto& tris = caster.mesh.triangles;
   std::uint32_t* light_w = w;
   std::uint32_t* dark_w = w + (options.light_cap ? 3 * lit : 0);
-  const auto cap = [&](std::size_t t) {
-    const auto& tri = tris[t];
-    const std::uint32_t a = use(tri[0]) << ext, b = use(tri[1]) << ext, c = use(tri[2]) << ext;
-    if (options.light_cap) *light_w++ = a, *light_w++ = b, *light_w++ = c;
-    if (dark) *dark_w++ = a + 1, *dark_w++ = c + 1, *dark_w++ = b + 1;
-  };
-  if (caps) {
-    // The lit flags eight at a time: lit and unlit faces come in runs (a mesh's neighbouring
-    // triangles are mostly near in index), so most words are all 0 (skipped) or all 1.
-    const std::size_t nt = tris.size();
-    const std::uint8_t* flags = sil.lit.data();
-    constexpr std::uint64_t kAllLit = 0x0101010101010101ull;  // lit flags are 0 or 1
-    std::size_t t = 0;
-    for (; t + 8 <= nt; t += 8) {
-      std::uint64_t word;
-      std::memcpy(&word, flags + t, sizeof word);
-      if (word == 0) continue;
-      if (word == kAllLit) {
-        for (std::size_t k = t; k < t + 8; ++k) cap(k);
-      } else {
-        for (std::size_t k = t; k < t + 8; ++k)
-          if (flags[k]) cap(k);
-      }
-    }
-    for (; t < nt; ++t)
-      if (flags[t]) cap(t);
-  }
-  assert((dark ? dark_w : light_w) == out.indices.data() + out.indices.size());
+  const auto& tris = caster.mesh.triangles;
+  const std::uint8_t* flags = sil.lit.data();
+  // The volume index of vertex j is j << 1 (its extrusion (j << 1) + 1), or j with a single apex.
+  if (options.light_cap && dark) volume_detail::write_caps<true, true, 1>(tris, flags, use, light_w, dark_w);
+  else if (dark) volume_detail::write_caps<false, true, 1>(tris, flags, use, light_w, dark_w);
+  else if (options.light_cap && single_apex) volume_detail::write_caps<true, false, 0>(tris, flags, use, light_w, dark_w);
+  else if (options.light_cap) volume_detail::write_caps<true, false, 1>(tris, flags, use, light_w, dark_w);
+  const std::uint32_t used = use.used;
+  assert(side_indices + (options.light_cap ? 3 * lit : 0) + (dark ? 3 * lit : 0) == out.indices.size());
   if (single_apex)
     for (std::size_t i = 2; i < side_indices; i += 3) out.indices[i] = used;
 
