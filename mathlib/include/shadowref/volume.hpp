@@ -29,7 +29,11 @@
 #include <cstdint>
 #include <cstring>
 #include <optional>
+#include <type_traits>
 #include <vector>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "shadowref/result.hpp"
 #include "shadowref/silhouette.hpp"
@@ -230,6 +234,20 @@ Result<VolumeRanges> build_shadow_volume(const ShadowCaster<T>& caster, const Si
     T* o = vert + 4 * std::size_t{used};
     o[0] = -lx, o[1] = -ly, o[2] = -lz, o[3] = T(0);
   } else if (!options.finite_distance) {
+#if defined(__SSE2__)
+    if constexpr (std::is_same_v<T, float>) {
+      const __m128 l4 = _mm_setr_ps(lx, ly, lz, lw), w4 = _mm_set1_ps(lw), zero = _mm_setzero_ps();
+      for (std::uint32_t j = 0; j < used; ++j) {
+        const float* p = pos[source[j]].data();
+        number[source[j]] = kNoVolumeVertex;
+        const __m128 v = _mm_setr_ps(p[0], p[1], p[2], 1.0f);
+        const __m128 e = _mm_sub_ps(_mm_mul_ps(v, w4), l4);  // lane 3: 1 · L.w − L.w = 0
+        no_direction += _mm_movemask_ps(_mm_cmpeq_ps(e, zero)) == 0xF ? 1 : 0;
+        _mm_storeu_ps(vert + 8 * std::size_t{j}, v);
+        _mm_storeu_ps(vert + 8 * std::size_t{j} + 4, e);
+      }
+    } else
+#endif
     for (std::uint32_t j = 0; j < used; ++j) {
       const Vec3<T>& p = pos[source[j]];
       number[source[j]] = kNoVolumeVertex;
