@@ -62,7 +62,7 @@ void BM_MaskCompare_Ours(benchmark::State& state) {
   }
   finish(state);
 }
-BENCHMARK(BM_MaskCompare_Ours)->Arg(1)->ArgName("threads")->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MaskCompare_Ours)->Arg(1)->ArgName("threads")->UseRealTime()->Unit(benchmark::kMillisecond)->Setup(shadowref::bench::start_peak_rss);
 
 void BM_MaskCompare_OIIO(benchmark::State& state) {
   const Pair& p = pair();
@@ -78,7 +78,7 @@ void BM_MaskCompare_OIIO(benchmark::State& state) {
   finish(state);
 }
 // threads:1 is the like-for-like peer (ours runs on one thread); threads:0 is OIIO's default (all).
-BENCHMARK(BM_MaskCompare_OIIO)->Arg(1)->Arg(0)->ArgName("threads")->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MaskCompare_OIIO)->Arg(1)->Arg(0)->ArgName("threads")->UseRealTime()->Unit(benchmark::kMillisecond)->Setup(shadowref::bench::start_peak_rss);
 
 }  // namespace
 

@@ -223,7 +223,7 @@ void BM_VolumePerLight_SidesOnly_Floor(benchmark::State& state) {
 
 void mesh_sizes(benchmark::internal::Benchmark* b) {
   for (std::int64_t n : {10000, 100000, 1000000, 4000000}) b->Arg(n);
-  b->ArgName("tris")->Unit(benchmark::kMillisecond);
+  b->ArgName("tris")->Unit(benchmark::kMillisecond)->Setup(shadowref::bench::start_peak_rss);
 }
 BENCHMARK(BM_Adjacency_Ours)->Apply(mesh_sizes);
 BENCHMARK(BM_Adjacency_Meshopt)->Apply(mesh_sizes);

@@ -239,7 +239,7 @@ void BM_ReferenceRender(benchmark::State& state, const std::string& name) {
 
 // 1 and 2 threads, pinned (an arena of exactly that many), so that a run means the same on a bigger machine.
 void threads(benchmark::internal::Benchmark* b) {
-  b->Arg(1)->Arg(2)->ArgName("threads")->UseRealTime()->Unit(benchmark::kMillisecond);
+  b->Arg(1)->Arg(2)->ArgName("threads")->UseRealTime()->Unit(benchmark::kMillisecond)->Setup(shadowref::bench::start_peak_rss);
 }
 
 #define SHADOW_RAY_CASES(scene)                                           \

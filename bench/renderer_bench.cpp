@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
     for (const auto& t : rnd::techniques())
       benchmark::RegisterBenchmark(("BM_Frame/" + std::string(scene) + "/" + std::string(t.name)).c_str(), BM_Frame,
                                    std::string(scene), std::string(t.name))
-          ->Arg(512)->Arg(1024)->ArgName("px")->UseManualTime()->Unit(benchmark::kMillisecond);
+          ->Arg(512)->Arg(1024)->ArgName("px")->UseManualTime()->Unit(benchmark::kMillisecond)->Setup(shadowref::bench::start_peak_rss);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;
