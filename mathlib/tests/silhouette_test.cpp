@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <map>
+#include <random>
 
 #include "scalar_types.hpp"
 #include "shadowref/primitives.hpp"
@@ -216,6 +218,46 @@ TYPED_TEST(SilhouetteTest, BuffersAreReusedAcrossLights) {
   EXPECT_EQ(s.lit.data(), lit);  // no reallocation for the second light
   EXPECT_EQ(s.edges.data(), edges);
 }
+
+#if defined(__x86_64__) && !defined(__AVX2__)
+// The AVX2 facing loop (eight faces per register) gives the SSE2 loop's answer bit for bit: planes
+// and lights with mixed signs and magnitudes, exact zeros and ties among them (a product that
+// rounds the other way, or a fused multiply-add, would flip some of these).
+TEST(ClassifyFaces, TheAvx2LoopIsTheScalarLoopBitForBit) {
+  if (!silhouette_detail::cpu_has_avx2()) GTEST_SKIP() << "this CPU has no AVX2: that path is not taken";
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::uniform_int_distribution<int> e(-30, 30), pick(0, 9);
+  const std::size_t n = 4099;  // not a multiple of 8: the loop's tail too
+  std::vector<float> x(n), y(n), z(n), w(n);
+  for (std::size_t t = 0; t < n; ++t)
+    for (auto* a : {&x, &y, &z, &w}) {
+      const int k = pick(rng);
+      (*a)[t] = k == 0 ? 0.0f : k == 1 ? -0.0f : k == 2 ? 1.0f : std::ldexp(u(rng), e(rng));
+    }
+  // Faces whose sign depends on the order of the sums under the light (1, 1, 1, 1): 1 + tiny
+  // rounds to 1, so (x + z) + (y + w) = 0 (lit) where (x + y) + (z + w) = −tiny (not lit).
+  for (std::size_t t = 0; t < 64; ++t) {
+    x[t] = std::ldexp(1.0f, static_cast<int>(t % 8)), y[t] = -x[t];
+    z[t] = (t % 2 ? -1.0f : 1.0f) * std::ldexp(1.0f, -30 + static_cast<int>(t % 8)), w[t] = t % 3 ? 0.0f : -z[t];
+  }
+  for (int trial = 0; trial < 50; ++trial) {
+    float lx = u(rng), ly = u(rng), lz = trial % 5 == 0 ? 0.0f : u(rng), lw = trial % 2 ? 1.0f : 0.0f;
+    if (trial == 0) lx = ly = lz = lw = 1.0f;
+    std::vector<std::uint8_t> avx(n, 7);
+    const std::size_t count = silhouette_detail::classify_avx2(x.data(), y.data(), z.data(), w.data(), lx, ly, lz, lw,
+                                                               avx.data(), n);
+    std::size_t expected_count = 0;
+    for (std::size_t t = 0; t < n; ++t) {
+      const float d = (x[t] * lx + z[t] * lz) + (y[t] * ly + w[t] * lw);
+      const std::uint8_t l = d >= 0.0f;
+      expected_count += l;
+      ASSERT_EQ(avx[t], l) << "face " << t << ", trial " << trial;
+    }
+    EXPECT_EQ(count, expected_count);
+  }
+}
+#endif
 
 }  // namespace
 }  // namespace shadowref
