@@ -183,7 +183,7 @@ using Copy = void (*)(const float*, float*, std::size_t);
 void run_copy(benchmark::State& state, Copy wide, Copy narrow, const char* what) {
   const auto n = static_cast<std::size_t>(state.range(0));
   Batch b(n);
-  const bool avx2 = shadowref::detail::cpu_has_avx2_fma();
+  const bool avx2 = shadowref::cpu_has_avx2_fma();
   for (auto _ : state) {
     (avx2 ? wide : narrow)(b.in.data(), b.out.data(), n);
     benchmark::ClobberMemory();

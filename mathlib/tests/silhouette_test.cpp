@@ -224,7 +224,7 @@ TYPED_TEST(SilhouetteTest, BuffersAreReusedAcrossLights) {
 // and lights with mixed signs and magnitudes, exact zeros and ties among them (a product that
 // rounds the other way, or a fused multiply-add, would flip some of these).
 TEST(ClassifyFaces, TheAvx2LoopIsTheScalarLoopBitForBit) {
-  if (!silhouette_detail::cpu_has_avx2()) GTEST_SKIP() << "this CPU has no AVX2: that path is not taken";
+  if (!cpu_has_avx2()) GTEST_SKIP() << "this CPU has no AVX2: that path is not taken";
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   std::uniform_int_distribution<int> e(-30, 30), pick(0, 9);

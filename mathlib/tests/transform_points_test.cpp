@@ -66,7 +66,7 @@ TEST(TransformPoints, EveryPathIsTheProduct) {
   std::fill(out.begin(), out.end(), -1.0f);
   detail::transform_points_sse2(cols, in.data(), out.data(), 33);
   expect_product(m, in, out);
-  if (!detail::cpu_has_avx2_fma()) GTEST_SKIP() << "this CPU has no AVX2 + FMA: that path was not run";
+  if (!cpu_has_avx2_fma()) GTEST_SKIP() << "this CPU has no AVX2 + FMA: that path was not run";
   std::fill(out.begin(), out.end(), -1.0f);
   detail::transform_points_avx2(cols, in.data(), out.data(), 33);
   expect_product(m, in, out);

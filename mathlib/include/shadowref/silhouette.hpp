@@ -35,6 +35,7 @@
 #include <Eigen/Geometry>
 
 #include "shadowref/adjacency.hpp"
+#include "shadowref/cpu_features.hpp"
 #include "shadowref/mesh.hpp"
 #include "shadowref/result.hpp"
 
@@ -174,10 +175,6 @@ struct Silhouette {
 
 namespace silhouette_detail {
 #if defined(__x86_64__) && !defined(__AVX2__)
-inline bool cpu_has_avx2() {
-  static const bool has = __builtin_cpu_supports("avx2");
-  return has;
-}
 // classify_faces' loop for float compiled for AVX2 (eight faces per register), same operations in
 // the same order per lane and no FMA, so bit for bit the SSE2 loop's answers.
 __attribute__((target("avx2"))) inline std::size_t classify_avx2(const float* __restrict px, const float* __restrict py,
@@ -199,7 +196,7 @@ __attribute__((target("avx2"))) inline std::size_t classify_avx2(const float* __
 // plane_t · L is summed as (x Lx + z Lz) + (y Ly + w Lw), the order of Eigen's Vec4 dot on SSE
 // and AVX, so that face_planes[t].dot(L) >= 0 gives the same answer bit for bit.
 // Cost: 4 multiplies and 3 adds per triangle, a flat loop over the four plane arrays, which GCC
-// vectorises with SSE2; for float on a CPU with AVX2 (asked once, __builtin_cpu_supports) the same
+// vectorises with SSE2; for float on a CPU with AVX2 (asked once: cpu_features.hpp) the same
 // loop compiled for AVX2, eight faces per register, with the same operations per lane and no FMA:
 // the same flags bit for bit (silhouette_test), measured 1.3-1.8x faster for the sides-only volume
 // at 100k and 1M triangles (geometry_bench).
@@ -218,7 +215,7 @@ void classify_faces(const ShadowCaster<T>& caster, const Vec4<T>& light, Silhoue
   std::uint32_t count = 0;  // nt <= kMaxMeshTriangles
 #if defined(__x86_64__) && !defined(__AVX2__)
   if constexpr (std::is_same_v<T, float>) {
-    if (silhouette_detail::cpu_has_avx2()) {
+    if (cpu_has_avx2()) {
       out.lit_count = silhouette_detail::classify_avx2(px, py, pz, pw, lx, ly, lz, lw, lit, nt);
       count = static_cast<std::uint32_t>(out.lit_count);
       for (std::uint32_t t : caster.adjacency.degenerate_triangles) {

@@ -11,7 +11,7 @@
 // (bench/math_bench.cpp). The loop is the textbook one, column by column: out = c0·x + c1·y + c2·z
 // + c3·w with the matrix's four columns in registers and each coordinate broadcast. Two versions:
 // SSE2 (the x86-64 baseline: one point per 128-bit register) and, on CPUs that have them (checked
-// once, at run time, with __builtin_cpu_supports), AVX2 + FMA (two points per 256-bit register;
+// once, at run time: cpu_features.hpp), AVX2 + FMA (two points per 256-bit register;
 // the broadcasts are in-lane permutes, which is what bounds it on data in L1).
 // Rounding: the SSE2 path rounds each product and sum, (c0·x + c1·y) + (c2·z + c3·w); the FMA
 // path is one chain of three fused multiply-adds (one fewer instruction per point than a tree,
@@ -25,6 +25,7 @@
 #include <cstddef>
 
 #include "shadowref/conventions.hpp"
+#include "shadowref/cpu_features.hpp"
 
 #if defined(__x86_64__) || defined(_M_X64)
 #include <immintrin.h>
@@ -78,11 +79,6 @@ __attribute__((target("avx2,fma"))) inline void transform_points_avx2(const floa
   transform_points_scalar(m, in, out, i, n);  // an odd last point
 }
 
-// Whether this CPU runs the AVX2 + FMA path (asked once).
-inline bool cpu_has_avx2_fma() {
-  static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  return has;
-}
 #endif
 
 }  // namespace detail
@@ -93,7 +89,7 @@ inline void transform_points(const Mat4<float>& m, const float* in, float* out, 
   float cols[16];
   detail::matrix_columns(m, cols);
 #ifdef SHADOWREF_TRANSFORM_POINTS_X86
-  if (detail::cpu_has_avx2_fma())
+  if (cpu_has_avx2_fma())
     detail::transform_points_avx2(cols, in, out, n);
   else
     detail::transform_points_sse2(cols, in, out, n);
