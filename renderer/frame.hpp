@@ -23,14 +23,16 @@ struct Program {
         ambient = -1, light = -1, light_intensity = -1, spot = -1, shadow_map = -1, packed_map = -1,
         texel = -1, offset_factor = -1, offset_units = -1, layout = -1, layer_from_world = -1, cascade_depth = -1,
         cascade_begin = -1, cascade_end = -1, reversed = -1, lit_greater = -1, depth_map = -1, world_from_layer = -1,
-        inv_view_depth = -1, rect_u = -1, rect_v = -1, blocker_at_receiver = -1;
+        inv_view_depth = -1, rect_u = -1, rect_v = -1, blocker_at_receiver = -1, moment_map = -1,
+        layer_inv_view_depth = -1;
 };
 
 struct Programs {
   Program flat;           // kSceneVertex + kFlatFragment
   Program surface;        // kSceneVertex + kSurfaceFragment
-  Program surface_soft;   // the same with PCSS compiled in (shaders::kPcssDefine): pcss only
+  Program surface_soft;   // the same with PCSS compiled in (shaders::kPcssDefine): pcss and vsm only
   Program packed_depth;   // kSceneVertex + kPackedDepthFragment
+  Program moments;        // kSceneVertex + kMomentsFragment: vsm's light pass
 };
 
 // Homogeneous vertices (vec4) and optional 32-bit triangle indices on the GPU.
@@ -80,7 +82,7 @@ struct Frame {
   RenderResult& result;
   const std::vector<GpuMesh>& objects;        // scene.objects, same order
   GLuint target_fbo = 0;
-  // The surface program this technique draws with (pcss: programs.surface_soft); null: programs.surface.
+  // The surface program this technique draws with (pcss, vsm: programs.surface_soft); null: programs.surface.
   const Program* surface = nullptr;
   const Program& surface_program() const { return surface ? *surface : programs.surface; }                      // W × H, RGBA8 + depth/stencil (24-bit, or 32F for reversed-z)
 
@@ -145,5 +147,6 @@ void render_shadowmap_rgba8(Frame& frame);
 void render_csm(Frame& frame);
 void render_csm_pcf(Frame& frame);
 void render_pcss(Frame& frame);
+void render_vsm(Frame& frame);
 
 }  // namespace shadowref::renderer

@@ -160,10 +160,13 @@ Program link(const GlFunctions& gl, std::initializer_list<const char*> fragment,
   p.rect_u = loc("u_rect_u");
   p.rect_v = loc("u_rect_v");
   p.blocker_at_receiver = loc("u_blocker_at_receiver");
+  p.moment_map = loc("u_moment_map");
+  p.layer_inv_view_depth = loc("u_layer_inv_view_depth");
   gl.UseProgram(p.id);
   if (p.shadow_map >= 0) gl.Uniform1i(p.shadow_map, 0);
   if (p.packed_map >= 0) gl.Uniform1i(p.packed_map, 1);
   if (p.depth_map >= 0) gl.Uniform1i(p.depth_map, 2);
+  if (p.moment_map >= 0) gl.Uniform1i(p.moment_map, 3);
   gl.UseProgram(0);
   return p;
 }
@@ -429,6 +432,13 @@ constexpr Technique kTechniqueTable[] = {
      "an 8x8 filter over the rect seen through that depth, every tap compared with the receiver's own "
      "plane; writes the lit fraction as visibility.png. Other lights as shadowmap-pcf.",
      render_pcss},
+    {"vsm",
+     "Variance shadow maps (Donnelly & Lauritzen 2006) filtered over PCSS's penumbra (Lauritzen 2007, "
+     "GPU Gems 3 ch. 8): the light pass also stores the depth and its square; PCSS's blocker search "
+     "and penumbra estimate, then the two moments averaged over the same 8x8 taps (the box a "
+     "summed-area table returns) and Chebyshev's upper bound against the receiver's mean depth there. "
+     "Bleeds light where two occluders overlap in the filter. Other lights as shadowmap-pcf.",
+     render_vsm},
 };
 
 // The renderer implements exactly the contract's technique list, in its order.
@@ -473,6 +483,7 @@ struct Renderer::Impl {
     programs.surface = link(gl, {shaders::kVersion, shaders::kDepthPacking, shaders::kSurfaceFragmentBody}, "surface");
     programs.surface_soft =
         link(gl, {shaders::kVersion, shaders::kPcssDefine, shaders::kDepthPacking, shaders::kSurfaceFragmentBody}, "surface (pcss)");
+    programs.moments = link(gl, {shaders::kMomentsFragment}, "moments");
     programs.packed_depth =
         link(gl, {shaders::kVersion, shaders::kDepthPacking, shaders::kPackedDepthFragmentBody}, "packed depth");
   }
@@ -482,6 +493,7 @@ struct Renderer::Impl {
     gl.DeleteProgram(programs.surface.id);
     gl.DeleteProgram(programs.surface_soft.id);
     gl.DeleteProgram(programs.packed_depth.id);
+    gl.DeleteProgram(programs.moments.id);
   }
 };
 

@@ -33,6 +33,24 @@ out vec4 o_colour;
 void main() { o_colour = u_colour; }
 )glsl";
 
+// vsm's light pass (Donnelly & Lauritzen 2006): the first two moments of the fragment's depth plus
+// an offset done by hand as in the packed-depth pass (shadow_map.cpp passes only its constant part),
+// as view depth along the light's axis: linear, so that averaging moments means something, and
+// without the window depth's coarse float steps near 1.
+const char* const kMomentsFragment = R"glsl(#version 330 core
+uniform vec2 u_layer_inv_view_depth;  // 1 / view depth = x * window depth + y
+uniform float u_offset_factor;        // glPolygonOffset's, with the convention's sign
+uniform float u_offset_units;
+out vec4 o_moments;
+void main() {
+  float z = gl_FragCoord.z;
+  float m = max(abs(dFdx(z)), abs(dFdy(z)));
+  z += u_offset_factor * m + u_offset_units / 16777215.0;
+  float w = 1.0 / (u_layer_inv_view_depth.x * z + u_layer_inv_view_depth.y);
+  o_moments = vec4(w, w * w, 0.0, 1.0);
+}
+)glsl";
+
 // The depth packing shared by the two shaders below (mirror of depth_packing.hpp); glShaderSource
 // joins it between the version line and each body.
 const char* const kDepthPacking = R"glsl(
@@ -76,7 +94,7 @@ in vec3 v_world;
 in vec4 v_shadow;
 flat in vec3 v_normal;
 uniform int u_mode;                  // 0 ambient, 1 one light's contribution, 2 the 0/1 mask, 3 the visibility
-uniform int u_shadow;                // 0 none, 1 depth compare, 2 PCF 3x3, 3 RGBA8 packed depth, 4 PCSS
+uniform int u_shadow;                // 0 none, 1 depth compare, 2 PCF 3x3, 3 RGBA8 packed depth, 4 PCSS, 5 VSM
 uniform vec3 u_albedo;
 uniform float u_ambient;
 uniform vec4 u_light;                // homogeneous: w = 1 point / spot, w = 0 directional
@@ -101,6 +119,8 @@ uniform vec2 u_inv_view_depth[6];    // per layer: 1 / (depth along the view axi
 uniform vec3 u_rect_u;               // the rect light's edges (world); u_light is its centre
 uniform vec3 u_rect_v;
 uniform int u_blocker_at_receiver;   // fault switch (renderer/faults.hpp, SoftShadowFaults)
+// VSM (u_shadow 5): the moments (view depth, its square) of the same layers; (0, 0) where nothing was drawn.
+uniform sampler2DArray u_moment_map; // unit 3
 out vec4 o_colour;
 
 #ifdef SHADOWREF_PCSS  // only in the soft program (kPcssDefine): llvmpipe pays for dead branches
@@ -146,18 +166,16 @@ float blocker_at(vec2 c, int layer, vec4 plane, float receiver_z) {
 float view_depth(float window_depth, int layer) {
   return 1.0 / (u_inv_view_depth[layer].x * window_depth + u_inv_view_depth[layer].y);
 }
-float pcss(vec3 p, float receiver_depth, int layer) {
-  vec4 plane = receiver_plane(layer);
-  // A light point behind the receiver's own plane is hidden by the receiver itself: an area light
-  // half below the horizon of a surface lights it by half (the soft terminator on a ball).
-  vec3 n = gl_FrontFacing ? v_normal : -v_normal;
+// Steps 1 and 2's plane: the fraction of the way from p to the light at which the light's rect,
+// seen from p, covers the filter's texels (0 when the search finds no blocker: `blockers` is 0).
+float penumbra_plane(vec4 plane, vec3 p, float receiver_depth, int layer, out int blockers) {
   // The nearest depth a blocker can have: the map's near plane (window depth 0, or 1 reversed).
   // Not nearer than a tenth of the receiver's depth: a cube face's near plane may touch the light,
   // where the rect's own image would fill the search.
   float near_depth = max(view_depth(u_reversed == 1 ? 1.0 : 0.0, layer), 0.1 * receiver_depth);
   float t_search = clamp(1.0 - near_depth / receiver_depth, 0.0, 1.0);
   float sum = 0.0;
-  int blockers = 0;
+  blockers = 0;
   for (int j = 0; j < kSearchTaps; ++j)
     for (int i = 0; i < kSearchTaps; ++i) {
       vec2 ab = (vec2(i, j) + 0.5) / float(kSearchTaps) - 0.5;
@@ -170,16 +188,72 @@ float pcss(vec3 p, float receiver_depth, int layer) {
     }
   float blocker_depth = blockers == 0 ? receiver_depth : sum / float(blockers);
   if (u_blocker_at_receiver == 1) blocker_depth = receiver_depth;  // FAULT: the receiver's own depth
-  float t = clamp(1.0 - blocker_depth / receiver_depth, 0.0, 1.0);
+  return clamp(1.0 - blocker_depth / receiver_depth, 0.0, 1.0);
+}
+// The filter tap (i, j) of kFilterTaps x kFilterTaps: its point on the light's rect.
+vec3 filter_light_point(int i, int j) {
+  vec2 ab = (vec2(i, j) + 0.5) / float(kFilterTaps) - 0.5;
+  return u_light.xyz + ab.x * u_rect_u + ab.y * u_rect_v;
+}
+float pcss(vec3 p, float receiver_depth, int layer) {
+  vec4 plane = receiver_plane(layer);
+  // A light point behind the receiver's own plane is hidden by the receiver itself: an area light
+  // half below the horizon of a surface lights it by half (the soft terminator on a ball).
+  vec3 n = gl_FrontFacing ? v_normal : -v_normal;
+  int blockers;
+  float t = penumbra_plane(plane, p, receiver_depth, layer, blockers);
   float lit = 0.0;
   for (int j = 0; j < kFilterTaps; ++j)
     for (int i = 0; i < kFilterTaps; ++i) {
-      vec2 ab = (vec2(i, j) + 0.5) / float(kFilterTaps) - 0.5;
-      vec3 l = u_light.xyz + ab.x * u_rect_u + ab.y * u_rect_v;
+      vec3 l = filter_light_point(i, j);
       if (dot(n, l - v_world) <= 0.0) continue;
       if (blockers == 0 || blocker_at(tap_texel(v_world + (l - v_world) * t, layer), layer, plane, p.z) < 0.0) lit += 1.0;
     }
   return lit / float(kFilterTaps * kFilterTaps);
+}
+// VSM over PCSS's penumbra (Lauritzen 2007, GPU Gems 3 ch. 8): the same search and filter region,
+// but the region's depth moments are averaged (what a summed-area table or a mip level returns,
+// here by the same 8 x 8 taps) and the lit fraction is Chebyshev's one-tailed bound
+// P(depth >= r) <= var / (var + (r - mean)^2) for r beyond the mean. r is the receiver's own mean
+// depth over the taps (its plane at each tap's texel centre, where the map stored its depth): a
+// planar receiver's moments then cancel exactly, the VSM form of the receiver-plane compare. The
+// bound is exact for one occluder depth over a planar receiver (it gives 1 - the occluded share,
+// the PCF answer) and too high where two occluders at different depths share the region: the
+// technique's known light bleeding. As in pcss, the filter covers the light points above the
+// receiver's horizon: their taps are averaged, and their share scales the bound.
+// kVsmMinSigma: a floor on the standard deviation, relative to the depth (float moments of depths
+// near d lose about d * 2^-12 of their deviation to cancellation in E[d^2] - E[d]^2).
+const float kVsmMinSigma = 1e-3;
+float vsm(vec3 p, float receiver_depth, int layer) {
+  vec4 plane = receiver_plane(layer);
+  vec3 n = gl_FrontFacing ? v_normal : -v_normal;
+  int blockers;
+  float t = penumbra_plane(plane, p, receiver_depth, layer, blockers);
+  float above = 0.0;
+  vec2 moments = vec2(0.0);
+  float receiver = 0.0;
+  for (int j = 0; j < kFilterTaps; ++j)
+    for (int i = 0; i < kFilterTaps; ++i) {
+      vec3 l = filter_light_point(i, j);
+      if (dot(n, l - v_world) <= 0.0) continue;
+      above += 1.0;
+      vec2 c = tap_texel(v_world + (l - v_world) * t, layer);
+      float r = receiver_depth;
+      if (c.x >= 0.0 && plane.z != 0.0) r = view_depth(clamp(-(plane.x * c.x + plane.y * c.y + plane.w) / plane.z, 0.0, 1.0), layer);
+      vec2 m = c.x >= 0.0 ? texture(u_moment_map, vec3(c, float(layer))).rg : vec2(0.0);
+      // Outside the map or nothing drawn there: no occluder, the receiver itself.
+      if (!(m.x > 0.0)) m = vec2(r, r * r);
+      moments += m;
+      receiver += r;
+    }
+  float horizon = above / float(kFilterTaps * kFilterTaps);
+  if (blockers == 0 || above == 0.0) return horizon;
+  moments /= above;
+  receiver /= above;
+  float d = receiver - moments.x;
+  if (d <= 0.0) return horizon;
+  float variance = max(moments.y - moments.x * moments.x, kVsmMinSigma * kVsmMinSigma * receiver * receiver);
+  return horizon * variance / (variance + d * d);
 }
 
 #endif
@@ -221,6 +295,7 @@ float shadow_visibility() {
   p.z = u_reversed == 1 ? max(p.z, 0.0) : min(p.z, 1.0);
 #ifdef SHADOWREF_PCSS
   if (u_shadow == 4) return pcss(p, s.w, int(layer));
+  if (u_shadow == 5) return vsm(p, s.w, int(layer));
 #endif
   if (u_shadow == 1) return texture(u_shadow_map, vec4(p.xy, layer, p.z));
   if (u_shadow == 2) {
@@ -251,8 +326,8 @@ void main() {
   // A shadow map tests occlusion only; a surface that faces away from the light is in its own
   // shadow (what a stencil volume gives it, and the reference's ray finds). The mask mode without
   // a map (u_shadow 0) is that facing test alone: planar shadows' attached-shadow mask.
-  // (PCSS tests every light point it filters over itself.)
-  if ((u_shadow != 0 || u_mode == 2) && u_shadow != 4 && n_dot_l <= 0.0) visibility = 0.0;
+  // (PCSS and VSM test every light point they filter over themselves.)
+  if ((u_shadow != 0 || u_mode == 2) && u_shadow < 4 && n_dot_l <= 0.0) visibility = 0.0;
   if (u_mode == 2) {
     float lit = visibility >= 0.5 ? 1.0 : 0.0;  // PCF: lit when at least half the taps are
     o_colour = vec4(lit, lit, lit, 1.0);

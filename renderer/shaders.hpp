@@ -13,12 +13,15 @@ extern const char* const kFlatFragment;
 extern const char* const kVersion;
 // quantize_depth, pack_depth_rgba8, unpack_depth_rgba8: mirror of mathlib/depth_packing.hpp.
 extern const char* const kDepthPacking;
-// Put between kVersion and kDepthPacking, compiles PCSS into the surface shader (u_shadow 4). Only
+// Put between kVersion and kDepthPacking, compiles PCSS and VSM into the surface shader (u_shadow 4
+// and 5). Only
 // the soft program has it: llvmpipe does not specialise on uniforms, so PCSS's code in the shared
 // shader cost every shadow-map frame about 15 % (renderer_bench, ground_sphere 512²: 98 → 115 ms).
 extern const char* const kPcssDefine;
 // Lambert surface: ambient, one light's contribution (optionally shadow-mapped), or a 0/1 mask.
 extern const char* const kSurfaceFragmentBody;
+// vsm's light pass: the fragment's depth along the light's view axis and its square (RG32F).
+extern const char* const kMomentsFragment;
 // The depth of the light's view, packed into RGBA8.
 extern const char* const kPackedDepthFragmentBody;
 

@@ -15,7 +15,11 @@
 //                    the penumbra estimate, a filter over the light's rect, every tap compared with
 //                    the receiver's own plane), the map read raw and drawn with front faces (its
 //                    depths are the blockers'); other lights as shadowmap-pcf.
-// shadowmap-pcf and pcss also write the lit fraction (visibility.png).
+//   vsm              variance shadow maps over PCSS's penumbra: the same depth map for the blocker
+//                    search, and beside it an RG32F map of the first two moments of the view depth
+//                    (the same pass, a second attachment), averaged over PCSS's filter region and
+//                    read through Chebyshev's bound (shaders.cpp); other lights as shadowmap-pcf.
+// shadowmap-pcf, pcss and vsm also write the lit fraction (visibility.png).
 // Bias: the depth pass culls front faces of closed casters (the map then holds back faces, so a
 // lit surface is never compared against itself) and uses glPolygonOffset(kOffsetFactor,
 // kOffsetUnits); open meshes (a ground quad, a leaf) are drawn two-sided, since culling would
@@ -71,10 +75,15 @@ constexpr float kOffsetUnits = kShadowMapOffsetUnits;
 // which detaches shadows from their contacts.
 constexpr float kPeterPanUnits = 131072.0f;
 
-enum class Variant { Depth, Pcf, Rgba8, Pcss };
+enum class Variant { Depth, Pcf, Rgba8, Pcss, Vsm };
 
-// Texture unit 2: the PCSS map read raw (frame.hpp's surface program binds u_depth_map there).
+// The soft variants: PCSS's blocker search and penumbra, a filter over the light's rect.
+bool soft(Variant v) { return v == Variant::Pcss || v == Variant::Vsm; }
+
+// Texture unit 2: the PCSS map read raw (frame.hpp's surface program binds u_depth_map there);
+// unit 3: VSM's moments (u_moment_map).
 constexpr GLenum kRawDepthUnit = GL_TEXTURE2;
+constexpr GLenum kMomentUnit = GL_TEXTURE3;
 
 // The compare that means "lit" in this render: the convention's (lit_when), unless a fault says otherwise.
 DepthCompare lit_compare(const RunConvention& conv, CompareFault fault) {
@@ -116,6 +125,7 @@ Mat4<double> fit_with_fault(const RunConvention& conv, const Mat4<double>& proje
 struct LightMap {
   const GlFunctions* gl = nullptr;
   GLuint texture = 0;
+  GLuint moments = 0;             // vsm: the RG32F moments, the same layers
   int size = 0;
   int layout = 0;                 // the shader's u_layout: 0 one view, 1 a cube, 2 cascades
   Mat4<float> shadow_from_world;  // B · P_light · V_light (the single view)
@@ -123,22 +133,24 @@ struct LightMap {
   // Cascades: the camera-depth row, and the depths each cascade is picked for (shader u_cascade_*).
   Vec4<float> cascade_depth = Vec4<float>::Zero();
   Vec4<float> cascade_begin = Vec4<float>::Constant(-3e38f), cascade_end = Vec4<float>::Constant(-3e38f);
-  // PCSS: the inverse of each face_from_world, and 1 / view depth = a · window depth + b per layer.
+  // PCSS, VSM: the inverse of each face_from_world, and 1 / view depth = a · window depth + b per layer.
   std::vector<Mat4<float>> world_from_face;
   std::vector<float> inv_view_depth;  // (a, b) per layer
   LightMap() = default;
   LightMap(LightMap&& o) noexcept
-      : gl(o.gl), texture(o.texture), size(o.size), layout(o.layout), shadow_from_world(o.shadow_from_world),
+      : gl(o.gl), texture(o.texture), moments(o.moments), size(o.size), layout(o.layout), shadow_from_world(o.shadow_from_world),
         face_from_world(std::move(o.face_from_world)), cascade_depth(o.cascade_depth),
         cascade_begin(o.cascade_begin), cascade_end(o.cascade_end), world_from_face(std::move(o.world_from_face)),
         inv_view_depth(std::move(o.inv_view_depth)) {
     o.texture = 0;
+    o.moments = 0;
   }
   LightMap(const LightMap&) = delete;
   LightMap& operator=(const LightMap&) = delete;
   LightMap& operator=(LightMap&&) = delete;
   ~LightMap() {
     if (texture) gl->DeleteTextures(1, &texture);
+    if (moments) gl->DeleteTextures(1, &moments);
   }
 };
 
@@ -249,11 +261,22 @@ LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant varian
       gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_DEPTH_COMPONENT24, size, size, layers, 0, GL_DEPTH_COMPONENT,
                     GL_UNSIGNED_INT, nullptr);
     // PCSS reads the stored depths themselves (its blocker search averages them).
-    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_MODE,
-                     variant == Variant::Pcss ? GL_NONE : GL_COMPARE_REF_TO_TEXTURE);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_MODE, soft(variant) ? GL_NONE : GL_COMPARE_REF_TO_TEXTURE);
     gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_FUNC,
                      static_cast<GLint>(gl_compare(lit_compare(conv, faults.compare))));
     gl.DrawBuffer(GL_NONE);
+  }
+  if (variant == Variant::Vsm) {
+    // Read at texel centres like every other map (the filter is the shader's taps); (0, 0) where
+    // nothing is drawn, which no surface writes (its view depth is beyond the near plane).
+    gl.GenTextures(1, &map.moments);
+    gl.BindTexture(GL_TEXTURE_2D_ARRAY, map.moments);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RG32F, size, size, layers, 0, GL_RG, GL_FLOAT, nullptr);
+    gl.DrawBuffer(GL_COLOR_ATTACHMENT0);
   }
   gl.ReadBuffer(GL_NONE);
 
@@ -266,18 +289,27 @@ LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant varian
   gl.DepthFunc(frame.depth_nearer());
   gl.Disable(GL_STENCIL_TEST);
   gl.Disable(GL_BLEND);
-  const Program& p = variant == Variant::Rgba8 ? frame.programs.packed_depth : frame.programs.flat;
+  const Program& p = variant == Variant::Rgba8 ? frame.programs.packed_depth
+                     : variant == Variant::Vsm ? frame.programs.moments
+                                               : frame.programs.flat;
   gl.UseProgram(p.id);
   float sign = polygon_offset_sign(conv), factor = kOffsetFactor, units = kOffsetUnits;
   if (faults.offset_sign_ignored) sign = 1.0f;  // FAULT: + whatever the convention
   if (faults.no_polygon_offset) factor = units = 0.0f;  // FAULT: acne
   if (faults.large_constant_offset) units = kPeterPanUnits;  // FAULT: peter-panning
+  // The offset in the shader: RGBA8's whole offset; VSM's moments only its constant part, the bias
+  // VSM needs against the float tie of a receiver with its own moments (without it the Cornell box's
+  // tall block, edge-on to the light, reads its own face as an occluder); the slope term would push a
+  // steep face behind the ground it stands on, and the filter would read that contact as lit.
+  if (variant == Variant::Rgba8 || variant == Variant::Vsm) {
+    gl.Uniform1f(p.offset_factor, variant == Variant::Vsm ? 0.0f : sign * factor);
+    gl.Uniform1f(p.offset_units, sign * units);
+  }
   if (variant == Variant::Rgba8) {
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    gl.Uniform1f(p.offset_factor, sign * factor);
-    gl.Uniform1f(p.offset_units, sign * units);
   } else {
-    gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    const GLboolean colour = variant == Variant::Vsm ? GL_TRUE : GL_FALSE;
+    gl.ColorMask(colour, colour, colour, colour);
     gl.Enable(GL_POLYGON_OFFSET_FILL);
     gl.PolygonOffset(sign * factor, sign * units);
     gl.Uniform4f(p.colour, 0, 0, 0, 0);
@@ -285,7 +317,8 @@ LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant varian
   gl.CullFace(GL_FRONT);
   // PCSS averages the depths of the first surfaces toward the light (the blockers), so its map keeps
   // front faces; its receiver-plane compare stands in for the culling's protection from self-shadowing.
-  const bool cull = variant != Variant::Pcss;
+  // (VSM's moments are those of the same first surfaces.)
+  const bool cull = !soft(variant);
   for (GLsizei face = 0; face < layers; ++face) {
     const auto k = static_cast<std::size_t>(face);
     const LightView& view = lc.views[k];
@@ -294,10 +327,17 @@ LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant varian
     if (lc.cube && faults.cube == CubeFault::ZFacesSwapped && face >= 4) layer = 9 - face;
     gl.FramebufferTextureLayer(GL_FRAMEBUFFER, variant == Variant::Rgba8 ? GL_COLOR_ATTACHMENT0 : GL_DEPTH_ATTACHMENT,
                                map.texture, 0, layer);
+    if (variant == Variant::Vsm) {
+      gl.FramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, map.moments, 0, layer);
+      gl.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    }
     if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw GlError("the shadow-map framebuffer is incomplete");
-    gl.Clear(variant == Variant::Rgba8 ? GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT : GL_DEPTH_BUFFER_BIT);
+    gl.Clear(variant == Variant::Depth || variant == Variant::Pcf || variant == Variant::Pcss
+                 ? GL_DEPTH_BUFFER_BIT
+                 : GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     if (view.empty) continue;
+    if (variant == Variant::Vsm) gl.Uniform2f(p.layer_inv_view_depth, map.inv_view_depth[2 * k], map.inv_view_depth[2 * k + 1]);
     Mat4<double> clip = projections[k] * view.view;
     // FAULT: the ±y faces rendered with their up vector negated (the picture turned by 180 degrees:
     // NDC x and y negated), while they are sampled as the face table says.
@@ -325,8 +365,12 @@ LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant varian
 
 void bind_map(const Frame& frame, const LightMap& map, Variant variant) {
   const GlFunctions& gl = frame.gl;
-  gl.ActiveTexture(variant == Variant::Rgba8 ? GL_TEXTURE1 : variant == Variant::Pcss ? kRawDepthUnit : GL_TEXTURE0);
+  gl.ActiveTexture(variant == Variant::Rgba8 ? GL_TEXTURE1 : soft(variant) ? kRawDepthUnit : GL_TEXTURE0);
   gl.BindTexture(GL_TEXTURE_2D_ARRAY, map.texture);
+  if (variant == Variant::Vsm) {
+    gl.ActiveTexture(kMomentUnit);
+    gl.BindTexture(GL_TEXTURE_2D_ARRAY, map.moments);
+  }
   gl.ActiveTexture(GL_TEXTURE0);
   const Program& p = frame.surface_program();
   gl.UseProgram(p.id);
@@ -342,7 +386,7 @@ void bind_map(const Frame& frame, const LightMap& map, Variant variant) {
     for (const Mat4<float>& f : all) m.insert(m.end(), f.data(), f.data() + 16);
     gl.UniformMatrix4fv(location, static_cast<GLsizei>(all.size()), GL_FALSE, m.data());
   };
-  if (variant == Variant::Pcss) {
+  if (soft(variant)) {
     matrices(p.layer_from_world, map.face_from_world);
     matrices(p.world_from_layer, map.world_from_face);
     gl.Uniform2fv(p.inv_view_depth, static_cast<GLsizei>(map.inv_view_depth.size() / 2), map.inv_view_depth.data());
@@ -355,9 +399,9 @@ void bind_map(const Frame& frame, const LightMap& map, Variant variant) {
   }
 }
 
-// PCSS's light: the rect's edges (scaled by the light-size fault) and the blocker fault.
+// PCSS's and VSM's light: the rect's edges (scaled by the light-size fault) and the blocker fault.
 void set_light_uniforms(const Frame& frame, std::size_t i, Variant variant) {
-  if (variant != Variant::Pcss) return;
+  if (!soft(variant)) return;
   const GlFunctions& gl = frame.gl;
   const Program& p = frame.surface_program();
   const scene::Light& light = frame.scene.lights[i];
@@ -370,6 +414,8 @@ void set_light_uniforms(const Frame& frame, std::size_t i, Variant variant) {
 }
 
 void unbind_maps(const GlFunctions& gl) {
+  gl.ActiveTexture(kMomentUnit);
+  gl.BindTexture(GL_TEXTURE_2D_ARRAY, 0);
   gl.ActiveTexture(kRawDepthUnit);
   gl.BindTexture(GL_TEXTURE_2D_ARRAY, 0);
   gl.ActiveTexture(GL_TEXTURE1);
@@ -384,19 +430,20 @@ int shader_mode(Variant v) {
     case Variant::Pcf: return 2;
     case Variant::Rgba8: return 3;
     case Variant::Pcss: return 4;
+    case Variant::Vsm: return 5;
   }
   return 1;
 }
 
-// PCSS needs a light with an area: a point, spot or directional light is drawn with PCF.
+// PCSS and VSM need a light with an area: a point, spot or directional light is drawn with PCF.
 Variant variant_for_light(const scene::Light& light, Variant variant) {
-  return variant == Variant::Pcss && light.type != scene::LightType::Rect ? Variant::Pcf : variant;
+  return soft(variant) && light.type != scene::LightType::Rect ? Variant::Pcf : variant;
 }
 
 void render_variant(Frame& frame, Variant variant, bool cascaded) {
   const GlFunctions& gl = frame.gl;
-  // PCSS's code lives in its own program; every other variant draws with the plain one.
-  if (variant == Variant::Pcss) frame.surface = &frame.programs.surface_soft;
+  // PCSS's and VSM's code lives in its own program; every other variant draws with the plain one.
+  if (soft(variant)) frame.surface = &frame.programs.surface_soft;
   const Mat4<float> clip = frame.camera_clip(CameraDepth::Scene);
   std::vector<LightMap> maps;
   std::vector<Variant> variants;
@@ -429,7 +476,7 @@ void render_variant(Frame& frame, Variant variant, bool cascaded) {
   };
   for (std::size_t i = 0; i < maps.size(); ++i)
     frame.result.masks.push_back(camera_pass(i, 2, static_cast<float>(outputs::kMaskNoSurface) / 255.0f));
-  if (variant == Variant::Pcf || variant == Variant::Pcss)
+  if (variant == Variant::Pcf || soft(variant))
     for (std::size_t i = 0; i < maps.size(); ++i) frame.result.visibility.push_back(camera_pass(i, 3, 0.0f));
 
   // The shaded picture: ambient once, then each light added where its map says lit.
@@ -451,5 +498,6 @@ void render_shadowmap_rgba8(Frame& frame) { render_variant(frame, Variant::Rgba8
 void render_csm(Frame& frame) { render_variant(frame, Variant::Depth, true); }
 void render_csm_pcf(Frame& frame) { render_variant(frame, Variant::Pcf, true); }
 void render_pcss(Frame& frame) { render_variant(frame, Variant::Pcss, false); }
+void render_vsm(Frame& frame) { render_variant(frame, Variant::Vsm, false); }
 
 }  // namespace shadowref::renderer

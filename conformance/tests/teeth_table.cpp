@@ -229,6 +229,18 @@ constexpr Row kRows[] = {
      .field_class = "a penumbra estimated with the wrong light size",
      .why = "the light's full size taken for its half-size: every penumbra twice as wide, the far ball's umbra "
             "gone"},
+    // ---- variance shadow maps over PCSS's penumbra -----------------------------------------------
+    {.name = "vsm-blocker-search-reads-the-receiver", .technique = "vsm",
+     .faults = on([](Faults& f) { f.soft.blocker_depth_from_receiver = true; }), .convention = "gl",
+     .scenes = "soft_penumbra",
+     .field_class = "a PCSS blocker search that returns the receiver's depth",
+     .why = "the filter region shrinks to the receiver's own texels: the moments hold one depth and every soft "
+            "shadow comes out hard"},
+    {.name = "vsm-penumbra-for-twice-the-light", .technique = "vsm",
+     .faults = on([](Faults& f) { f.soft.light_size_scale = 2.0; }), .convention = "gl",
+     .scenes = "soft_penumbra",
+     .field_class = "a penumbra estimated with the wrong light size",
+     .why = "the moments averaged over twice the region: every penumbra twice as wide, the far ball's umbra gone"},
 };
 // clang-format on
 

@@ -264,7 +264,7 @@ void read_expect(const JsonNode& n, Scene& scene) {
       for (const auto& t : outputs::kTechniques) list += (list.empty() ? "" : ", ") + std::string(t.name);
       e.fail("unknown technique (known: " + list + ")");
     }
-    e.expect_object({"result", "why"});
+    e.expect_object({"result", "why", "errors"});
     Expectation x;
     const JsonNode result = e.required("result");
     const std::string r = result.string();
@@ -274,6 +274,14 @@ void read_expect(const JsonNode& n, Scene& scene) {
     if (e.has("why")) x.why = e.child("why").string();
     if ((!x.pass || x.warn) && x.why.empty())
       e.fail_at("why", "is required (and non-empty) for an expected failure or warning");
+    if (e.has("errors")) {
+      const JsonNode k = e.child("errors");
+      const std::string v = k.string();
+      if (v == "too-light") x.errors = PredictedErrors::TooLight;
+      else if (v == "too-dark") x.errors = PredictedErrors::TooDark;
+      else k.fail("must be \"too-light\" or \"too-dark\"");
+      if (x.pass) k.fail("predicts the errors of an expected failure: only with \"result\": \"fail\"");
+    }
     scene.expect[item.key()] = x;
   }
 }

@@ -88,10 +88,12 @@ const ErrorCase kCases[] = {
     {"ReceiverNotBool", "/objects/0/receiver", "1", "objects[0].receiver: must be true or false, not number"},
     {"TwoReceivers", "/objects/1/receiver", "true", "objects[1].receiver: only one object may be the receiver (objects[0] already is)"},
     {"ReceiverNotPlanar", "/objects/0/shape", R"({"type": "box", "size": [1, 1, 1]})", "objects[0].receiver: the receiver must be planar (all its vertices on one plane)"},
-    {"ExpectUnknownTechnique", "/expect/planer", R"({"result": "pass"})", "expect.planer: unknown technique (known: planar, volume-zpass, volume-zfail, volume-zfail-clamp, volume-robust, volume-finite, shadowmap, shadowmap-pcf, shadowmap-rgba8, csm, csm-pcf, pcss)"},
+    {"ExpectUnknownTechnique", "/expect/planer", R"({"result": "pass"})", "expect.planer: unknown technique (known: planar, volume-zpass, volume-zfail, volume-zfail-clamp, volume-robust, volume-finite, shadowmap, shadowmap-pcf, shadowmap-rgba8, csm, csm-pcf, pcss, vsm)"},
     {"ExpectBadResult", "/expect/planar/result", "\"xfail\"", "expect.planar.result: must be \"pass\", \"warn\" or \"fail\""},
     {"ExpectFailWithoutWhy", "/expect/planar/result", "\"fail\"", "expect.planar.why: is required (and non-empty) for an expected failure or warning"},
     {"ExpectWarnWithoutWhy", "/expect/planar/result", "\"warn\"", "expect.planar.why: is required (and non-empty) for an expected failure or warning"},
+    {"ExpectErrorsUnknown", "/expect/planar", R"({"result": "fail", "why": "w", "errors": "dark"})", "expect.planar.errors: must be \"too-light\" or \"too-dark\""},
+    {"ExpectErrorsOnPass", "/expect/planar", R"({"result": "pass", "errors": "too-light"})", "expect.planar.errors: predicts the errors of an expected failure: only with \"result\": \"fail\""},
     {"TagsNotStrings", "/tags", "[1]", "tags[0]: must be a string, not number"},
 };
 

@@ -111,6 +111,8 @@ MaskMetrics& MaskMetrics::operator+=(const MaskMetrics& o) {
   explained_texel += o.explained_texel;
   explained_bias += o.explained_bias;
   unexplained += o.unexplained;
+  unexplained_false_light += o.unexplained_false_light;
+  unexplained_false_light_core += o.unexplained_false_light_core;
   unexplained_core += o.unexplained_core;
   edge_pixels += o.edge_pixels;
   invariant_pixels += o.invariant_pixels;
@@ -209,6 +211,7 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
           colour = kErrorColours.bias;
         } else {
           ++m.unexplained;
+          if (code == kFalseLight) ++m.unexplained_false_light;
           unexplained[i] = 1;
         }
       }
@@ -223,6 +226,9 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
   m.decided = decided_count;
   m.decided_surface = decided_surface;
   m.unexplained_core = count_cores(unexplained, w, h, m.unexplained);
+  // The same over the false light alone (an expected failure's predicted kind, conform.cpp).
+  for (std::size_t i = 0; i < n; ++i) unexplained[i] = unexplained[i] && codes[i] == kFalseLight;
+  m.unexplained_false_light_core = count_cores(unexplained, w, h, m.unexplained_false_light);
   if (m.off_values) {
     // The contract allows three values and nothing is rounded: a mask written as 10 / 250 is a
     // broken writer, not a near miss (docs/output-contract.md).

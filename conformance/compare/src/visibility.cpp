@@ -36,6 +36,8 @@ VisibilityMetrics& VisibilityMetrics::operator+=(const VisibilityMetrics& o) {
   beyond_sampling += o.beyond_sampling;
   explained += o.explained;
   unexplained += o.unexplained;
+  unexplained_too_light += o.unexplained_too_light;
+  unexplained_too_light_core += o.unexplained_too_light_core;
   unexplained_core += o.unexplained_core;
   sum_penumbra_error += o.sum_penumbra_error;
   max_error = std::max(max_error, o.max_error);
@@ -80,11 +82,14 @@ VisibilityComparison compare_visibility(const std::vector<float>& reference, con
       }
       code[i] = explained ? kExplained : kUnexplained;
       ++(explained ? m.explained : m.unexplained);
+      if (!explained && e > 0) ++m.unexplained_too_light;
     }
   // Cores: a (2 kCoreRadius + 1)² block of unexplained pixels (compare.hpp).
   std::vector<std::uint8_t> unexplained(n);
   for (std::size_t i = 0; i < n; ++i) unexplained[i] = code[i] == kUnexplained;
   m.unexplained_core = count_cores(unexplained, w, h, m.unexplained);
+  for (std::size_t i = 0; i < n; ++i) unexplained[i] = unexplained[i] && error[i] > 0;
+  m.unexplained_too_light_core = count_cores(unexplained, w, h, m.unexplained_too_light);
   // The error image over the dimmed reference fraction.
   out.error = outputs::Image8{w, h, 3, std::vector<std::uint8_t>(3 * n)};
   const ErrorColours& k = kErrorColours;

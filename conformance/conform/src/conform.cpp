@@ -44,6 +44,47 @@ std::filesystem::path candidate_folder(const std::filesystem::path& dir, const s
   return dir / scene;
 }
 
+// An expected failure that predicts the kind of its errors (scene::PredictedErrors): the errors of
+// the other kind, judged on their own by the verdict's bounds (a 5x5 core, or a ratio to the same
+// edge pixels or penumbra), must pass. Returns what they fail by, or "" when they pass; `seen`
+// gets the predicted errors' counts for the signature.
+std::string unpredicted_errors(const compare::FolderComparison& c, scene::PredictedErrors predicted, std::string& seen) {
+  const bool light = predicted == scene::PredictedErrors::TooLight;
+  const char* other_name = light ? "too dark (false shadow)" : "too light (false light)";
+  std::string problem;
+  const auto add = [&](const std::string& s) { problem += (problem.empty() ? "" : "; ") + s; };
+  char buf[256];
+  const compare::MaskMetrics& m = c.total;
+  const std::size_t mask_other = light ? m.unexplained - m.unexplained_false_light : m.unexplained_false_light;
+  // Cores of the other kind: all cores less the predicted kind's (a core of one kind is a core of both).
+  const std::size_t mask_other_core = light ? m.unexplained_core - std::min(m.unexplained_core, m.unexplained_false_light_core)
+                                            : m.unexplained_false_light_core;
+  const double mask_ratio = m.edge_pixels ? static_cast<double>(mask_other) / static_cast<double>(m.edge_pixels) : 0.0;
+  if (mask_other_core > 0 || (c.threshold && mask_ratio > c.threshold->unexplained_fail)) {
+    std::snprintf(buf, sizeof buf, "mask: %zu px %s unexplained (%.2f %% of the edge pixels, %zu in cores)", mask_other,
+                  other_name, 100.0 * mask_ratio, mask_other_core);
+    add(buf);
+  }
+  std::size_t vis_predicted = 0;
+  if (c.visibility_total) {
+    const compare::VisibilityMetrics& v = *c.visibility_total;
+    const std::size_t other = light ? v.unexplained - v.unexplained_too_light : v.unexplained_too_light;
+    const std::size_t other_core = light ? v.unexplained_core - std::min(v.unexplained_core, v.unexplained_too_light_core)
+                                         : v.unexplained_too_light_core;
+    vis_predicted = v.unexplained - other;
+    const double ratio = v.penumbra ? static_cast<double>(other) / static_cast<double>(v.penumbra) : 0.0;
+    if (other_core > 0 || ratio > compare::kPenumbra.unexplained_fail) {
+      std::snprintf(buf, sizeof buf, "lit fraction: %zu px %s unexplained (%.2f %% of the penumbra, %zu in cores)", other,
+                    other_name, 100.0 * ratio, other_core);
+      add(buf);
+    }
+  }
+  std::snprintf(buf, sizeof buf, "%zu mask px and %zu lit-fraction px %s, unexplained", m.unexplained - mask_other,
+                vis_predicted, light ? "too light" : "too dark");
+  seen = buf;
+  return problem;
+}
+
 }  // namespace
 
 const char* to_string(Status s) {
@@ -208,6 +249,7 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
         c.expected_pass = e->second.pass;
         c.expected_warning = e->second.warn;
         c.why = e->second.why;
+        c.predicted_errors = e->second.errors;
       }
       try {
         if (gl) {
@@ -274,6 +316,17 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
         const auto signature_start = Clock::now();
         if (!gl) c.candidate_dir = std::filesystem::absolute(c.candidate_dir);
         c.status = status_of(c.comparison->judgement.verdict, c.expected_pass);
+        // An expected failure that predicts its errors' kind: granted only when the other kind passes.
+        if (c.status == Status::XFail && c.predicted_errors != scene::PredictedErrors::Any) {
+          std::string seen;
+          const std::string problem = unpredicted_errors(*c.comparison, c.predicted_errors, seen);
+          if (!problem.empty()) {
+            c.status = Status::Fail;
+            c.signature = "expected failure seen, but errors of the kind it does not predict fail on their own: " + problem;
+          } else {
+            c.signature = "the errors are of the predicted kind: " + seen;
+          }
+        }
         if (!gl) {
           // Keep where the error images went for the report.
           for (auto& e : c.error_images) e = (error_dir / e).string();
@@ -302,7 +355,8 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
             c.signature = "expected failure seen, but also wrong elsewhere: " + std::to_string(against_model.total.unexplained) +
                           " px unexplained against the technique's own model of its failure (our " + judged_as + ")";
           } else {
-            c.signature = "the errors are the ones the technique's own model of its failure predicts (our " + judged_as + ")";
+            c.signature += std::string(c.signature.empty() ? "" : "; ") +
+                           "the errors are the ones the technique's own model of its failure predicts (our " + judged_as + ")";
           }
         }
         result.phases.judge += since(signature_start);

@@ -21,7 +21,7 @@
 //     "cascades": 4                       integer in [0, 8]: cascaded techniques (csm, csm-pcf), the
 //                                         cascades per directional light, split as the pack's
 //                                         `cascades` say; 0 = the pack's count
-//     "light_taps": 8                     integer in [1, 64]: soft techniques (pcss), the taps per axis
+//     "light_taps": 8                     integer in [1, 64]: soft techniques (pcss, vsm), the taps per axis
 //                                         of the filter over the light's area: its fraction moves in
 //                                         steps of about 1 / light_taps across a boundary (the
 //                                         visibility judgement's sampling tolerance)

@@ -17,7 +17,7 @@ enum class TechniqueFamily {
   ExactGeometry,  // rasterises the very triangles the reference traces: planar, stencil volumes
   ShadowMap,      // one depth compare per pixel against a map of texels
   ShadowMapPcf,   // a filtered compare (percentage-closer filtering)
-  SoftShadow,     // a filtered compare whose filter follows the light's size (PCSS): judged as visibility too
+  SoftShadow,     // a filter that follows the light's size (PCSS, VSM): judged as visibility too
 };
 
 struct TechniqueName {
@@ -30,7 +30,7 @@ struct TechniqueName {
 };
 
 // clang-format off
-inline constexpr std::array<TechniqueName, 12> kTechniques{{
+inline constexpr std::array<TechniqueName, 13> kTechniques{{
     {"planar", TechniqueFamily::ExactGeometry},
     {"volume-zpass", TechniqueFamily::ExactGeometry},
     {"volume-zfail", TechniqueFamily::ExactGeometry},
@@ -43,6 +43,7 @@ inline constexpr std::array<TechniqueName, 12> kTechniques{{
     {"csm", TechniqueFamily::ShadowMap, true},
     {"csm-pcf", TechniqueFamily::ShadowMapPcf, true},
     {"pcss", TechniqueFamily::SoftShadow},
+    {"vsm", TechniqueFamily::SoftShadow},
 }};
 // clang-format on
 

@@ -70,8 +70,17 @@ struct Object {
 
 // A technique's expected verdict on this scene: pass, or fail with the reason (the known
 // limitation the catalogue wants to see detected).
+// The kind of error an expected failure predicts ("errors" in the scene file): a FAIL counts as the
+// expected one only when the errors of the other kind would not fail on their own.
+enum class PredictedErrors {
+  Any,       // no prediction
+  TooLight,  // false light / a lit fraction above the truth (a leak, light bleeding)
+  TooDark,   // false shadow / a lit fraction below the truth
+};
+
 struct Expectation {
   bool pass = true;
+  PredictedErrors errors = PredictedErrors::Any;
   // "warn": an expected quality warning (explained errors beyond the quality bound, e.g. one map
   // over a kilometre of ground): a WARN verdict is then no warning of the run; PASS and FAIL count as usual.
   bool warn = false;

@@ -57,7 +57,9 @@ struct MaskMetrics {
   std::size_t explained_texel = 0;  // wrong, within the declared map's texel footprint of a true boundary
   std::size_t explained_bias = 0;   // wrong, within the declared bias of a contact or a grazing surface
   std::size_t unexplained = 0;      // wrong and explained by nothing
+  std::size_t unexplained_false_light = 0;  // of those, false light (the rest: false shadow or coverage)
   std::size_t unexplained_core = 0; // unexplained pixels whose (2 kCoreRadius + 1)² neighbourhood is all unexplained
+  std::size_t unexplained_false_light_core = 0;  // the same over the unexplained false light alone
   std::size_t edge_pixels = 0;      // reference pixels with a 4-neighbour of another class (lit,
                                     // shadowed, no surface): the length of every boundary, in pixels
   std::size_t invariant_pixels = 0; // undecided pixels judged because the scene's invariant holds there

@@ -35,7 +35,9 @@ struct VisibilityMetrics {
   std::size_t beyond_sampling = 0;   // |e| beyond the sampling tolerance
   std::size_t explained = 0;         // of those, within the filter footprint's band
   std::size_t unexplained = 0;       // of those, not
+  std::size_t unexplained_too_light = 0;  // of those, the candidate lighter than the truth (blue)
   std::size_t unexplained_core = 0;  // unexplained pixels whose (2 kCoreRadius + 1)² neighbourhood is all unexplained
+  std::size_t unexplained_too_light_core = 0;  // the same over the too-light unexplained pixels alone
   double sum_penumbra_error = 0;     // sum of |e| over the penumbra
   double max_error = 0;              // largest |e| over the judged pixels
   double mean_error_bound = 0;       // visibility_mean_error_bound of the light (the largest over lights)

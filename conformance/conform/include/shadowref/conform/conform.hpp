@@ -25,6 +25,7 @@
 #include "shadowref/compare/compare.hpp"
 #include "shadowref/outputs/candidate.hpp"
 #include "shadowref/conform/reference_cache.hpp"
+#include "shadowref/scene/scene.hpp"
 
 #include "shadowref/renderer/faults.hpp"
 
@@ -79,7 +80,8 @@ struct CaseResult {
   bool expected_pass = true;
   bool expected_warning = false;                // the catalogue expects a quality warning (a WARN is no warning of the run)
   std::string why;                              // the catalogue's why (expected failures and warnings)
-  std::string signature;                        // an engine's expected failure against the technique's model
+  scene::PredictedErrors predicted_errors = scene::PredictedErrors::Any;  // the catalogue's "errors"
+  std::string signature;                        // how an expected failure was checked to be the predicted one
   Status status = Status::Error;
   std::optional<compare::FolderComparison> comparison;
   std::string error;                            // ERROR: what went wrong
