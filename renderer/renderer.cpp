@@ -162,6 +162,7 @@ Program link(const GlFunctions& gl, std::initializer_list<const char*> fragment,
   p.blocker_at_receiver = loc("u_blocker_at_receiver");
   p.moment_map = loc("u_moment_map");
   p.layer_inv_view_depth = loc("u_layer_inv_view_depth");
+  p.taps_in_own_face = loc("u_taps_in_own_face");
   gl.UseProgram(p.id);
   if (p.shadow_map >= 0) gl.Uniform1i(p.shadow_map, 0);
   if (p.packed_map >= 0) gl.Uniform1i(p.packed_map, 1);
@@ -430,7 +431,8 @@ constexpr Technique kTechniqueTable[] = {
      "Percentage-closer soft shadows (Fernando 2005) for rect lights: a blocker search over the light's "
      "rect seen through the map's near plane, the penumbra estimated from the blockers' mean depth, and "
      "an 8x8 filter over the rect seen through that depth, every tap compared with the receiver's own "
-     "plane; writes the lit fraction as visibility.png. Other lights as shadowmap-pcf.",
+     "plane (a tap beyond a cube face's edge read from the neighbouring face); writes the lit fraction as "
+     "visibility.png. Other lights as shadowmap-pcf.",
      render_pcss},
     {"vsm",
      "Variance shadow maps (Donnelly & Lauritzen 2006) filtered over PCSS's penumbra (Lauritzen 2007, "

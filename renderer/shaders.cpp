@@ -118,16 +118,26 @@ uniform mat4 u_world_from_layer[6];  // the inverses of u_layer_from_world
 uniform vec2 u_inv_view_depth[6];    // per layer: 1 / (depth along the view axis) = x * window depth + y
 uniform vec3 u_rect_u;               // the rect light's edges (world); u_light is its centre
 uniform vec3 u_rect_v;
-uniform int u_blocker_at_receiver;   // fault switch (renderer/faults.hpp, SoftShadowFaults)
+uniform int u_blocker_at_receiver;   // fault switches (renderer/faults.hpp, SoftShadowFaults)
+uniform int u_taps_in_own_face;
 // VSM (u_shadow 5): the moments (view depth, its square) of the same layers; (0, 0) where nothing was drawn.
 uniform sampler2DArray u_moment_map; // unit 3
 out vec4 o_colour;
 
+// The cube face a cube-map lookup picks for direction d from the light: the axis of its largest
+// component (+x, -x, +y, -y, +z, -z).
+int cube_face(vec3 d) {
+  vec3 a = abs(d);
+  return (a.x >= a.y && a.x >= a.z) ? (d.x >= 0.0 ? 0 : 1)
+       : (a.y >= a.z)               ? (d.y >= 0.0 ? 2 : 3)
+                                    : (d.z >= 0.0 ? 4 : 5);
+}
+
 #ifdef SHADOWREF_PCSS  // only in the soft program (kPcssDefine): llvmpipe pays for dead branches
 // PCSS (Fernando 2005, "Percentage-closer soft shadows") for a rect light, in the map of its centre.
-// p: the fragment in the layer's texture space (s, t, window depth), w: its depth along the light's
-// view axis. The receiver is the fragment's own plane (its face normal), carried into texture space
-// (planes stay planes under B * P * V), so every tap compares the map with the receiver's depth at
+// receiver_depth: the fragment's depth along the view axis of its layer. The receiver is the
+// fragment's own plane (its face normal), carried into texture space (planes stay planes under
+// B * P * V), so every tap compares the map with the receiver's depth at
 // that tap's texel centre, where the map was rasterised: no self-shadowing at kernel scale on planar
 // receivers (Isidoro 2006's receiver-plane depth bias, exact instead of from derivatives).
 // 1. Blocker search: 6 x 6 taps over the light's rect seen from p through the nearest plane a
@@ -137,38 +147,88 @@ out vec4 o_colour;
 //    estimate (d_r - d_b) / d_b times the light, in the light's own shape); the unblocked fraction.
 const int kSearchTaps = 6;
 const int kFilterTaps = 8;
-vec4 receiver_plane(int layer) {
-  // A plane through (or within a hundredth of its distance of) the light's centre is seen edge-on:
-  // its depth across the map is ill-conditioned. Such a receiver is compared at its own depth, and
-  // the polygon offset's slope term protects it (plane.z = 0 selects that in blocker_at).
+// The receiver's plane (world), or 0 when it is seen edge-on from the light's centre: a plane
+// through (or within a hundredth of its distance of) the light's centre has an ill-conditioned
+// depth across the map, so such a receiver is compared at its own depth and the polygon offset's
+// slope term protects it (plane.z = 0 selects that in blocker_at).
+vec4 receiver_world_plane() {
   vec3 to_light = u_light.xyz - v_world;
   if (abs(dot(v_normal, to_light)) < 0.01 * length(to_light)) return vec4(0.0);
-  vec4 world_plane = vec4(v_normal, -dot(v_normal, v_world));
-  return transpose(u_world_from_layer[layer]) * world_plane;
+  return vec4(v_normal, -dot(v_normal, v_world));
 }
-// The texel of the world point x (its texture coordinates), or vec3(-1) outside the map.
-vec2 tap_texel(vec3 x, int layer) {
-  vec4 t = u_layer_from_world[layer] * vec4(x, 1.0);
-  if (t.w <= 0.0) return vec2(-1.0);
+// A tap: the texel centre c of a world point in the layer that holds the point (for a cube, the
+// face a cube-map lookup picks for its direction from the light: a filter reaching across a face's
+// edge reads the neighbouring face, not nothing), that layer, and the receiver's plane carried into
+// its texture space (planes stay planes under B * P * V); c.x < 0 outside the map.
+struct Tap {
+  vec2 c;
+  int layer;
+  vec4 plane;
+};
+Tap tap_at(vec3 x, int layer, vec4 plane_in_layer, vec4 world_plane) {
+  Tap tap;
+  tap.layer = layer;
+  tap.plane = plane_in_layer;
+  if (u_layout == 1 && u_taps_in_own_face == 0) {  // FAULT when set: the seam leaks
+    int face = cube_face(x - u_light.xyz);
+    if (face != layer) {
+      tap.layer = face;
+      tap.plane = transpose(u_world_from_layer[face]) * world_plane;
+    }
+  }
+  tap.c = vec2(-1.0);
+  vec4 t = u_layer_from_world[tap.layer] * vec4(x, 1.0);
+  if (t.w <= 0.0) return tap;
   vec2 uv = t.xy / t.w;
-  if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return vec2(-1.0);
-  return (floor(uv / u_texel) + 0.5) * u_texel;  // the texel centre
-}
-// The stored window depth at texel centre c when it holds something nearer than the receiver's
-// plane there (a blocker), else -1.
-float blocker_at(vec2 c, int layer, vec4 plane, float receiver_z) {
-  if (c.x < 0.0) return -1.0;
-  float z = plane.z != 0.0 ? -(plane.x * c.x + plane.y * c.y + plane.w) / plane.z : receiver_z;
-  float stored = texture(u_depth_map, vec3(c, float(layer))).r;
-  bool lit = u_lit_greater == 1 ? z >= stored : z <= stored;
-  return lit ? -1.0 : stored;
+  if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return tap;
+  tap.c = (floor(uv / u_texel) + 0.5) * u_texel;  // the texel centre
+  return tap;
 }
 float view_depth(float window_depth, int layer) {
   return 1.0 / (u_inv_view_depth[layer].x * window_depth + u_inv_view_depth[layer].y);
 }
+// The receiver's window depth at the tap's texel centre, in the tap's layer (its own depth there
+// when it is seen edge-on).
+float receiver_z_at(Tap tap) {
+  if (tap.plane.z != 0.0) return -(tap.plane.x * tap.c.x + tap.plane.y * tap.c.y + tap.plane.w) / tap.plane.z;
+  vec4 s = u_layer_from_world[tap.layer] * vec4(v_world, 1.0);
+  return s.z / s.w;
+}
+// The stored window depth at the tap when it holds something nearer than the receiver's plane
+// there (a blocker), else -1. `layer` is the fragment's. A tap read from another cube face counts
+// only when what it holds truly blocks a point of the light from the receiver: it lies between the
+// receiver and the light's plane, and the ray from the receiver through it meets that plane inside
+// the rect. Far from the fragment's own face the receiver's plane says nothing (near the light the
+// search's taps reach any direction: the ceiling the light hangs under, the far walls), so there
+// the geometry decides; near a seam, where a filter straddles two faces, both agree.
+float blocker_at(Tap tap, int layer) {
+  if (tap.c.x < 0.0) return -1.0;
+  float z = receiver_z_at(tap);
+  float stored = texture(u_depth_map, vec3(tap.c, float(tap.layer))).r;
+  bool lit = u_lit_greater == 1 ? z >= stored : z <= stored;
+  if (lit) return -1.0;
+  if (tap.layer != layer) {
+    vec4 w = u_world_from_layer[tap.layer] * vec4(tap.c, stored, 1.0);
+    vec3 b = w.xyz / w.w;
+    vec3 ln = cross(u_rect_u, u_rect_v);
+    float dp = dot(ln, v_world - u_light.xyz), db = dot(ln, b - u_light.xyz);
+    if (dp * db <= 0.0 || abs(db) >= abs(dp)) return -1.0;
+    vec3 h = v_world + (dp / (dp - db)) * (b - v_world) - u_light.xyz;
+    vec2 ab = vec2(dot(h, u_rect_u) / dot(u_rect_u, u_rect_u), dot(h, u_rect_v) / dot(u_rect_v, u_rect_v));
+    if (any(greaterThan(abs(ab), vec2(0.5)))) return -1.0;
+  }
+  return stored;
+}
+// A blocker's depth along the view axis of `layer` (the fragment's): a blocker found in another
+// cube face is carried back through its world point.
+float blocker_depth_in(Tap tap, float stored, int layer) {
+  if (tap.layer == layer) return view_depth(stored, layer);
+  vec4 w = u_world_from_layer[tap.layer] * vec4(tap.c, stored, 1.0);
+  return (u_layer_from_world[layer] * vec4(w.xyz / w.w, 1.0)).w;
+}
 // Steps 1 and 2's plane: the fraction of the way from p to the light at which the light's rect,
 // seen from p, covers the filter's texels (0 when the search finds no blocker: `blockers` is 0).
-float penumbra_plane(vec4 plane, vec3 p, float receiver_depth, int layer, out int blockers) {
+float penumbra_plane(vec4 plane, vec4 world_plane, float receiver_depth, int layer, out int blockers) {
   // The nearest depth a blocker can have: the map's near plane (window depth 0, or 1 reversed).
   // Not nearer than a tenth of the receiver's depth: a cube face's near plane may touch the light,
   // where the rect's own image would fill the search.
@@ -180,9 +240,10 @@ float penumbra_plane(vec4 plane, vec3 p, float receiver_depth, int layer, out in
     for (int i = 0; i < kSearchTaps; ++i) {
       vec2 ab = (vec2(i, j) + 0.5) / float(kSearchTaps) - 0.5;
       vec3 l = u_light.xyz + ab.x * u_rect_u + ab.y * u_rect_v;
-      float d = blocker_at(tap_texel(v_world + (l - v_world) * t_search, layer), layer, plane, p.z);
+      Tap tap = tap_at(v_world + (l - v_world) * t_search, layer, plane, world_plane);
+      float d = blocker_at(tap, layer);
       if (d >= 0.0) {
-        sum += view_depth(d, layer);
+        sum += blocker_depth_in(tap, d, layer);
         ++blockers;
       }
     }
@@ -195,19 +256,21 @@ vec3 filter_light_point(int i, int j) {
   vec2 ab = (vec2(i, j) + 0.5) / float(kFilterTaps) - 0.5;
   return u_light.xyz + ab.x * u_rect_u + ab.y * u_rect_v;
 }
-float pcss(vec3 p, float receiver_depth, int layer) {
-  vec4 plane = receiver_plane(layer);
+float pcss(float receiver_depth, int layer) {
+  vec4 world_plane = receiver_world_plane();
+  vec4 plane = transpose(u_world_from_layer[layer]) * world_plane;
   // A light point behind the receiver's own plane is hidden by the receiver itself: an area light
   // half below the horizon of a surface lights it by half (the soft terminator on a ball).
   vec3 n = gl_FrontFacing ? v_normal : -v_normal;
   int blockers;
-  float t = penumbra_plane(plane, p, receiver_depth, layer, blockers);
+  float t = penumbra_plane(plane, world_plane, receiver_depth, layer, blockers);
   float lit = 0.0;
   for (int j = 0; j < kFilterTaps; ++j)
     for (int i = 0; i < kFilterTaps; ++i) {
       vec3 l = filter_light_point(i, j);
       if (dot(n, l - v_world) <= 0.0) continue;
-      if (blockers == 0 || blocker_at(tap_texel(v_world + (l - v_world) * t, layer), layer, plane, p.z) < 0.0) lit += 1.0;
+      if (blockers == 0 || blocker_at(tap_at(v_world + (l - v_world) * t, layer, plane, world_plane), layer) < 0.0)
+        lit += 1.0;
     }
   return lit / float(kFilterTaps * kFilterTaps);
 }
@@ -224,11 +287,12 @@ float pcss(vec3 p, float receiver_depth, int layer) {
 // kVsmMinSigma: a floor on the standard deviation, relative to the depth (float moments of depths
 // near d lose about d * 2^-12 of their deviation to cancellation in E[d^2] - E[d]^2).
 const float kVsmMinSigma = 1e-3;
-float vsm(vec3 p, float receiver_depth, int layer) {
-  vec4 plane = receiver_plane(layer);
+float vsm(float receiver_depth, int layer) {
+  vec4 world_plane = receiver_world_plane();
+  vec4 plane = transpose(u_world_from_layer[layer]) * world_plane;
   vec3 n = gl_FrontFacing ? v_normal : -v_normal;
   int blockers;
-  float t = penumbra_plane(plane, p, receiver_depth, layer, blockers);
+  float t = penumbra_plane(plane, world_plane, receiver_depth, layer, blockers);
   float above = 0.0;
   vec2 moments = vec2(0.0);
   float receiver = 0.0;
@@ -237,10 +301,12 @@ float vsm(vec3 p, float receiver_depth, int layer) {
       vec3 l = filter_light_point(i, j);
       if (dot(n, l - v_world) <= 0.0) continue;
       above += 1.0;
-      vec2 c = tap_texel(v_world + (l - v_world) * t, layer);
+      // A tap in another cube face reads that face's moments and the receiver's depth there, both
+      // along that face's axis (near the seam, where such taps lie, the two axes measure alike).
+      Tap tap = tap_at(v_world + (l - v_world) * t, layer, plane, world_plane);
       float r = receiver_depth;
-      if (c.x >= 0.0 && plane.z != 0.0) r = view_depth(clamp(-(plane.x * c.x + plane.y * c.y + plane.w) / plane.z, 0.0, 1.0), layer);
-      vec2 m = c.x >= 0.0 ? texture(u_moment_map, vec3(c, float(layer))).rg : vec2(0.0);
+      if (tap.c.x >= 0.0) r = view_depth(clamp(receiver_z_at(tap), 0.0, 1.0), tap.layer);
+      vec2 m = tap.c.x >= 0.0 ? texture(u_moment_map, vec3(tap.c, float(tap.layer))).rg : vec2(0.0);
       // Outside the map or nothing drawn there: no occluder, the receiver itself.
       if (!(m.x > 0.0)) m = vec2(r, r * r);
       moments += m;
@@ -278,11 +344,7 @@ float shadow_visibility() {
     // The face whose axis is the largest component of the direction from the light (that of a
     // cube-map lookup); each face's map reaches a few texels beyond 90 degrees, so the PCF taps
     // of a fragment on a face's edge stay in that face.
-    vec3 d = v_world - u_light.xyz;
-    vec3 a = abs(d);
-    int face = (a.x >= a.y && a.x >= a.z) ? (d.x >= 0.0 ? 0 : 1)
-             : (a.y >= a.z)               ? (d.y >= 0.0 ? 2 : 3)
-                                          : (d.z >= 0.0 ? 4 : 5);
+    int face = cube_face(v_world - u_light.xyz);
     s = u_layer_from_world[face] * vec4(v_world, 1.0);
     layer = float(face);
   }
@@ -294,8 +356,8 @@ float shadow_visibility() {
   // Beyond the light's far plane: compare as at the far plane, where nothing occludes.
   p.z = u_reversed == 1 ? max(p.z, 0.0) : min(p.z, 1.0);
 #ifdef SHADOWREF_PCSS
-  if (u_shadow == 4) return pcss(p, s.w, int(layer));
-  if (u_shadow == 5) return vsm(p, s.w, int(layer));
+  if (u_shadow == 4) return pcss(s.w, int(layer));
+  if (u_shadow == 5) return vsm(s.w, int(layer));
 #endif
   if (u_shadow == 1) return texture(u_shadow_map, vec4(p.xy, layer, p.z));
   if (u_shadow == 2) {

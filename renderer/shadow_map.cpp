@@ -411,6 +411,7 @@ void set_light_uniforms(const Frame& frame, std::size_t i, Variant variant) {
   gl.Uniform3f(p.rect_u, u.x(), u.y(), u.z());
   gl.Uniform3f(p.rect_v, v.x(), v.y(), v.z());
   gl.Uniform1i(p.blocker_at_receiver, f.blocker_depth_from_receiver ? 1 : 0);
+  gl.Uniform1i(p.taps_in_own_face, f.taps_stay_in_face ? 1 : 0);
 }
 
 void unbind_maps(const GlFunctions& gl) {

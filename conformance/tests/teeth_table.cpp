@@ -229,6 +229,12 @@ constexpr Row kRows[] = {
      .field_class = "a penumbra estimated with the wrong light size",
      .why = "the light's full size taken for its half-size: every penumbra twice as wide, the far ball's umbra "
             "gone"},
+    {.name = "pcss-cube-taps-stay-in-face", .technique = "pcss",
+     .faults = on([](Faults& f) { f.soft.taps_stay_in_face = true; }), .convention = "gl",
+     .scenes = "soft_cube_seam",
+     .field_class = "a cube map's filter taps confined to the fragment's own face (seams unfiltered)",
+     .why = "the taps beyond the seam between the cube's downward and side faces read as unblocked: a line of "
+            "light along the seam through the wall's shadow"},
     // ---- variance shadow maps over PCSS's penumbra -----------------------------------------------
     {.name = "vsm-blocker-search-reads-the-receiver", .technique = "vsm",
      .faults = on([](Faults& f) { f.soft.blocker_depth_from_receiver = true; }), .convention = "gl",

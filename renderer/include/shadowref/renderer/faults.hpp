@@ -125,7 +125,7 @@ struct CascadeFaults {
 // CascadeFaults::gap: the part of each slice its cascade is selected for.
 inline constexpr double kCascadeGapFraction = 0.85;
 
-// Percentage-closer soft shadows (pcss), rect lights only.
+// Percentage-closer soft shadows (pcss) and vsm over its penumbra, rect lights only.
 struct SoftShadowFaults {
   // The blocker search averages the receiver's own depth instead of the blockers' (the search
   // compares nothing, or reads the wrong value): the penumbra estimate (d_receiver - d_blocker) /
@@ -134,6 +134,9 @@ struct SoftShadowFaults {
   // The light size the penumbra is estimated with, as a multiple of the true one (1: right): a
   // light's half-size used for its size, or a unit mix-up.
   double light_size_scale = 1.0;
+  // A cube map's filter taps read only the fragment's own face: a tap across the face's edge falls
+  // outside its map and reads as unblocked, so a penumbra that straddles a seam leaks light along it.
+  bool taps_stay_in_face = false;
 };
 
 struct Faults {
