@@ -256,20 +256,33 @@ vec3 filter_light_point(int i, int j) {
   vec2 ab = (vec2(i, j) + 0.5) / float(kFilterTaps) - 0.5;
   return u_light.xyz + ab.x * u_rect_u + ab.y * u_rect_v;
 }
-float pcss(float receiver_depth, int layer) {
-  vec4 world_plane = receiver_world_plane();
-  vec4 plane = transpose(u_world_from_layer[layer]) * world_plane;
+// Steps 1 and 2 for the fragment in `layer`: the receiver's plane (world and in the layer), the
+// normal its horizon is tested with, and the filter's plane t (blockers: how many the search found).
+struct Filter {
+  vec4 world_plane;
+  vec4 plane;
+  vec3 n;
+  int blockers;
+  float t;
+};
+Filter filter_for(float receiver_depth, int layer) {
+  Filter f;
+  f.world_plane = receiver_world_plane();
+  f.plane = transpose(u_world_from_layer[layer]) * f.world_plane;
   // A light point behind the receiver's own plane is hidden by the receiver itself: an area light
   // half below the horizon of a surface lights it by half (the soft terminator on a ball).
-  vec3 n = gl_FrontFacing ? v_normal : -v_normal;
-  int blockers;
-  float t = penumbra_plane(plane, world_plane, receiver_depth, layer, blockers);
+  f.n = gl_FrontFacing ? v_normal : -v_normal;
+  f.t = penumbra_plane(f.plane, f.world_plane, receiver_depth, layer, f.blockers);
+  return f;
+}
+float pcss(float receiver_depth, int layer) {
+  Filter f = filter_for(receiver_depth, layer);
   float lit = 0.0;
   for (int j = 0; j < kFilterTaps; ++j)
     for (int i = 0; i < kFilterTaps; ++i) {
       vec3 l = filter_light_point(i, j);
-      if (dot(n, l - v_world) <= 0.0) continue;
-      if (blockers == 0 || blocker_at(tap_at(v_world + (l - v_world) * t, layer, plane, world_plane), layer) < 0.0)
+      if (dot(f.n, l - v_world) <= 0.0) continue;
+      if (f.blockers == 0 || blocker_at(tap_at(v_world + (l - v_world) * f.t, layer, f.plane, f.world_plane), layer) < 0.0)
         lit += 1.0;
     }
   return lit / float(kFilterTaps * kFilterTaps);
@@ -288,22 +301,18 @@ float pcss(float receiver_depth, int layer) {
 // near d lose about d * 2^-12 of their deviation to cancellation in E[d^2] - E[d]^2).
 const float kVsmMinSigma = 1e-3;
 float vsm(float receiver_depth, int layer) {
-  vec4 world_plane = receiver_world_plane();
-  vec4 plane = transpose(u_world_from_layer[layer]) * world_plane;
-  vec3 n = gl_FrontFacing ? v_normal : -v_normal;
-  int blockers;
-  float t = penumbra_plane(plane, world_plane, receiver_depth, layer, blockers);
+  Filter f = filter_for(receiver_depth, layer);
   float above = 0.0;
   vec2 moments = vec2(0.0);
   float receiver = 0.0;
   for (int j = 0; j < kFilterTaps; ++j)
     for (int i = 0; i < kFilterTaps; ++i) {
       vec3 l = filter_light_point(i, j);
-      if (dot(n, l - v_world) <= 0.0) continue;
+      if (dot(f.n, l - v_world) <= 0.0) continue;
       above += 1.0;
       // A tap in another cube face reads that face's moments and the receiver's depth there, both
       // along that face's axis (near the seam, where such taps lie, the two axes measure alike).
-      Tap tap = tap_at(v_world + (l - v_world) * t, layer, plane, world_plane);
+      Tap tap = tap_at(v_world + (l - v_world) * f.t, layer, f.plane, f.world_plane);
       float r = receiver_depth;
       if (tap.c.x >= 0.0) r = view_depth(clamp(receiver_z_at(tap), 0.0, 1.0), tap.layer);
       vec2 m = tap.c.x >= 0.0 ? texture(u_moment_map, vec3(tap.c, float(tap.layer))).rg : vec2(0.0);
@@ -313,7 +322,7 @@ float vsm(float receiver_depth, int layer) {
       receiver += r;
     }
   float horizon = above / float(kFilterTaps * kFilterTaps);
-  if (blockers == 0 || above == 0.0) return horizon;
+  if (f.blockers == 0 || above == 0.0) return horizon;
   moments /= above;
   receiver /= above;
   float d = receiver - moments.x;

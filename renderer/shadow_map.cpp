@@ -176,6 +176,18 @@ const LightFit& cascade_fit(const Frame& frame, std::size_t i, LightFit& refit) 
   return refit;
 }
 
+// A new 2D array texture, bound, read with nearest taps and `wrap` at its edges.
+GLuint nearest_array_texture(const GlFunctions& gl, GLint wrap) {
+  GLuint t = 0;
+  gl.GenTextures(1, &t);
+  gl.BindTexture(GL_TEXTURE_2D_ARRAY, t);
+  gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, wrap);
+  gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, wrap);
+  return t;
+}
+
 LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant variant) {
   const GlFunctions& gl = frame.gl;
   const RunConvention& conv = frame.convention();
@@ -231,12 +243,7 @@ LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant varian
   }
   map.shadow_from_world = map.face_from_world[0];
 
-  gl.GenTextures(1, &map.texture);
-  gl.BindTexture(GL_TEXTURE_2D_ARRAY, map.texture);
-  gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
-  gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+  map.texture = nearest_array_texture(gl, GL_CLAMP_TO_BORDER);
   // The far depth (1, or 0 under reversed-Z) / its packed form: nothing occludes outside the map.
   const auto far = static_cast<float>(far_depth(conv));
   const float far_border[4] = {far, far, far, 1.0f};
@@ -269,12 +276,7 @@ LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant varian
   if (variant == Variant::Vsm) {
     // Read at texel centres like every other map (the filter is the shader's taps); (0, 0) where
     // nothing is drawn, which no surface writes (its view depth is beyond the near plane).
-    gl.GenTextures(1, &map.moments);
-    gl.BindTexture(GL_TEXTURE_2D_ARRAY, map.moments);
-    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    map.moments = nearest_array_texture(gl, GL_CLAMP_TO_EDGE);
     gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RG32F, size, size, layers, 0, GL_RG, GL_FLOAT, nullptr);
     gl.DrawBuffer(GL_COLOR_ATTACHMENT0);
   }
