@@ -612,7 +612,12 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_
       result.declaration.version = SHADOWREF_VERSION;
       result.declaration.convention = std::string(convention.name);
       result.declaration.shadow_map_size = prepared.options.shadow_map_size;
-      result.declaration.slope_bias_texels = kShadowMapOffsetFactor;
+      // The filtered techniques draw PCF's maps (soft ones for lights without an area) with PCF's
+      // factor: the largest slope bias of the render.
+      const outputs::TechniqueName* named = outputs::find_technique_name(t->name);
+      const bool filtered = named && (named->family == outputs::TechniqueFamily::ShadowMapPcf ||
+                                      named->family == outputs::TechniqueFamily::SoftShadow);
+      result.declaration.slope_bias_texels = filtered ? kPcfOffsetFactor : kShadowMapOffsetFactor;
       result.declaration.light_views_from_pack = true;  // the prepared scene's light fits: the pack's
       result.declaration.defaulted.clear();
     }

@@ -22,8 +22,8 @@
 // shadowmap-pcf, pcss and vsm also write the lit fraction (visibility.png).
 // Bias: the depth pass culls front faces of closed casters (the map then holds back faces, so a
 // lit surface is never compared against itself) and uses glPolygonOffset(kOffsetFactor,
-// kOffsetUnits); open meshes (a ground quad, a leaf) are drawn two-sided, since culling would
-// drop whichever side faces the light. The RGBA8 pass applies the same offset in its shader.
+// kOffsetUnits), PCF's maps kPcfOffsetFactor (frame.hpp: the kernel's reach); open meshes (a
+// ground quad, a leaf) are drawn two-sided, since culling would drop whichever side faces the light. The RGBA8 pass applies the same offset in its shader.
 // The light's views come from the prepared scene (mathlib's light_fit.hpp: one orthographic view
 // for a directional light, one perspective view or a cube of six for the others, with the map size),
 // one map layer each; a cube's six faces are layers of a 2D array texture, the face picked per
@@ -295,7 +295,8 @@ LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant varian
                      : variant == Variant::Vsm ? frame.programs.moments
                                                : frame.programs.flat;
   gl.UseProgram(p.id);
-  float sign = polygon_offset_sign(conv), factor = kOffsetFactor, units = kOffsetUnits;
+  float sign = polygon_offset_sign(conv), factor = variant == Variant::Pcf ? kPcfOffsetFactor : kOffsetFactor,
+        units = kOffsetUnits;
   if (faults.offset_sign_ignored) sign = 1.0f;  // FAULT: + whatever the convention
   if (faults.no_polygon_offset) factor = units = 0.0f;  // FAULT: acne
   if (faults.large_constant_offset) units = kPeterPanUnits;  // FAULT: peter-panning

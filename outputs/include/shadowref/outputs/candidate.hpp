@@ -49,7 +49,7 @@ struct CandidateDeclaration {
   std::string convention = "gl";
   int shadow_map_size = 0;             // 0: automatic (the fit of mathlib/light_fit.hpp)
   double filter_radius_texels = 0.0;   // shadowmap-pcf's default: 1 (3 × 3)
-  double slope_bias_texels = 2.0;      // our renderer's glPolygonOffset factor
+  double slope_bias_texels = 2.0;      // our renderer's glPolygonOffset factor (its PCF maps: 3)
   double constant_bias = 0.0;
   bool light_views_from_pack = false;  // "light_views": "pack"
   int cascades = 0;                    // cascaded techniques: cascades per directional light; 0: the pack's default
