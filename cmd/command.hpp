@@ -8,6 +8,7 @@
 
 namespace CLI {
 class App;
+class Validator;
 }
 
 namespace shadowref {
@@ -48,6 +49,10 @@ ErrorReport report_error(const std::exception& e);
 void add_convention_option(CLI::App& cmd, std::string& name);
 // The run convention called `name`; BadInput naming the option and the known names otherwise.
 const RunConvention& parse_convention(const std::string& name);
+
+// `--shadow-map-size`'s check (outputs/limits.hpp): 0 (automatic) or a size in the limits; the
+// same line in every subcommand that takes it.
+CLI::Validator shadow_map_size_check();
 
 // Adds one subcommand to `app`. Its callback stores the exit code in `exit_code`.
 using RegisterCommand = void (*)(CLI::App& app, int& exit_code);

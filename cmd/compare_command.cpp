@@ -1,34 +1,33 @@
 // compare_command.cpp — `shadowref compare`: one candidate folder against one reference folder.
 //
 // Any producer's folder works (docs/output-contract.md): the reference's (mask, decided) against the
-// renderer's or an engine team's mask(s). The threshold is the technique's (thresholds.hpp):
-// --technique, else the candidate's render.json "technique", else the strictest. With --scene, a
-// shadow-map technique's wrong pixels are explained by the same cause model `conform` uses (the
-// scene, the candidate's candidate.json); without it nothing explains them (the strictest reading).
-// Prints the numbers per mask and the verdict, or one JSON object with --json; writes the error
-// image(s) with --out. Exit: 0 pass, 1 quality warning, 2 fail, 3 size mismatch, 4 bad input.
+// renderer's or an engine team's mask(s). The verdict is the one judge's (conform/judge.hpp), as in
+// `shadowref conform`: the technique is --technique, else the candidate's candidate.json
+// "technique", else none (the strictest threshold); with --scene, wrong pixels are explained by the
+// scene's cause model under the candidate's declaration, a soft technique's lit fraction is judged,
+// and the scene file's expectation gives the case's status. Without --scene nothing explains a
+// wrong pixel (the strictest reading) and a soft technique is refused. Prints the numbers per mask
+// and the verdict, or one JSON object with --json; writes the error image(s) with --out.
+// Exit: 0 pass, 1 quality warning, 2 fail, 3 size mismatch, 4 bad input.
 #include <CLI/CLI.hpp>
 
-#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
+#include <unistd.h>
 
 #include "command.hpp"
-#include "shadowref/outputs/techniques.hpp"
-#include "shadowref/scene/scene.hpp"
 #include "shadowref/compare/compare.hpp"
-#include "shadowref/report/comparison_json.hpp"
-#include "shadowref/outputs/json_text.hpp"
-#include "shadowref/outputs/candidate.hpp"
+#include "shadowref/conform/judge.hpp"
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/outputs/image_io.hpp"
-#include "shadowref/reference/causes.hpp"
+#include "shadowref/outputs/json_text.hpp"
+#include "shadowref/outputs/techniques.hpp"
+#include "shadowref/report/comparison_json.hpp"
 #include "shadowref/scene/load_scene.hpp"
 #include "shadowref/scene/prepared_scene.hpp"
 
@@ -45,15 +44,6 @@ struct CompareArgs {
   bool json = false;
 };
 
-// The technique named in the candidate's render.json, or "".
-std::string technique_from_render_json(const std::filesystem::path& dir) {
-  std::ifstream in(dir / "render.json");
-  if (!in) return "";
-  const nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-  if (j.is_object() && j.contains("technique") && j["technique"].is_string()) return j["technique"].get<std::string>();
-  return "";
-}
-
 void print_metrics(const std::string& name, const compare::MaskMetrics& m) {
   std::printf("  %-12s %dx%d, %zu decided pixels with a surface: wrong %zu (%.4g %%) = %zu false shadow + %zu false light + "
               "%zu coverage; unexplained %zu (%.4g %% of %zu edge px, core %zu); %zu region(s), largest %zu px\n",
@@ -62,68 +52,64 @@ void print_metrics(const std::string& name, const compare::MaskMetrics& m) {
               m.regions, m.largest_region);
 }
 
+// The scene both folders show, prepared at the size of the reference's masks (a reference made at
+// another resolution than the scene file's, e.g. conform --resolution).
+struct KnownScene {
+  scene::Scene file;
+  std::optional<scene::PreparedScene> prepared;
+};
+
+std::unique_ptr<KnownScene> load_known_scene(const CompareArgs& a) {
+  if (a.scene.empty()) return nullptr;
+  auto known = std::make_unique<KnownScene>();
+  known->file = scene::load_scene(a.scene);
+  const std::vector<std::string> masks = outputs::find_mask_names(a.reference);
+  if (masks.size() != known->file.lights.size())
+    throw BadInput("--scene '" + a.scene + "': " + std::to_string(known->file.lights.size()) + " light(s), but --reference has " +
+                   std::to_string(masks.size()) + " mask(s)");
+  const outputs::Image8 first = outputs::read_image8(std::filesystem::path(a.reference) / masks.front(), 1);
+  known->file.width = first.width;
+  known->file.height = first.height;
+  known->prepared = scene::prepare_scene(known->file, parse_convention(a.convention));
+  return known;
+}
+
+// A scratch folder for the technique's model of its failure when --out is not given.
+struct ScratchFolder {
+  std::filesystem::path path;
+  ScratchFolder() {
+    path = std::filesystem::temp_directory_path() / ("shadowref-compare-" + std::to_string(::getpid()));
+  }
+  ~ScratchFolder() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+};
+
 int run_compare(const CompareArgs& a) {
-  std::string technique = a.technique;
-  std::string technique_source = "--technique";
-  if (!technique.empty() &&
-      !outputs::find_technique_name(technique)) {
+  if (!a.technique.empty() && !outputs::find_technique_name(a.technique)) {
     std::string known;
     for (const auto& t : outputs::kTechniques) known += (known.empty() ? "" : ", ") + std::string(t.name);
-    throw BadInput("--technique '" + technique + "': unknown technique (expected one of " + known + ")");
+    throw BadInput("--technique '" + a.technique + "': unknown technique (expected one of " + known + ")");
   }
-  if (technique.empty()) {
-    technique = technique_from_render_json(a.candidate);
-    technique_source = "render.json";
-  }
-  if (technique.empty()) technique_source = "none given: the strictest";
-  const compare::Threshold& threshold = compare::threshold_for(technique);
-  const RunConvention& convention = parse_convention(a.convention);
-  // The cause model, when the scene is known: prepared at the size of the reference's masks (a
-  // reference made at another resolution than the scene file's, e.g. conform --resolution).
-  std::optional<scene::Scene> scene_file;
-  std::optional<scene::PreparedScene> prepared;
-  std::unique_ptr<reference::CauseModel> model;
-  outputs::CandidateDeclaration declared;
-  compare::Explainer explainer;
-  compare::CompareOptions options;
-  std::string causes = "none (no --scene: every wrong pixel is unexplained)";
+  conform::CaseJudgement j;
+  ScratchFolder scratch;
   try {
-    if (!a.scene.empty()) {
-      scene_file = scene::load_scene(a.scene);
-      const std::vector<std::string> masks = outputs::find_mask_names(a.reference);
-      if (masks.size() != scene_file->lights.size())
-        throw BadInput("--scene '" + a.scene + "': " + std::to_string(scene_file->lights.size()) + " light(s), but --reference has " +
-                       std::to_string(masks.size()) + " mask(s)");
-      const outputs::Image8 first = outputs::read_image8(std::filesystem::path(a.reference) / masks.front(), 1);
-      scene_file->width = first.width;
-      scene_file->height = first.height;
-      options.no_cast_shadow_invariant = scene_file->invariant_no_cast_shadow;
-      if (threshold.bands) {
-        prepared = scene::prepare_scene(*scene_file, convention);
-        declared = outputs::read_declaration(a.candidate, technique);
-        model = std::make_unique<reference::CauseModel>(*prepared);
-        explainer = [&](std::size_t light, int x, int y, bool candidate_lit) {
-          return model->explain(light, x, y, declared, candidate_lit);
-        };
-        options.explain = &explainer;
-        causes = "texel footprint and depth bias from " + a.scene + " and the candidate's declaration";
-      } else {
-        causes = "none (an exact technique has no texel or bias band)";
-      }
-    }
+    const std::unique_ptr<KnownScene> known = load_known_scene(a);
+    conform::Judge judge;
+    const std::filesystem::path models = a.out.empty() ? scratch.path : std::filesystem::path(a.out) / "model";
+    j = judge.judge(known ? &*known->prepared : nullptr, {a.reference, a.candidate, a.technique, false, models});
+    if (!a.technique.empty()) j.technique_source = "--technique";
   } catch (const outputs::InputError& e) {
-    throw BadInput(e.what());
-  }
-  compare::FolderComparison c;
-  try {
-    c = compare::compare_folders(a.reference, a.candidate, threshold, options);
-  } catch (const compare::CompareError& e) {
-    if (e.kind() == compare::CompareError::Kind::SizeMismatch) {
+    if (e.kind() == outputs::InputError::Kind::SizeMismatch) {
       std::cerr << "shadowref compare: size mismatch: " << e.what() << "\n";
       return kExitSizeMismatch;
     }
     throw BadInput(e.what());
+  } catch (const scene::SceneError& e) {
+    throw BadInput(e.what());
   }
+  const compare::FolderComparison& c = j.comparison;
   std::vector<std::string> errors;
   if (!a.out.empty()) {
     try {
@@ -136,29 +122,46 @@ int run_compare(const CompareArgs& a) {
                    : c.judgement.verdict == compare::Verdict::QualityWarning ? kExitWarnings
                                                                              : kExitFailures;
   if (a.json) {
-    nlohmann::json j = report::to_json(c);
-    j["reference"] = a.reference;
-    j["candidate"] = a.candidate;
-    j["technique"] = technique;
-    j["causes"] = causes;
-    j["error_images"] = errors;
-    j["exit_code"] = code;
-    std::cout << outputs::json_text(j, 2) << "\n";
+    nlohmann::json out = report::to_json(c);
+    out["reference"] = a.reference;
+    out["candidate"] = a.candidate;
+    out["technique"] = j.technique;
+    out["technique_source"] = j.technique_source;
+    out["causes"] = j.causes;
+    if (!a.scene.empty()) {
+      out["status"] = conform::to_string(j.status);
+      out["signature"] = j.signature;
+      out["unmet_expectation"] = j.unmet_expectation;
+    }
+    out["error_images"] = errors;
+    out["exit_code"] = code;
+    std::cout << outputs::json_text(out, 2) << "\n";
     return code;
   }
+  const compare::Threshold& threshold = *c.threshold;
   std::printf("shadowref compare: %s against %s\n", a.candidate.c_str(), a.reference.c_str());
-  std::printf("  technique %s (%s), threshold %s: fail on any unexplained core or unexplained > %.4g %% of edge pixels\n",
-              technique.empty() ? "-" : technique.c_str(), technique_source.c_str(), std::string(threshold.name).c_str(),
+  std::printf("  technique %s (from %s), threshold %s: fail on any unexplained core or unexplained > %.4g %% of edge pixels\n",
+              j.technique.empty() ? "-" : j.technique.c_str(), j.technique_source.c_str(), std::string(threshold.name).c_str(),
               100 * threshold.unexplained_fail);
-  std::printf("  causes that explain wrong pixels: %s\n", causes.c_str());
+  std::printf("  causes that explain wrong pixels: %s\n", j.causes.c_str());
   for (std::size_t i = 0; i < c.masks.size(); ++i) print_metrics(c.masks[i], c.per_light[i].metrics);
   if (c.masks.size() > 1) print_metrics("all lights", c.total);
+  if (c.visibility_total) {
+    const compare::VisibilityMetrics& v = *c.visibility_total;
+    std::printf("  lit fraction: %zu penumbra px, unexplained %zu (core %zu), mean |error| over the penumbra %.4g\n", v.penumbra,
+                v.unexplained, v.unexplained_core, v.mean_penumbra_error());
+  }
   for (const std::string& e : errors) std::printf("  error image: %s\n", (std::filesystem::path(a.out) / e).string().c_str());
-  std::string verdict = c.judgement.verdict == compare::Verdict::Pass             ? "PASS"
-                        : c.judgement.verdict == compare::Verdict::QualityWarning ? "QUALITY WARNING"
-                                                                                  : "FAIL";
+  const std::string verdict = c.judgement.verdict == compare::Verdict::Pass             ? "PASS"
+                              : c.judgement.verdict == compare::Verdict::QualityWarning ? "QUALITY WARNING"
+                                                                                        : "FAIL";
   std::printf("verdict: %s\n", verdict.c_str());
   for (const std::string& r : c.judgement.reasons) std::printf("  %s\n", r.c_str());
+  if (!a.scene.empty()) {
+    std::printf("status under the scene's expectation: %s%s%s\n", conform::to_string(j.status),
+                j.signature.empty() ? "" : ": ", j.signature.c_str());
+    if (!j.unmet_expectation.empty()) std::printf("  %s\n", j.unmet_expectation.c_str());
+  }
   return code;
 }
 
@@ -174,11 +177,13 @@ void register_compare_command(CLI::App& app, int& exit_code) {
       ->required();
   cmd->add_option("--candidate", args->candidate, "the candidate folder (the same mask names)")->required();
   cmd->add_option("--technique", args->technique,
-                  "whose threshold judges (default: render.json's technique in the candidate folder, else the strictest)");
+                  "the technique judged: its threshold, causes and expectation (default: candidate.json's \"technique\" in "
+                  "the candidate folder, else the strictest threshold)");
   cmd->add_option("--out", args->out, "write error.png (error_<i>.png per light) into this folder");
   cmd->add_option("--scene", args->scene,
-                  "the scene both folders show: a shadow-map technique's wrong pixels are then explained by its texel "
-                  "footprint and depth bias (the candidate's candidate.json), as conform does; without it, nothing is");
+                  "the scene both folders show: wrong pixels are then explained by the cause model under the candidate's "
+                  "candidate.json, a soft technique's lit fraction is judged, and the scene's expectation gives a status, "
+                  "exactly as conform does; without it nothing explains a wrong pixel, and soft techniques are refused");
   add_convention_option(*cmd, args->convention);
   cmd->add_flag("--json", args->json, "print one JSON object instead of text");
   cmd->footer(

@@ -15,6 +15,7 @@
 #include "numbers.hpp"
 #include "shadowref/conform/catalogue.hpp"
 #include "shadowref/conform/conform.hpp"
+#include "shadowref/outputs/limits.hpp"
 #include "shadowref/renderer/gl_context.hpp"
 #include "shadowref/scene/load_scene.hpp"
 
@@ -52,16 +53,20 @@ int run_conform_command(const ConformArgs& a) {
   }
   o.techniques = conform::split_list(a.techniques);
   if (!a.technique.empty()) o.techniques.push_back(a.technique);
-  o.convention = std::string(parse_convention(a.convention).name);
+  o.convention = &parse_convention(a.convention);
   o.shadow_map_size = a.shadow_map_size;
   o.resolution_scale = a.resolution_scale;
   if (!a.resolution.empty()) {
-    const Size2 size = parse_size("--resolution", a.resolution, 16384);  // the scene loader's limit
+    const Size2 size = parse_size("--resolution", a.resolution, outputs::kMaxResolution);
     o.width = size.width;
     o.height = size.height;
   }
-  o.backend = a.backend;
-  o.gl = a.gl;
+  try {
+    o.backend = renderer::parse_driver(a.backend);
+    o.gl = renderer::parse_gl_api(a.gl);
+  } catch (const std::invalid_argument& e) {
+    throw BadInput(e.what());
+  }
   o.out = a.out;
   o.cache = a.cache;
   o.jobs = a.jobs;
@@ -173,7 +178,7 @@ void register_conform_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--shadow-map-size", args->shadow_map_size,
                   "texels per side of our shadow maps; 0: automatic (3 texels per camera pixel at the view centres)")
-      ->check(CLI::Range(0, 16384))
+      ->check(shadow_map_size_check())
       ->capture_default_str();
   cmd->add_option("--backend", args->backend, "Mesa driver: llvmpipe, softpipe, or native (a GPU's EGL)")->capture_default_str();
   cmd->add_option("--gl", args->gl, "context: osmesa or egl")->capture_default_str();

@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
       "Exit codes: 0 pass, 1 warnings, 2 failures, 3 size mismatch, 4 bad input or file error, 5 internal error."};
   app.name("shadowref");
   app.require_subcommand(1);
-  app.set_version_flag("--version", "shadowref 0.1.0");
+  app.set_version_flag("--version", std::string("shadowref ") + SHADOWREF_VERSION);
   int exit_code = shadowref::cli::kExitPass;
   for (RegisterCommand add : kCommands) add(app, exit_code);
 

@@ -109,7 +109,7 @@ void register_render_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--shadow-map-size", args->shadow_map_size,
                   "shadow-map texels per side; 0: automatic (3 texels per camera pixel at the centre, 1024..8192)")
-      ->check(CLI::Range(0, 16384))
+      ->check(shadow_map_size_check())
       ->capture_default_str();
   cmd->add_option("--frames", args->frames, "frames to render and time (render.json keeps the median)")
       ->check(CLI::Range(1, 1000))

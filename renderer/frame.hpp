@@ -71,6 +71,13 @@ inline constexpr float kShadowMapOffsetFactor = 2.0f;
 // directional_light's pixels, seen in shaded.png and visibility.png, not in the mask); 3 covers it.
 inline constexpr float kPcfOffsetFactor = 3.0f;
 inline constexpr float kShadowMapOffsetUnits = 8.0f;
+// ShadowMapFaults::large_constant_offset: a constant offset of 2^17 depth steps, about 0.8 % of the
+// 24-bit range (the size of constant bias that hides acne everywhere, grazing light included),
+// which detaches shadows from their contacts.
+inline constexpr float kPeterPanUnits = 131072.0f;
+// One glPolygonOffset unit as window depth (0..1): one step of the 24-bit depth; what candidate.json
+// declares as depth_bias per unit.
+inline constexpr double kWindowDepthPerUnit = 1.0 / 16777216.0;
 
 // How the camera's far plane is set up for a technique (x and y rows never change).
 using scene::CameraDepth;

@@ -2,6 +2,8 @@
 // W × H target, the passes techniques share, and the timed frame loop.
 #include "shadowref/renderer/renderer.hpp"
 
+#include "shadowref/outputs/limits.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -538,8 +540,8 @@ struct Target {
 }  // namespace
 
 RenderResult Renderer::render(const scene::Scene& scene, std::string_view technique, const RenderOptions& options) {
-  if (options.shadow_map_size != 0 && (options.shadow_map_size < 16 || options.shadow_map_size > 16384))
-    throw std::invalid_argument("shadow map size must be 0 (automatic) or in [16, 16384]");
+  if (const std::string p = outputs::shadow_map_size_problem(options.shadow_map_size); !p.empty())
+    throw std::invalid_argument("shadow map size " + std::to_string(options.shadow_map_size) + ": " + p);
   scene::PrepareOptions prepare;
   prepare.shadow_map_size = options.shadow_map_size;
   return render(scene::prepare_scene(scene, options.convention ? *options.convention : kDefaultConvention, prepare),
@@ -618,6 +620,10 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_
       const bool filtered = named && (named->family == outputs::TechniqueFamily::ShadowMapPcf ||
                                       named->family == outputs::TechniqueFamily::SoftShadow);
       result.declaration.slope_bias_texels = filtered ? kPcfOffsetFactor : kShadowMapOffsetFactor;
+      result.declaration.depth_bias = kShadowMapOffsetUnits * kWindowDepthPerUnit;
+      // A deliberately wrong render declares what it does, honestly: the judge must fail it all the same.
+      if (options.faults.shadow_map.no_polygon_offset) result.declaration.slope_bias_texels = result.declaration.depth_bias = 0;
+      if (options.faults.shadow_map.large_constant_offset) result.declaration.depth_bias = kPeterPanUnits * kWindowDepthPerUnit;
       result.declaration.light_views_from_pack = true;  // the prepared scene's light fits: the pack's
       result.declaration.defaulted.clear();
     }

@@ -70,10 +70,6 @@ namespace {
 // with the convention's sign (polygon_offset_sign): offset always pushes away from the light.
 constexpr float kOffsetFactor = kShadowMapOffsetFactor;
 constexpr float kOffsetUnits = kShadowMapOffsetUnits;
-// ShadowMapFaults::large_constant_offset: a constant offset of 2^17 depth steps, about 0.8 % of the
-// 24-bit range (the size of constant bias that hides acne everywhere, grazing light included),
-// which detaches shadows from their contacts.
-constexpr float kPeterPanUnits = 131072.0f;
 
 enum class Variant { Depth, Pcf, Rgba8, Pcss, Vsm };
 

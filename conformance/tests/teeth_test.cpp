@@ -60,8 +60,8 @@ conform::ConformOptions options_for(const std::string& convention, int shadow_ma
   conform::ConformOptions o;
   o.shadow_map_size = shadow_map_size;
   o.scenes = conform::select_scenes(conform::default_catalogue(), scenes);
-  o.convention = convention;
-  o.backend = "llvmpipe";
+  o.convention = find_run_convention(convention);
+  o.backend = renderer::Driver::Llvmpipe;
   o.out = std::filesystem::path(SHADOWREF_TEST_OUT) / out;
   o.cache = SHADOWREF_TEST_CACHE;
   o.reference.key_executable = SHADOWREF_EXE;

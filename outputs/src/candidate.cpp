@@ -9,18 +9,27 @@
 
 #include "shadowref/cascades.hpp"
 #include "shadowref/outputs/errors.hpp"
+#include "shadowref/outputs/limits.hpp"
 #include "shadowref/outputs/techniques.hpp"
 #include "shadowref/outputs/json_text.hpp"
 
 namespace shadowref::outputs {
+
+const char* to_string(DepthFaces f) {
+  switch (f) {
+    case DepthFaces::Front: return "front";
+    case DepthFaces::Back: return "back";
+    case DepthFaces::Both: return "both";
+  }
+  return "?";
+}
 
 CandidateDeclaration default_declaration(const std::string& technique) {
   CandidateDeclaration d;
   d.technique = technique;
   const TechniqueName* t = find_technique_name(technique);
   d.filter_radius_texels = t && (t->family == TechniqueFamily::ShadowMapPcf || t->family == TechniqueFamily::SoftShadow) ? 1.0 : 0.0;
-  d.defaulted = {"producer", "version", "technique", "convention", "shadow_map_size", "filter_radius_texels",
-                 "slope_bias_texels", "constant_bias", "light_views", "cascades"};
+  d.defaulted.assign(kCandidateKeys.begin(), kCandidateKeys.end());
   return d;
 }
 
@@ -35,11 +44,10 @@ CandidateDeclaration read_declaration(const std::filesystem::path& dir, const st
   const nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
   if (j.is_discarded()) throw bad("not valid JSON");
   if (!j.is_object()) throw bad("must be a JSON object");
-  static const std::set<std::string> known{"producer", "version", "technique", "convention", "shadow_map_size",
-                                           "filter_radius_texels", "slope_bias_texels", "constant_bias", "light_views",
-                                           "cascades", "light_taps"};
+  const std::set<std::string> known(kCandidateKeys.begin(), kCandidateKeys.end());
   for (const auto& item : j.items())
-    if (!known.count(item.key())) throw bad(item.key() + ": unknown key");
+    if (!known.count(item.key()))
+      throw bad(item.key() + ": unknown key (an engine's own settings go in the \"settings\" object, which is recorded and never judged)");
   std::set<std::string> given;
   const auto string_key = [&](const char* key, std::string& out) {
     if (!j.contains(key)) return;
@@ -63,7 +71,7 @@ CandidateDeclaration read_declaration(const std::filesystem::path& dir, const st
   if (j.contains("shadow_map_size")) {
     if (!j["shadow_map_size"].is_number_integer()) throw bad("shadow_map_size: must be an integer");
     const auto v = j["shadow_map_size"].get<long long>();
-    if (v != 0 && (v < 16 || v > 16384)) throw bad("shadow_map_size: must be 0 (automatic) or in [16, 16384]");
+    if (const std::string p = shadow_map_size_problem(v); !p.empty()) throw bad("shadow_map_size: " + p);
     d.shadow_map_size = static_cast<int>(v);
     given.insert("shadow_map_size");
   }
@@ -94,13 +102,28 @@ CandidateDeclaration read_declaration(const std::filesystem::path& dir, const st
     d.light_taps = static_cast<int>(v);
     given.insert("light_taps");
   }
+  number_key("normal_offset", d.normal_offset, 1e6);
+  number_key("normal_offset_texels", d.normal_offset_texels, 64.0);
+  number_key("depth_bias", d.depth_bias, 1.0);
+  if (j.contains("depth_faces")) {
+    const nlohmann::json& f = j["depth_faces"];
+    if (!f.is_string() || (f != "front" && f != "back" && f != "both")) throw bad("depth_faces: must be \"front\", \"back\" or \"both\"");
+    d.depth_faces = f == "front" ? DepthFaces::Front : f == "back" ? DepthFaces::Back : DepthFaces::Both;
+    given.insert("depth_faces");
+  }
+  if (j.contains("settings")) {
+    if (!j["settings"].is_object()) throw bad("settings: must be a JSON object");
+    d.settings_json = j["settings"].dump();
+    if (d.settings_json.size() > 65536) throw bad("settings: larger than 64 KiB");
+    given.insert("settings");
+  }
   d.defaulted.clear();
-  for (const std::string& k : known)
+  for (const char* k : kCandidateKeys)
     if (!given.count(k)) d.defaulted.push_back(k);
   return d;
 }
 
-void write_declaration(const CandidateDeclaration& d, const std::filesystem::path& dir) {
+std::string declaration_text(const CandidateDeclaration& d) {
   nlohmann::json j;
   j["producer"] = d.producer;
   j["version"] = d.version;
@@ -113,8 +136,17 @@ void write_declaration(const CandidateDeclaration& d, const std::filesystem::pat
   j["light_views"] = d.light_views_from_pack ? "pack" : "own";
   j["cascades"] = d.cascades;
   j["light_taps"] = d.light_taps;
+  j["normal_offset"] = d.normal_offset;
+  j["normal_offset_texels"] = d.normal_offset_texels;
+  j["depth_bias"] = d.depth_bias;
+  j["depth_faces"] = to_string(d.depth_faces);
+  j["settings"] = nlohmann::json::parse(d.settings_json);
+  return json_text(j, 2);
+}
+
+void write_declaration(const CandidateDeclaration& d, const std::filesystem::path& dir) {
   std::ofstream f(dir / kCandidateFile, std::ios::binary);
-  f << json_text(j, 2) << "\n";
+  f << declaration_text(d) << "\n";
   if (!f) throw FileError((dir / kCandidateFile).string() + ": cannot write");
 }
 

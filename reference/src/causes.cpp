@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include "shadowref/reference/embree_scene.hpp"
 #include "shadowref/reference/shadow_ray.hpp"
@@ -16,11 +17,6 @@
 
 namespace shadowref::reference {
 namespace {
-
-struct Hit {
-  bool hit = false;
-  Vec3<double> p, n;
-};
 
 // The first hit along the ray from `o` along the unit `dir`, up to `tfar` (Embree: geomID invalid on a miss).
 RTCRayHit first_hit(RTCScene scene, const Vec3<double>& o, const Vec3<double>& dir, float tfar) {
@@ -96,102 +92,161 @@ std::optional<CauseModel::Surface> CauseModel::surface_at(int x, int y) const {
   return out;
 }
 
-Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::CandidateDeclaration& d, bool candidate_lit) const {
-  const std::optional<Surface> surface = surface_at(x, y);
-  if (!surface) return Cause::Unexplained;
-  const Vec3<double>& p = surface->p;
-  const Vec3<double>& n = surface->n;
-  const double zn = near_ndc_z(*scene_.convention), zf = far_ndc_z(*scene_.convention);
+namespace {
+// tan θ for a polygon whose normal meets the light ray at |cos θ| = c, capped at kMaxBiasSlope.
+double capped_tan(double c) {
+  return std::min(kMaxBiasSlope, c > 0 ? std::sqrt(std::max(0.0, 1.0 - c * c)) / c : kMaxBiasSlope);
+}
+}  // namespace
 
+std::optional<CauseModel::Lookup> CauseModel::lookup(std::size_t light, const Surface& s,
+                                                     const outputs::CandidateDeclaration& d) const {
+  Lookup k;
+  k.p = s.p;
+  k.n = s.n;
   const Vec4<double>& L = scene_.lights[light];
-  const double eps = embree_->epsilon();
-  const Vec3<double> to_light = L.w() == 0 ? Vec3<double>(L.head<3>().normalized()) : Vec3<double>((L.head<3>() / L.w() - p).normalized());
-  // Rule 1 of the visibility rule (shadow_ray.hpp): a surface facing away from the light is in its
-  // own shadow whatever a map holds; no footprint or bias lights it.
-  if (!(n.dot(to_light) > 0)) return Cause::Unexplained;
-
+  k.to_light = L.w() == 0 ? Vec3<double>(L.head<3>().normalized()) : Vec3<double>((L.head<3>() / L.w() - s.p).normalized());
   // The light view that decides p: the cube face, the cascade, or the one view (light_view_of).
   const outputs::TechniqueName* technique = outputs::find_technique_name(d.technique);
   const int cascades = technique && technique->cascaded ? (d.cascades ? d.cascades : kDefaultCascades) : 0;
   const LightFit& fit = fit_for(light, d.shadow_map_size, cascades);
-  const int face = light_view_of(fit, L, p);
-  const LightView& view = fit.views[static_cast<std::size_t>(face)];
-  const Mat4<double> m = view.projection * view.view;
-  const Vec4<double> h = m * Vec4<double>(p.x(), p.y(), p.z(), 1.0);
-  if (!(h.w() > 0)) return Cause::Unexplained;
-  const Vec3<double> q = h.head<3>() / h.w();
-  const Mat4<double> inv = m.inverse();
-  const double texel_ndc = 2.0 / fit.size;
+  k.view = &fit.views[static_cast<std::size_t>(light_view_of(fit, L, s.p))];
+  k.m = k.view->projection * k.view->view;
+  const Vec4<double> h = k.m * Vec4<double>(s.p.x(), s.p.y(), s.p.z(), 1.0);
+  if (!(h.w() > 0)) return std::nullopt;
+  k.q = h.head<3>() / h.w();
+  k.inv = k.m.inverse();
+  k.texel_ndc = 2.0 / fit.size;
+  k.zn = near_ndc_z(*scene_.convention);
+  k.zf = far_ndc_z(*scene_.convention);
   // Depth from the light, in world units along its view axis (the light's view looks down −z when
   // right-handed, +z when left-handed).
-  const double axis_sign = scene_.convention->clip.hand == Handedness::Right ? -1.0 : 1.0;
-  const auto depth = [&](const Vec3<double>& w) { return axis_sign * (view.view * Vec4<double>(w.x(), w.y(), w.z(), 1.0)).z(); };
-  const double depth_p = depth(p);
+  k.axis_sign = scene_.convention->clip.hand == Handedness::Right ? -1.0 : 1.0;
+  k.depth_p = k.depth(s.p);
   // One texel's width at p, in world units (on the plane of constant light depth through p).
-  const double texel = (unproject(inv, q.x() + texel_ndc, q.y(), q.z()) - unproject(inv, q.x(), q.y(), q.z())).norm();
-  // The bias a map adds to the depth it stores at a surface hit along `dir` with normal `ng`, at
-  // light depth `at`: constant, plus slope-scaled (glPolygonOffset's factor × the stored polygon's
-  // depth slope, i.e. tan of its angle to the light ray, over one texel at that depth).
-  const bool perspective = L.w() != 0;
-  const auto bias_at = [&](const Vec3<double>& ng, const Vec3<double>& along, double at) {
-    const double c = std::abs(ng.normalized().dot(along));
-    const double tan_t = std::min(kMaxBiasSlope, c > 0 ? std::sqrt(std::max(0.0, 1.0 - c * c)) / c : kMaxBiasSlope);
-    const double texel_there = perspective && depth_p > 0 ? texel * std::max(at, 0.0) / depth_p : texel;
-    return d.constant_bias + d.slope_bias_texels * texel_there * tan_t;
-  };
+  k.texel = (unproject(k.inv, k.q.x() + k.texel_ndc, k.q.y(), k.q.z()) - unproject(k.inv, k.q.x(), k.q.y(), k.q.z())).norm();
+  k.perspective = L.w() != 0;
+  k.tan_p = capped_tan(std::abs(s.n.dot(k.to_light)));
+  // A window-depth bias, in world units at p: the depth the point moves when its window depth moves
+  // by `depth_bias` toward the far plane (zf - zn is the NDC span of window depth 0..1: 2, 1, or -1 reversed).
+  if (d.depth_bias > 0) {
+    const double z = k.q.z() + d.depth_bias * (k.zf - k.zn);
+    k.depth_bias_world = std::abs(k.depth(unproject(k.inv, k.q.x(), k.q.y(), z)) - k.depth_p);
+  }
+  return k;
+}
 
-  // What a texel at map offset (dx, dy) may hold: the depth of the first surface along its ray, or,
-  // where the map is drawn with front faces culled (as ours is, and many engines'), the depth where
-  // the ray leaves that first caster (its first back face; none for an open caster, drawn two-sided);
-  // a miss holds "nothing": infinitely far. Each stored depth carries the bias of its own polygon
-  // (bias_at, `with_bias`). The texel gives the candidate's answer when p, compared with either
-  // stored depth, gets it: lit when p is not beyond it, shadowed when p is.
-  const auto gives = [&](double dx, double dy, bool with_bias) {
-    const double mx = q.x() + dx * texel_ndc, my = q.y() + dy * texel_ndc;
-    const Vec3<double> a = unproject(inv, mx, my, zn), b = unproject(inv, mx, my, zf);
-    const Vec3<double> ray_dir = (b - a).normalized();
-    RTCRayHit r = first_hit(embree_->handle(), a, ray_dir, static_cast<float>((b - a).norm()));
-    RTCIntersectContext c;
-    rtcInitIntersectContext(&c);
-    if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) return candidate_lit;
-    const auto biased = [&](double t_hit) {
-      const double at = depth(a + t_hit * ray_dir);
-      return at + (with_bias ? bias_at(Vec3<double>(r.hit.Ng_x, r.hit.Ng_y, r.hit.Ng_z), ray_dir, at) : 0.0);
-    };
-    const auto answer = [&](double stored) { return (depth_p <= stored + eps) == candidate_lit; };
-    if (answer(biased(static_cast<double>(r.ray.tfar)))) return true;
-    // Front faces culled: walk on to the first face the ray leaves through (normal along the ray).
-    double t = static_cast<double>(r.ray.tfar);
-    for (int step = 0; step < 8; ++step) {
-      const Vec3<double> ng(r.hit.Ng_x, r.hit.Ng_y, r.hit.Ng_z);
-      if (ng.dot(ray_dir) > 0) return answer(biased(t));
-      RTCRayHit next{};
-      next.ray = r.ray;
-      next.ray.tnear = static_cast<float>(t + eps);
-      next.ray.tfar = static_cast<float>((b - a).norm());
-      next.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rtcIntersect1(embree_->handle(), &c, &next);
-      if (next.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;  // an open caster: only its front was there
-      r = next;
-      t = static_cast<double>(r.ray.tfar);
-    }
-    return false;
-  };
+double CauseModel::Lookup::depth(const Vec3<double>& w) const {
+  return axis_sign * (view->view * Vec4<double>(w.x(), w.y(), w.z(), 1.0)).z();
+}
 
-  // Depth bias: the texel of p itself, compared with the declared bias (a contact within the bias
-  // comes out lit, as peter-panning shows it).
-  if (gives(0, 0, true) && !gives(0, 0, false)) return Cause::DepthBias;
-  // Texel footprint: the texels whose centres lie within the square of half-width h texels around
-  // p's point (probed at h and h / 2 along the axes and the diagonals), with the declared bias.
-  // A nearest lookup on our own grid (light views from the pack) reads a texel whose centre is within
-  // half a texel per axis: h = 0.5; on a grid of unknown phase (the candidate's own fit) the centre
-  // may be a whole texel away: h = 1; a filter widens either by its radius.
-  const double radius = (d.light_views_from_pack ? 0.5 : 1.0) + d.filter_radius_texels;
+double CauseModel::Lookup::texel_at(double at) const {
+  return perspective && depth_p > 0 ? texel * std::max(at, 0.0) / depth_p : texel;
+}
+
+// What a texel at map offset (dx, dy) from p's may hold: the depth of the first surface along its
+// ray, or, where the map is drawn with front faces culled (as ours is, and many engines'), the depth
+// where the ray leaves that first caster (its first back face; none for an open caster, drawn
+// two-sided); a miss holds "nothing": infinitely far. Each stored depth carries the bias `bias` gives
+// its own polygon (normal, ray direction, light depth). The texel gives the candidate's answer when
+// p, compared with either stored depth, gets it: lit when p is not beyond it, shadowed when p is.
+bool CauseModel::texel_gives(const Lookup& k, double dx, double dy, bool candidate_lit, const BiasOf& bias) const {
+  const double eps = embree_->epsilon();
+  const double mx = k.q.x() + dx * k.texel_ndc, my = k.q.y() + dy * k.texel_ndc;
+  const Vec3<double> a = unproject(k.inv, mx, my, k.zn), b = unproject(k.inv, mx, my, k.zf);
+  const Vec3<double> ray_dir = (b - a).normalized();
+  RTCRayHit r = first_hit(embree_->handle(), a, ray_dir, static_cast<float>((b - a).norm()));
+  if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) return candidate_lit;
+  const auto stored = [&](double t_hit) {
+    const double at = k.depth(a + t_hit * ray_dir);
+    return at + bias(Vec3<double>(r.hit.Ng_x, r.hit.Ng_y, r.hit.Ng_z), ray_dir, at);
+  };
+  const auto answer = [&](double depth) { return (k.depth_p <= depth + eps) == candidate_lit; };
+  if (answer(stored(static_cast<double>(r.ray.tfar)))) return true;
+  // Front faces culled: walk on to the first face the ray leaves through (normal along the ray).
+  RTCIntersectContext c;
+  rtcInitIntersectContext(&c);
+  double t = static_cast<double>(r.ray.tfar);
+  for (int step = 0; step < 8; ++step) {
+    const Vec3<double> ng(r.hit.Ng_x, r.hit.Ng_y, r.hit.Ng_z);
+    if (ng.dot(ray_dir) > 0) return answer(stored(t));
+    RTCRayHit next{};
+    next.ray = r.ray;
+    next.ray.tnear = static_cast<float>(t + eps);
+    next.ray.tfar = static_cast<float>((b - a).norm());
+    next.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(embree_->handle(), &c, &next);
+    if (next.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;  // an open caster: only its front was there
+    r = next;
+    t = static_cast<double>(r.ray.tfar);
+  }
+  return false;
+}
+
+double CauseModel::mask_reach_texels(const outputs::CandidateDeclaration& d) {
+  // A nearest lookup on the pack's grid reads a texel whose centre is within half a texel per axis;
+  // on a grid of unknown phase (the candidate's own fit) the centre may be a whole texel away. A
+  // filtered mask (lit at >= 1/2 of the taps) puts a straight boundary where the nearest lookup does,
+  // give or take its tap spacing: the filter widens the mask's reach by at most kMaxMaskFilterTexels,
+  // whatever radius is declared (its wider reach is judged in the lit fraction, visibility_band).
+  return (d.light_views_from_pack ? 0.5 : 1.0) + std::min(d.filter_radius_texels, kMaxMaskFilterTexels);
+}
+
+Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::CandidateDeclaration& d, bool candidate_lit) const {
+  const std::optional<Surface> surface = surface_at(x, y);
+  if (!surface) return Cause::Unexplained;
+  const std::optional<Lookup> found = lookup(light, *surface, d);
+  // Rule 1 of the visibility rule (shadow_ray.hpp): a surface facing away from the light is in its
+  // own shadow whatever a map holds; no footprint or bias lights it.
+  if (!found || !(surface->n.dot(found->to_light) > 0)) return Cause::Unexplained;
+  const Lookup& k = *found;
+  const double reach = mask_reach_texels(d);
+  const double precision = k.depth_p * kDepthPrecision;
+  // The slope term of a stored polygon (normal ng, met along `along` at light depth `at`): one
+  // texel's depth change across it, glPolygonOffset's model.
+  const auto slope = [&](const Vec3<double>& ng, const Vec3<double>& along, double at) {
+    return k.texel_at(at) * capped_tan(std::abs(ng.normalized().dot(along)));
+  };
   static constexpr std::array<std::array<double, 2>, 8> kDirs{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, 1},
                                                                {1, -1}, {-1, -1}}};
-  for (const double r : {0.5 * radius, radius})
+  const BiasOf none = [](const Vec3<double>&, const Vec3<double>&, double) { return 0.0; };
+  // The probes: rings every kProbeStep texels out to the reach, so that a smaller reach probes a
+  // subset of a larger one's texels (declaring less never explains more).
+  std::vector<double> rings;
+  for (double r = kProbeStep; r <= reach + 1e-9; r += kProbeStep) rings.push_back(r);
+  if (candidate_lit) {
+    // False light: the bias explains a leak only up to what a correct map needs there (the slope
+    // bias that removes acne across the mask's reach, with kCorrectBiasMargin, and the depth
+    // format's precision), and only what the candidate declares: min(declared, needed).
+    const double normal_offset = (d.normal_offset + d.normal_offset_texels * k.texel) * std::sqrt(1.0 + k.tan_p * k.tan_p);
+    const BiasOf bias = [&](const Vec3<double>& ng, const Vec3<double>& along, double at) {
+      const double s = slope(ng, along, at);
+      const double declared = d.constant_bias + d.slope_bias_texels * s + normal_offset + k.depth_bias_world;
+      const double needed = kCorrectBiasMargin * 2.0 * reach * s + precision;
+      return std::min(declared, needed);
+    };
+    // Depth bias: the texel of p itself (a contact within the bias comes out lit: peter-panning).
+    if (texel_gives(k, 0, 0, true, bias) && !texel_gives(k, 0, 0, true, none)) return Cause::DepthBias;
+    for (const double r : rings)
+      for (const auto& dv : kDirs)
+        if (texel_gives(k, dv[0] * r, dv[1] * r, true, bias)) return Cause::TexelFootprint;
+    return Cause::Unexplained;
+  }
+  // False shadow: a texel within the reach holds an occluder nearer than p by more than the bias a
+  // correct map needs at that texel's distance from p (its depth change across that distance, and
+  // the precision): the receiver's own surface never qualifies, whatever bias is declared. A false
+  // shadow that only the receiver's own surface, stored with less bias than that, casts is acne.
+  for (const double r : rings)
+    for (const auto& dv : kDirs) {
+      const double distance = r * std::sqrt(dv[0] * dv[0] + dv[1] * dv[1]);
+      const BiasOf needed = [&](const Vec3<double>& ng, const Vec3<double>& along, double at) {
+        return distance * slope(ng, along, at) + precision;
+      };
+      if (texel_gives(k, dv[0] * r, dv[1] * r, false, needed)) return Cause::TexelFootprint;
+    }
+  for (const double r : rings)
     for (const auto& dv : kDirs)
-      if (gives(dv[0] * r, dv[1] * r, true)) return Cause::TexelFootprint;
+      if (texel_gives(k, dv[0] * r, dv[1] * r, false, none)) return Cause::Acne;
   return Cause::Unexplained;
 }
 

@@ -1,6 +1,7 @@
 // load_scene.cpp — scene files → Scene (load_scene.hpp). Parsing and validation in one pass:
 // each part of the document is read through a JsonNode that knows its path, so every error
 // names the file and the JSON path.
+#include "shadowref/outputs/limits.hpp"
 #include "shadowref/scene/load_scene.hpp"
 
 #include <Eigen/Geometry>
@@ -26,9 +27,8 @@ namespace {
 
 using detail::JsonNode;
 
-// Resolutions above this are refused before anything is allocated (DESIGN allows any resolution,
-// but 16384² is already a gigabyte of float visibility: anything larger is a typo).
-constexpr long long kMaxResolution = 16384;
+// Resolutions above outputs::kMaxResolution are refused before anything is allocated.
+constexpr long long kMaxResolution = outputs::kMaxResolution;
 // Tessellation limits: a sphere at 4096 × 4096 is 33 M triangles, beyond any sensible scene
 // (and below primitives.hpp's own limit of 2^14, so its .value() never throws for a loaded value).
 constexpr long long kMaxSegments = 4096;

@@ -112,6 +112,7 @@ MaskMetrics& MaskMetrics::operator+=(const MaskMetrics& o) {
   explained_bias += o.explained_bias;
   unexplained += o.unexplained;
   unexplained_false_light += o.unexplained_false_light;
+  unexplained_acne += o.unexplained_acne;
   unexplained_false_light_core += o.unexplained_false_light_core;
   unexplained_core += o.unexplained_core;
   edge_pixels += o.edge_pixels;
@@ -212,6 +213,10 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
         } else {
           ++m.unexplained;
           if (code == kFalseLight) ++m.unexplained_false_light;
+          if (cause == Cause::Acne) {
+            ++m.unexplained_acne;
+            colour = kErrorColours.acne;
+          }
           unexplained[i] = 1;
         }
       }

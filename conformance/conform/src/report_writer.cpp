@@ -58,8 +58,8 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
     for (const CaseResult& c : r.cases) linked += c.read_through_links.size();
     j["inputs_read_through_links"] = linked;  // each case's read_through_links names them
   }
-  j["backend"] = o.candidate_dir ? json() : json(o.backend);
-  j["gl_api"] = o.candidate_dir ? json() : json(o.gl);
+  j["backend"] = o.candidate_dir ? json() : json(renderer::to_string(o.backend));
+  j["gl_api"] = o.candidate_dir ? json() : json(renderer::to_string(o.gl));
   j["gl"] = {{"vendor", r.gl_vendor}, {"renderer", r.gl_renderer}, {"version", r.gl_version}};
   j["convention"] = r.convention;
   j["reference"] = {{"producer", "shadowref reference (Embree 3)"},
@@ -94,6 +94,8 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
     k["frame_ms"] = c.frame_ms;
     k["seconds"] = c.seconds;
     k["notes"] = c.notes;
+    k["causes"] = c.causes;
+    if (!c.unmet_expectation.empty()) k["unmet_expectation"] = c.unmet_expectation;
     if (!c.error.empty()) k["error"] = c.error;
     if (!c.read_through_links.empty()) {
       json links = json::array();
@@ -102,11 +104,8 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
     }
     {
       const outputs::CandidateDeclaration& d = c.declaration;
-      k["candidate"] = {{"producer", d.producer}, {"version", d.version}, {"technique", d.technique},
-                        {"convention", d.convention}, {"shadow_map_size", d.shadow_map_size},
-                        {"filter_radius_texels", d.filter_radius_texels}, {"slope_bias_texels", d.slope_bias_texels},
-                        {"constant_bias", d.constant_bias}, {"light_views", d.light_views_from_pack ? "pack" : "own"},
-                        {"cascades", d.cascades}, {"light_taps", d.light_taps}, {"defaulted", d.defaulted}};
+      k["candidate"] = json::parse(outputs::declaration_text(d));
+      k["candidate"]["defaulted"] = d.defaulted;
     }
     if (c.comparison) {
       k["comparison"] = report::to_json(*c.comparison);

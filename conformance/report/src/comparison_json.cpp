@@ -21,6 +21,7 @@ nlohmann::json to_json(const compare::MaskMetrics& m) {
           {"explained_bias", m.explained_bias},
           {"unexplained", m.unexplained},
           {"unexplained_false_light", m.unexplained_false_light},
+          {"unexplained_acne", m.unexplained_acne},
           {"unexplained_core", m.unexplained_core},
           {"edge_pixels", m.edge_pixels},
           {"unexplained_percent_of_edges", 100.0 * m.unexplained_ratio()},

@@ -2,6 +2,8 @@
 // but the images, so the folder opens anywhere (a CI artefact, a file:// URL).
 #include "shadowref/report/html.hpp"
 
+#include "shadowref/compare/compare.hpp"
+
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -199,6 +201,12 @@ void viewer(std::ostringstream& h, const json& l) {
     << "<div class=\"notes\">swipe: reference left of the line, candidate right</div></div>";
 }
 
+// One legend entry in the error images' own colour (compare.hpp's kErrorColours, the one definition).
+std::string swatch(const unsigned char (&rgb)[3], const char* label) {
+  return "<span><i style=\"background:rgb(" + std::to_string(rgb[0]) + "," + std::to_string(rgb[1]) + "," +
+         std::to_string(rgb[2]) + ")\"></i>" + label + "</span>";
+}
+
 void metrics_table(std::ostringstream& h, const json& m) {
   h << "<table class=\"metrics\">";
   const auto row = [&](const char* label, const std::string& v) {
@@ -209,7 +217,8 @@ void metrics_table(std::ostringstream& h, const json& m) {
   row("false light", str(m, "false_light"));
   row("coverage", str(m, "coverage"));
   row("unexplained", str(m, "unexplained") + " px (" + num(m, "unexplained_percent_of_edges") + " % of " +
-                         str(m, "edge_pixels") + " edge px), core " + str(m, "unexplained_core") + " px");
+                         str(m, "edge_pixels") + " edge px), core " + str(m, "unexplained_core") + " px, of which " +
+                         str(m, "unexplained_acne") + " self-shadowing (acne)");
   row("explained", str(m, "explained_texel") + " texel footprint + " + str(m, "explained_bias") + " depth bias (" +
                        num(m, "explained_percent_of_edges") + " % of edge px)");
   row("largest region", str(m, "largest_region") + " px (" + str(m, "regions") + " regions)");
@@ -323,19 +332,20 @@ std::string render_html(const json& r) {
     << "<span><i style=\"background:#000\"></i>black shadowed</span>"
     << "<span><i style=\"background:#808080\"></i>grey no surface</span></div><div class=\"legend\" style=\"margin-top:8px\">"
     << "<span>error image:</span>"
-    << "<span><i style=\"background:rgb(235,50,50)\"></i>false shadow (reference lit)</span>"
-    << "<span><i style=\"background:rgb(40,120,255)\"></i>false light (reference shadowed)</span>"
-    << "<span><i style=\"background:rgb(230,40,230)\"></i>coverage (surface vs none)</span>"
-    << "<span><i style=\"background:rgb(240,170,20)\"></i>explained: texel footprint</span>"
-    << "<span><i style=\"background:rgb(30,200,200)\"></i>explained: depth bias</span>"
-    << "<span><i style=\"background:rgb(70,105,70)\"></i>undecided: not judged</span>"
+    << swatch(compare::kErrorColours.false_shadow, "false shadow (reference lit)")
+    << swatch(compare::kErrorColours.acne, "false shadow: self-shadowing (acne)")
+    << swatch(compare::kErrorColours.false_light, "false light (reference shadowed)")
+    << swatch(compare::kErrorColours.coverage, "coverage (surface vs none)")
+    << swatch(compare::kErrorColours.texel, "explained: texel footprint")
+    << swatch(compare::kErrorColours.bias, "explained: depth bias")
+    << swatch(compare::kErrorColours.undecided, "undecided: not judged")
     << "<span><i style=\"background:rgb(150,150,150)\"></i><i style=\"background:rgb(55,55,55)\"></i>"
     << "<i style=\"background:rgb(28,28,42)\"></i>dimmed reference: lit, shadowed, no surface</span></div>"
     << "<div class=\"legend\" style=\"margin-top:8px\"><span>visibility error (soft shadows), brighter for larger |error|:</span>"
-    << "<span><i style=\"background:rgb(235,50,50)\"></i>too dark, unexplained</span>"
-    << "<span><i style=\"background:rgb(40,120,255)\"></i>too light, unexplained</span>"
-    << "<span><i style=\"background:rgb(240,170,20)\"></i>within the filter footprint's range</span>"
-    << "<span><i style=\"background:rgb(70,105,70)\"></i>not judged: not covered by one surface</span>"
+    << swatch(compare::kErrorColours.false_shadow, "too dark, unexplained")
+    << swatch(compare::kErrorColours.false_light, "too light, unexplained")
+    << swatch(compare::kErrorColours.texel, "within the filter footprint's range")
+    << swatch(compare::kErrorColours.undecided, "not judged: not covered by one surface")
     << "<span>grey: the reference's lit fraction, dimmed</span></div></section>\n";
 
   // Cases, one row each.

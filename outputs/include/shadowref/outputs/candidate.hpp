@@ -21,16 +21,32 @@
 //     "cascades": 4                       integer in [0, 8]: cascaded techniques (csm, csm-pcf), the
 //                                         cascades per directional light, split as the pack's
 //                                         `cascades` say; 0 = the pack's count
-//     "light_taps": 8                     integer in [1, 64]: soft techniques (pcss, vsm), the taps per axis
+//     "light_taps": 8,                    integer in [1, 64]: soft techniques (pcss, vsm), the taps per axis
 //                                         of the filter over the light's area: its fraction moves in
 //                                         steps of about 1 / light_taps across a boundary (the
 //                                         visibility judgement's sampling tolerance)
+//     "normal_offset": 0.0,               number >= 0: normal-offset bias in world units (the lookup
+//                                         point moved along the surface normal; three.js and Babylon
+//                                         `normalBias`, Unity, Unreal)
+//     "normal_offset_texels": 0.0,        number >= 0: the same in texels of the map at the point
+//     "depth_bias": 0.0,                  number >= 0: a constant bias in the light projection's window
+//                                         depth (0..1 over its near..far; three.js and Babylon `bias`,
+//                                         as a magnitude); the judge converts it with the light view
+//     "depth_faces": "back",              "front" | "back" | "both": the faces the depth pass draws
+//     "settings": { ... }                 any JSON object: the engine's own settings (shadow camera,
+//                                         caster faces, far distance...), recorded in report.json and
+//                                         the HTML and never judged
 //   }
+// Every bias key (slope_bias_texels, constant_bias, normal_offset*, depth_bias) may only narrow what
+// is explained: the judge explains false light by bias only up to what a correct map at the declared
+// texel size needs there, and false shadow never by the receiver's own surface (docs/tolerance-model.md).
 // Every key is optional. Absent keys take the defaults below (for a known technique: its family's
 // defaults), and `defaulted` lists them, so the report can say which values were assumed.
-// Unknown keys, wrong types and values out of range are InputError(BadInput) naming the file and key.
+// Unknown keys (the message points to "settings"), wrong types and values out of range are
+// InputError(BadInput) naming the file and key.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -41,6 +57,17 @@ namespace shadowref::outputs {
 inline constexpr int kMaxLightTaps = 64;
 
 inline constexpr const char* kCandidateFile = "candidate.json";
+
+// Every key candidate.json may hold, the one list (the reader, `defaulted`, the pack README's table).
+inline constexpr std::array<const char*, 16> kCandidateKeys{
+    "producer",          "version",       "technique",   "convention", "shadow_map_size",
+    "filter_radius_texels", "slope_bias_texels", "constant_bias", "light_views", "cascades",
+    "light_taps",        "normal_offset", "normal_offset_texels", "depth_bias", "depth_faces",
+    "settings"};
+
+// The faces a depth pass draws.
+enum class DepthFaces { Front, Back, Both };
+const char* to_string(DepthFaces f);  // "front", "back", "both"
 
 struct CandidateDeclaration {
   std::string producer = "unknown";
@@ -54,6 +81,11 @@ struct CandidateDeclaration {
   bool light_views_from_pack = false;  // "light_views": "pack"
   int cascades = 0;                    // cascaded techniques: cascades per directional light; 0: the pack's default
   int light_taps = 8;                  // soft techniques: filter taps per axis over the light (ours: 8 x 8)
+  double normal_offset = 0.0;          // world units along the surface normal
+  double normal_offset_texels = 0.0;   // texels of the map at the point, along the surface normal
+  double depth_bias = 0.0;             // window depth of the light's projection (0..1 over near..far)
+  DepthFaces depth_faces = DepthFaces::Back;  // ours: front faces culled (back faces drawn)
+  std::string settings_json = "{}";    // "settings", as compact JSON text: recorded, never judged
   std::vector<std::string> defaulted;  // keys that were absent
 };
 
@@ -64,7 +96,10 @@ CandidateDeclaration default_declaration(const std::string& technique);
 // InputError(BadInput) for a malformed file.
 CandidateDeclaration read_declaration(const std::filesystem::path& dir, const std::string& technique);
 
-// Writes `declaration` as `dir`/candidate.json (without `defaulted`). Throws FileError.
+// `declaration` as candidate.json's text (without `defaulted`): every key, the one writer.
+std::string declaration_text(const CandidateDeclaration& declaration);
+
+// Writes `declaration` as `dir`/candidate.json (declaration_text). Throws FileError.
 void write_declaration(const CandidateDeclaration& declaration, const std::filesystem::path& dir);
 
 }  // namespace shadowref::outputs

@@ -2,29 +2,34 @@
 // from the reference's: the per-pixel causes of the tolerance model (docs/tolerance-model.md),
 // computed from the scene, the camera and what the candidate declares (outputs/candidate.hpp).
 //
-// The model simulates what a shadow map with the declared map size, filter and bias can honestly
+// The model simulates what a correct shadow map with the declared map size and filter can honestly
 // answer at the pixel centre's surface point p (normal n toward the viewer) for light L. A texel holds
 // the depth of the first surface along its ray from the light (the fit of mathlib/light_fit.hpp at
 // the declared map size; for a cube, the face a lookup picks; for a cascaded technique, the cascade
-// of cascades.hpp holding p's camera depth, with the declared count) or, where front faces are culled, the
-// depth where the ray leaves that first caster; through it p is lit when p is not beyond that depth
-// by more than the stored polygon's bias b = constant_bias + slope_bias_texels · texel · tan θ
-// (glPolygonOffset's model: texel = one texel's width there in world units, θ between the stored
-// polygon's normal and the light ray, tan θ capped at kMaxBiasSlope). The candidate's answer is
-// explained by
-//   * DepthBias — p's own texel gives it with the bias and not without: a caster–receiver contact
-//     within the bias (peter-panning);
-//   * TexelFootprint — a texel within R = 1 + filter_radius_texels texels of p's (probed at R and
-//     R/2 in 8 directions) gives it with the bias: a true boundary, a silhouette seen from the light
-//     or a slope steeper than the bias lies within the footprint (acne at grazing incidence);
-//   * Unexplained — no such texel gives it, or p faces away from the light (attached shadow): an
-//     error of the candidate.
+// of cascades.hpp holding p's camera depth, with the declared count) or, where front faces are culled,
+// the depth where the ray leaves that first caster, each plus its own polygon's bias. The mask's reach
+// h is 1/2 texel on the pack's grid, 1 on the candidate's own, plus the filter (at most
+// kMaxMaskFilterTexels). The candidate's answer is explained by
+//   * DepthBias (false light) — p's own texel gives lit with the bias and not without, the bias being
+//     the declared one (constant, slope-scaled, normal offset, window depth) but never more than a
+//     correct map needs there: kCorrectBiasMargin × 2h texels of the stored polygon's slope plus the
+//     depth precision. A larger declared bias explains nothing more: its leak is peter-panning.
+//   * TexelFootprint — a texel within h of p's (probed on rings every kProbeStep texels out to h, in
+//     8 directions) gives the answer:
+//     for false light with the bias above; for false shadow with the bias a correct map needs at that
+//     texel's distance d from p (d texels of its polygon's slope, plus the precision), whatever is
+//     declared, so the receiver's own surface never shadows p: a true boundary lies within the footprint.
+//   * Acne (unexplained) — a false shadow only a texel with less than that bias gives: the receiver
+//     shadowing itself.
+//   * Unexplained — nothing gives it, or p faces away from the light (attached shadow).
+// Declaring less (a smaller bias, a smaller filter, `pack` for `own`) never explains more.
 // Exact techniques (planar, volumes) get no band: the judge never asks for them.
-// Cost: one primary ray and up to 18 rays toward p's texels per asked pixel (the judge asks only
-// for wrong ones).
+// Cost: one primary ray and up to 2 × 8 × 8 rays toward p's texels per asked pixel (the judge asks
+// only for wrong ones).
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -43,6 +48,26 @@ using outputs::Cause;
 // tan θ above this (θ > 84°) is taken as this: at grazing incidence the slope term would explain
 // any error, and a 10-fold slope is already more than any engine's slope-scaled bias allows for.
 inline constexpr double kMaxBiasSlope = 10.0;
+
+// The largest slope bias a correct map needs is kCorrectBiasMargin times the one that removes acne
+// across the mask's reach h (in texels): a lookup whose texel centre is up to h texels from the
+// point along each axis sees the receiver's own plane up to 2 h texels' depth change nearer
+// (glPolygonOffset's factor 2 h). Engines set their bias by hand with a margin; ours (a factor of 2
+// for nearest lookups on the pack's grid, h = 1/2; 3 for PCF, h = 3/2) stays within twice that.
+inline constexpr double kCorrectBiasMargin = 2.0;
+
+// The depth format's precision, relative to the depth from the light: 24-bit window depth under a
+// perspective light at a near/far ratio of 1/1000 resolves about 6e-5 of the depth at 10 % of the
+// range; 2^-14 (6.1e-5) with the interpolation's own rounding stays above it.
+inline constexpr double kDepthPrecision = 1.0 / 16384.0;
+
+// A filtered mask's reach grows with the declared filter radius by at most this many texels (a
+// 1/2 threshold over a box of any radius keeps a straight boundary where one tap would put it).
+inline constexpr double kMaxMaskFilterTexels = 1.0;
+
+// The probes' spacing in texels: rings at 1/4, 1/2, ... out to the reach, 8 directions each (the
+// pack's nearest reach of 1/2 is probed at 1/4 and 1/2).
+inline constexpr double kProbeStep = 0.25;
 
 class EmbreeScene;
 
@@ -77,6 +102,26 @@ class CauseModel {
     Vec3<double> p, n;
   };
   std::optional<Surface> surface_at(int x, int y) const;
+  // p's place in the light view that decides it (the cube face, the cascade, the one view) at the
+  // declared map size, and the depths and widths the probes need.
+  struct Lookup {
+    Vec3<double> p, n, to_light;
+    const LightView* view = nullptr;
+    Mat4<double> m, inv;
+    Vec3<double> q;                 // p in the light's NDC
+    double texel_ndc = 0, zn = 0, zf = 0, axis_sign = 1;
+    double depth_p = 0, texel = 0, tan_p = 0, depth_bias_world = 0;
+    bool perspective = false;
+    double depth(const Vec3<double>& w) const;  // along the light's view axis
+    double texel_at(double at) const;           // one texel's width at light depth `at`
+  };
+  std::optional<Lookup> lookup(std::size_t light, const Surface& s, const outputs::CandidateDeclaration& d) const;
+  // The bias a map adds to the depth it stores at a polygon of normal `ng`, met along `along` at
+  // light depth `at`.
+  using BiasOf = std::function<double(const Vec3<double>& ng, const Vec3<double>& along, double at)>;
+  bool texel_gives(const Lookup& k, double dx, double dy, bool candidate_lit, const BiasOf& bias) const;
+  // The mask's reach in texels: the lookup's grid (pack or own) and the filter, capped.
+  static double mask_reach_texels(const outputs::CandidateDeclaration& d);
   // The light's views at map size `size` (0: the prepared size), cascaded with `cascades` cascades
   // (0: not cascaded).
   const LightFit& fit_for(std::size_t light, int size, int cascades) const;

@@ -58,6 +58,7 @@ struct MaskMetrics {
   std::size_t explained_bias = 0;   // wrong, within the declared bias of a contact or a grazing surface
   std::size_t unexplained = 0;      // wrong and explained by nothing
   std::size_t unexplained_false_light = 0;  // of those, false light (the rest: false shadow or coverage)
+  std::size_t unexplained_acne = 0;  // of those, self-shadowing: the receiver's own surface stored with too little bias
   std::size_t unexplained_core = 0; // unexplained pixels whose (2 kCoreRadius + 1)² neighbourhood is all unexplained
   std::size_t unexplained_false_light_core = 0;  // the same over the unexplained false light alone
   std::size_t edge_pixels = 0;      // reference pixels with a 4-neighbour of another class (lit,
@@ -99,6 +100,7 @@ struct ErrorColours {
   unsigned char coverage[3] = {230, 40, 230};
   unsigned char texel[3] = {240, 170, 20};      // explained: texel footprint
   unsigned char bias[3] = {30, 200, 200};       // explained: depth bias
+  unsigned char acne[3] = {255, 235, 40};       // unexplained: self-shadowing (acne), a false shadow of its own kind
   unsigned char undecided[3] = {70, 105, 70};   // not judged: the reference's undecided pixels
 };
 inline constexpr ErrorColours kErrorColours{};

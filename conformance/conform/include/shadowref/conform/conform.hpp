@@ -2,17 +2,8 @@
 // (cached), for each technique a render (or an engine team's files), the comparison, the
 // catalogue's expectation, and the case's status; then report.json and the HTML report.
 //
-// Status of a case (VK-GL-CTS wording where it exists):
-//   PASS   expected to pass, verdict pass
-//   WARN   expected to pass, verdict quality warning (within the looser bound)
-//   FAIL   expected to pass, verdict fail
-//   XFAIL  expected to fail (the catalogue's `why`), verdict fail: the limitation is detected and,
-//          for an engine team's candidate, its errors are those of the technique's own model of its
-//          failure (our implementation); errors beyond the model make the case FAIL
-//   XPASS  expected to fail, verdict pass or warning: a broken expectation, counted as a failure
-//   ERROR  the case could not be judged (GL error, missing or unreadable candidate file)
-// Exit (docs/output-contract.md): 2 when any FAIL, XPASS or ERROR; else 1 when any WARN the catalogue
-// does not expect ("result": "warn"); else 0.
+// A case's status and the run's exit code follow status.hpp's rules; every verdict comes from the one
+// judge (judge.hpp).
 #pragma once
 
 #include <filesystem>
@@ -23,11 +14,14 @@
 #include <vector>
 
 #include "shadowref/compare/compare.hpp"
+#include "shadowref/conform/status.hpp"
+#include "shadowref/convention.hpp"
 #include "shadowref/outputs/candidate.hpp"
 #include "shadowref/conform/reference_cache.hpp"
 #include "shadowref/scene/scene.hpp"
 
 #include "shadowref/renderer/faults.hpp"
+#include "shadowref/renderer/gl_context.hpp"
 
 namespace shadowref::conform {
 
@@ -43,23 +37,16 @@ struct ExtraTechnique {
   std::string judged_as;
 };
 
-enum class Status { Pass, Warn, Fail, XFail, XPass, Error };
-const char* to_string(Status s);  // "PASS", "WARN", ...
-bool is_failure(Status s);         // FAIL, XPASS, ERROR
-
-// The status of a verdict under an expectation (expected_pass false: an expected failure).
-Status status_of(compare::Verdict verdict, bool expected_pass);
-
 struct ConformOptions {
   std::vector<std::filesystem::path> scenes;    // scene files (catalogue.hpp selects them)
   std::vector<std::string> techniques;          // renderer technique names; empty: all
-  std::string convention = "gl";                // the run convention (mathlib/convention.hpp): gl, gl-zo, reversed-z, d3d
+  const RunConvention* convention = &kDefaultConvention;  // the run convention (mathlib/convention.hpp)
   int shadow_map_size = 0;                      // texels per side of our shadow maps; 0: automatic
   // Every scene rendered at another resolution (an engine's own): scale factor, or [W, H] (0: keep).
   double resolution_scale = 1.0;
   int width = 0, height = 0;
-  std::string backend = "llvmpipe";             // llvmpipe | softpipe | native
-  std::string gl = "osmesa";                    // osmesa | egl
+  renderer::Driver backend = renderer::Driver::Llvmpipe;
+  renderer::GlApi gl = renderer::GlApi::OSMesa;
   std::filesystem::path out = "conformance-out";
   std::filesystem::path cache;                  // empty: <out>/reference-cache
   ReferenceSettings reference;
@@ -80,6 +67,8 @@ struct CaseResult {
   bool expected_pass = true;
   bool expected_warning = false;                // the catalogue expects a quality warning (a WARN is no warning of the run)
   std::string why;                              // the catalogue's why (expected failures and warnings)
+  std::string unmet_expectation;                // an expectation the verdict did not meet (status.hpp), or ""
+  std::string causes;                           // which causes may explain wrong pixels (judge.hpp), in words
   scene::PredictedErrors predicted_errors = scene::PredictedErrors::Any;  // the catalogue's "errors"
   std::string signature;                        // how an expected failure was checked to be the predicted one
   Status status = Status::Error;

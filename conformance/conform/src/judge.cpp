@@ -1,0 +1,151 @@
+// judge.cpp — the one judge (judge.hpp): declaration, threshold, causes, lit fraction, status and
+// the expected failure's signature, in that order.
+#include "shadowref/conform/judge.hpp"
+
+#include <chrono>
+#include <utility>
+
+#include "shadowref/outputs/errors.hpp"
+#include "shadowref/outputs/file_names.hpp"
+#include "shadowref/outputs/techniques.hpp"
+#include "shadowref/reference/causes.hpp"
+#include "shadowref/renderer/renderer.hpp"
+
+namespace shadowref::conform {
+namespace {
+
+// The comparison's options for `technique` under `declared`: the cause model's explainers (bound to
+// `model`, `declared`, which must outlive the comparison) and, for a soft technique, the lit
+// fraction of every light with an area. `causes` gets them in words.
+struct Explainers {
+  compare::Explainer mask;
+  compare::VisibilityExplainer visibility;
+};
+
+compare::CompareOptions options_for(const scene::Scene& s, const compare::Threshold& threshold,
+                                    const outputs::TechniqueName* technique, const outputs::CandidateDeclaration& declared,
+                                    const reference::CauseModel* model, Explainers& explainers, std::string& causes) {
+  compare::CompareOptions o;
+  o.no_cast_shadow_invariant = s.invariant_no_cast_shadow;
+  causes = "none (an exact technique, or one the suite does not know: every wrong pixel is unexplained)";
+  if (threshold.bands) {
+    explainers.mask = [model, &declared](std::size_t light, int x, int y, bool candidate_lit) {
+      return model->explain(light, x, y, declared, candidate_lit);
+    };
+    o.explain = &explainers.mask;
+    causes = "texel footprint and depth bias, from the scene and the candidate's declaration";
+  }
+  if (technique && technique->family == outputs::TechniqueFamily::SoftShadow) {
+    explainers.visibility = [model, &declared](std::size_t light, int x, int y) {
+      const reference::CauseModel::Band b = model->visibility_band(light, x, y, declared);
+      return std::make_pair(b.lo, b.hi);
+    };
+    o.explain_visibility = &explainers.visibility;
+    for (const scene::Light& l : s.lights) {
+      const bool area = l.type == scene::LightType::Rect;
+      o.visibility_tolerance.push_back(area ? compare::visibility_sampling_tolerance(l.samples, declared.light_taps) : -1.0);
+      o.visibility_mean_error_bound.push_back(area ? compare::visibility_mean_error_bound(l.samples, declared.light_taps) : 0.0);
+    }
+    causes += "; the lit fraction of every area light, within its sampling and the filter's footprint";
+  }
+  return o;
+}
+
+}  // namespace
+
+Judge::Judge() = default;
+Judge::~Judge() = default;
+
+const reference::CauseModel& Judge::causes_of(const scene::PreparedScene& prepared) {
+  std::unique_ptr<reference::CauseModel>& m = causes_[&prepared];
+  if (!m) m = std::make_unique<reference::CauseModel>(prepared);
+  return *m;
+}
+
+std::filesystem::path Judge::draw_model(const scene::PreparedScene& prepared, const std::string& technique,
+                                        const std::filesystem::path& reference_dir, const std::filesystem::path& dir) {
+  if (!model_gl_) model_gl_ = std::make_unique<renderer::Renderer>(renderer::GlApi::OSMesa, renderer::Driver::Llvmpipe);
+  const scene::Scene& s = *prepared.scene;
+  renderer::write_outputs(model_gl_->render(prepared, technique), model_gl_->info(), s, dir);
+  // The model is judged on the reference's decided pixels, with the same causes.
+  for (std::size_t l = 0; l < s.lights.size(); ++l) {
+    const std::string d = outputs::decided_name(l, s.lights.size());
+    std::filesystem::copy_file(reference_dir / d, dir / d, std::filesystem::copy_options::overwrite_existing);
+  }
+  return dir;
+}
+
+CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJudge& c) {
+  CaseJudgement j;
+  // 1. The technique judged and what the candidate declares.
+  j.technique = c.technique;
+  j.technique_source = "the caller";
+  j.declaration = outputs::read_declaration(c.candidate_dir, c.technique);
+  if (j.technique.empty()) {
+    j.technique = j.declaration.technique;
+    j.technique_source = j.technique.empty() ? "none given: the strictest" : "candidate.json";
+  }
+  const outputs::TechniqueName* named = outputs::find_technique_name(j.technique);
+  const bool soft = named && named->family == outputs::TechniqueFamily::SoftShadow;
+  const compare::Threshold& threshold = compare::threshold_for(j.technique);
+  if (!prepared) {
+    if (soft)
+      throw outputs::InputError(outputs::InputError::Kind::BadInput,
+                                "technique '" + j.technique + "' (from " + j.technique_source +
+                                    "): a soft technique's lit fraction is judged against the scene's lights: give the scene");
+    j.causes = "none (the scene is not known: every wrong pixel is unexplained)";
+    j.comparison = compare::compare_folders(c.reference_dir, c.candidate_dir, threshold);
+    j.status = status_of(j.comparison.judgement.verdict, true);
+    return j;
+  }
+  const scene::Scene& s = *prepared->scene;
+  if (const auto e = s.expect.find(j.technique); e != s.expect.end()) j.expectation = e->second;
+
+  // 2-4. Threshold, causes, lit fraction: the comparison.
+  const reference::CauseModel* model = threshold.bands || soft ? &causes_of(*prepared) : nullptr;
+  Explainers explainers;
+  const compare::CompareOptions options = options_for(s, threshold, named, j.declaration, model, explainers, j.causes);
+  j.comparison = compare::compare_folders(c.reference_dir, c.candidate_dir, threshold, options);
+
+  // 5. Status and signature.
+  j.status = status_of(j.comparison.judgement.verdict, j.expectation.pass);
+  j.unmet_expectation = unmet_expectation(j.expectation, j.status);
+  if (j.status != Status::XFail) return j;
+  if (j.expectation.errors != scene::PredictedErrors::Any) {
+    // An expected failure that predicts its errors' kind: granted only when the other kind passes.
+    std::string seen;
+    const std::string problem = unpredicted_errors(j.comparison, j.expectation.errors, seen);
+    if (!problem.empty()) {
+      j.status = Status::Fail;
+      j.signature = "expected failure seen, but errors of the kind it does not predict fail on their own: " + problem;
+      return j;
+    }
+    j.signature = "the errors are of the predicted kind: " + seen;
+  }
+  // An engine's expected failure is granted only when its errors are the ones the technique's own
+  // model of its failure predicts: our implementation, which shows the limitation exactly. The
+  // candidate is judged against the model's masks (on the reference's decided pixels, with the
+  // same causes); what is left is wrong elsewhere.
+  if (c.candidate_is_ours || !named || c.model_dir.empty()) return j;
+  const auto start = std::chrono::steady_clock::now();
+  const std::filesystem::path model_dir = draw_model(*prepared, j.technique, c.reference_dir, c.model_dir);
+  // The model is the technique's masks: a soft technique's lit fraction has no model of its
+  // failure here (our render's fraction is no ground truth to measure an engine's against).
+  compare::CompareOptions model_options = options;
+  model_options.visibility_tolerance.clear();
+  model_options.visibility_mean_error_bound.clear();
+  const compare::FolderComparison against_model = compare::compare_folders(model_dir, c.candidate_dir, threshold, model_options);
+  j.model_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::string ours = " (our " + j.technique + ")";
+  if (against_model.judgement.verdict == compare::Verdict::Fail) {
+    j.status = Status::Fail;
+    j.signature = "expected failure seen, but also wrong elsewhere: " + std::to_string(against_model.total.unexplained) +
+                  " px unexplained against the technique's own model of its failure" + ours;
+  } else {
+    j.signature += std::string(j.signature.empty() ? "" : "; ") +
+                   "the errors are the ones the technique's own model of its failure predicts" + ours;
+  }
+  return j;
+}
+
+}  // namespace shadowref::conform
