@@ -1,0 +1,266 @@
+// declaration_grid_test.cpp — no declaration buys a verdict (docs/tolerance-model.md, "What a
+// declaration may do"): our own correct shadow-map render of a scene is the control, judged by the
+// one judge (conform/judge.hpp) under its honest declaration (PASS); then blatant mutants of its mask
+// — all shadowed, all lit, inverted, shifted by 1 and 2 px, the shadow grown and shrunk by 1 and 2 px,
+// a swapped 8 × 8 tile — are judged under every declaration of a grid (slope bias 0 … 8 texels,
+// constant bias 0 … a scene-sized metre, normal offset, window-depth bias, filter radius 0 … 8,
+// `pack` / `own`, maps of 512 … 4096 texels, and all of the largest at once): each must FAIL. And
+// declaring less (a smaller bias, a smaller filter, `pack` for `own`) never explains more: the
+// unexplained count and the verdict of every mask, control included, never improve along a chain
+// of ever smaller declarations.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "llvmpipe_renderer.hpp"
+#include "shadowref/conform/catalogue.hpp"
+#include "shadowref/conform/judge.hpp"
+#include "shadowref/conform/reference_cache.hpp"
+#include "shadowref/outputs/image.hpp"
+#include "shadowref/outputs/image_io.hpp"
+#include "shadowref/scene/load_scene.hpp"
+#include "shadowref/scene/prepared_scene.hpp"
+
+namespace shadowref {
+namespace {
+
+namespace fs = std::filesystem;
+using outputs::Image8;
+using outputs::kMaskLit;
+using outputs::kMaskNoSurface;
+using outputs::kMaskShadowed;
+
+// A mutant: the control mask with one blatant defect. Surface pixels only: a mutant never changes
+// coverage (that would fail on its own, whatever the shadows).
+using Mutation = std::function<void(Image8&)>;
+
+void for_surface(Image8& m, const std::function<void(std::uint8_t&)>& f) {
+  for (std::uint8_t& v : m.pixels)
+    if (v != kMaskNoSurface) f(v);
+}
+
+// Every surface pixel takes the answer of the one `dx` to its left (silhouettes stay put).
+Mutation shifted(int dx) {
+  return [dx](Image8& m) {
+    const Image8 was = m;
+    for (int y = 0; y < m.height; ++y)
+      for (int x = dx; x < m.width; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y * m.width + x);
+        if (was.pixels[i] != kMaskNoSurface && was.pixels[i - dx] != kMaskNoSurface) m.pixels[i] = was.pixels[i - dx];
+      }
+  };
+}
+
+// The shadow grown (or, with `grow` false, shrunk) by `n` px: a surface pixel takes the answer
+// `grow ? shadowed : lit` when any surface pixel within n px (a square) has it.
+Mutation morphed(int n, bool grow) {
+  return [n, grow](Image8& m) {
+    const Image8 was = m;
+    const std::uint8_t into = grow ? kMaskShadowed : kMaskLit;
+    for (int y = 0; y < m.height; ++y)
+      for (int x = 0; x < m.width; ++x) {
+        std::uint8_t& v = m.pixels[static_cast<std::size_t>(y * m.width + x)];
+        if (v == kMaskNoSurface) continue;
+        for (int dy = -n; dy <= n && v != into; ++dy)
+          for (int dx = -n; dx <= n; ++dx) {
+            const int u = x + dx, w = y + dy;
+            if (u < 0 || w < 0 || u >= m.width || w >= m.height) continue;
+            if (was.pixels[static_cast<std::size_t>(w * m.width + u)] == into) {
+              v = into;
+              break;
+            }
+          }
+      }
+  };
+}
+
+struct Mutant {
+  const char* name;
+  Mutation mutate;
+};
+
+std::vector<Mutant> mutants() {
+  return {
+      {"all-shadowed", [](Image8& m) { for_surface(m, [](std::uint8_t& v) { v = kMaskShadowed; }); }},
+      {"all-lit", [](Image8& m) { for_surface(m, [](std::uint8_t& v) { v = kMaskLit; }); }},
+      {"inverted", [](Image8& m) { for_surface(m, [](std::uint8_t& v) { v = v == kMaskLit ? kMaskShadowed : kMaskLit; }); }},
+      {"shifted-1px", shifted(1)},
+      {"shifted-2px", shifted(2)},
+      {"grown-1px", morphed(1, true)},
+      {"grown-2px", morphed(2, true)},
+      {"shrunk-1px", morphed(1, false)},
+      {"shrunk-2px", morphed(2, false)},
+      {"swapped-tile", [](Image8& m) {
+         // An 8 x 8 tile swapped with the one 8 px to its right, where that changes most pixels.
+         int best = -1, bx = 0, by = 0;
+         for (int y = 0; y + 8 <= m.height; y += 4)
+           for (int x = 0; x + 16 <= m.width; x += 4) {
+             int differ = 0;
+             for (int v = 0; v < 8; ++v)
+               for (int u = 0; u < 8; ++u)
+                 differ += m.pixels[static_cast<std::size_t>((y + v) * m.width + x + u)] !=
+                           m.pixels[static_cast<std::size_t>((y + v) * m.width + x + u + 8)];
+             if (differ > best) best = differ, bx = x, by = y;
+           }
+         for (int v = 0; v < 8; ++v)
+           for (int u = 0; u < 8; ++u)
+             std::swap(m.pixels[static_cast<std::size_t>((by + v) * m.width + bx + u)],
+                       m.pixels[static_cast<std::size_t>((by + v) * m.width + bx + u + 8)]);
+       }},
+  };
+}
+
+// A declaration: candidate.json's bias and footprint keys over the technique (shadowmap).
+struct Declaration {
+  std::string name;
+  std::string json;  // the keys beyond "technique"
+};
+
+// The grid: each key at its extremes, then all the largest at once.
+std::vector<Declaration> grid() {
+  return {
+      {"ours", R"("slope_bias_texels": 2, "light_views": "pack")"},
+      {"slope-0", R"("slope_bias_texels": 0, "light_views": "pack")"},
+      {"slope-0-own", R"("slope_bias_texels": 0, "light_views": "own")"},
+      {"slope-8", R"("slope_bias_texels": 8)"},
+      {"constant-6.4cm", R"("slope_bias_texels": 0, "constant_bias": 0.064)"},
+      {"constant-1m", R"("constant_bias": 1.0)"},
+      {"normal-offset-4-texels", R"("normal_offset_texels": 4)"},
+      {"depth-bias-1%", R"("depth_bias": 0.01)"},
+      {"filter-8", R"("filter_radius_texels": 8)"},
+      {"map-512", R"("shadow_map_size": 512)"},
+      {"map-4096-pack", R"("shadow_map_size": 4096, "light_views": "pack")"},
+      {"largest", R"("slope_bias_texels": 8, "constant_bias": 1.0, "normal_offset_texels": 4, "depth_bias": 0.01, )"
+                  R"("filter_radius_texels": 8, "light_views": "own", "shadow_map_size": 512)"},
+  };
+}
+
+// Chains of ever smaller declarations (each entry declares less than the one before).
+std::vector<std::vector<Declaration>> chains() {
+  return {
+      {{"slope 8", R"("slope_bias_texels": 8)"}, {"slope 2", R"("slope_bias_texels": 2)"}, {"slope 0", R"("slope_bias_texels": 0)"}},
+      {{"constant 1 m", R"("constant_bias": 1.0, "slope_bias_texels": 0)"},
+       {"constant 6.4 cm", R"("constant_bias": 0.064, "slope_bias_texels": 0)"},
+       {"constant 0", R"("constant_bias": 0, "slope_bias_texels": 0)"}},
+      {{"normal offset 4 texels", R"("normal_offset_texels": 4, "slope_bias_texels": 0)"},
+       {"normal offset 0", R"("normal_offset_texels": 0, "slope_bias_texels": 0)"}},
+      {{"depth bias 1 %", R"("depth_bias": 0.01, "slope_bias_texels": 0)"}, {"depth bias 0", R"("depth_bias": 0, "slope_bias_texels": 0)"}},
+      {{"filter 8", R"("filter_radius_texels": 8)"}, {"filter 1", R"("filter_radius_texels": 1)"}, {"filter 0", R"("filter_radius_texels": 0)"}},
+      {{"own", R"("light_views": "own")"}, {"pack", R"("light_views": "pack")"}},
+  };
+}
+
+// One scene: its prepared form, the reference (from the CTest fixtures' cache), our render's mask.
+struct SceneUnderTest {
+  explicit SceneUnderTest(const std::string& name)
+      : scene(scene::load_scene(conform::default_catalogue() / (name + ".json"))), prepared(scene::prepare_scene(scene)) {
+    conform::ReferenceSettings settings;
+    settings.key_executable = SHADOWREF_EXE;
+    reference = conform::ensure_reference(prepared, SHADOWREF_TEST_CACHE, settings).dir;
+    control = test::llvmpipe_renderer().render(prepared, "shadowmap").masks.at(0);
+  }
+  scene::Scene scene;
+  scene::PreparedScene prepared;
+  fs::path reference;
+  Image8 control;
+  conform::Judge judge;
+
+  // Judges `mask` declared with `keys`, in folder `name`.
+  conform::CaseJudgement judged(const std::string& name, const Image8& mask, const std::string& keys) {
+    const fs::path dir = fs::path(SHADOWREF_TEST_OUT) / scene.name / name;
+    fs::create_directories(dir);
+    outputs::write_png(mask, dir / "mask.png");
+    std::ofstream(dir / "candidate.json") << "{\"technique\": \"shadowmap\"" << (keys.empty() ? "" : ", ") << keys << "}\n";
+    return judge.judge(&prepared, {reference, dir, "", false, {}});
+  }
+};
+
+// Known limitations, each seen to fail in the predicted way (not FAIL, with the unexplained count
+// below the fail bound): a declared map SMALLER than the one drawn widens the texel footprint, and a
+// wide filter the mask's reach by one texel, and the judge does not yet check a declared size
+// against the candidate's own staircases. At 256² under a sun 8 degrees up one 512-texel map texel
+// lies along the ground over about 7 px (1 / sin 8°), so a 1-px shift, a 1-px growth or a swapped
+// tile within that stretch is what such a map may honestly show. Any other mutant that does not
+// FAIL fails the test, and so does a listed one that FAILs (the list must then shrink).
+struct KnownGap {
+  const char* scene;
+  const char* mutant;
+  const char* declaration;
+};
+constexpr KnownGap kKnownGaps[] = {
+    {"grazing_light", "shifted-1px", "map-512"},   {"grazing_light", "shifted-1px", "largest"},
+    {"grazing_light", "grown-1px", "largest"},     {"grazing_light", "swapped-tile", "filter-8"},
+    {"grazing_light", "swapped-tile", "map-512"},  {"grazing_light", "swapped-tile", "largest"},
+    {"ground_sphere", "shifted-1px", "map-512"},   {"ground_sphere", "shifted-1px", "largest"},
+};
+
+bool known_gap(const std::string& scene, const std::string& mutant, const std::string& declaration) {
+  for (const KnownGap& g : kKnownGaps)
+    if (scene == g.scene && mutant == g.mutant && declaration == g.declaration) return true;
+  return false;
+}
+
+class DeclarationGrid : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(DeclarationGrid, TheControlPassesAndNoDeclarationLetsAMutantPass) {
+  SceneUnderTest s(GetParam());
+  const conform::CaseJudgement control = s.judged("control", s.control, grid().front().json);
+  ASSERT_EQ(control.comparison.judgement.verdict, compare::Verdict::Pass) << "the control (our render, honestly declared)";
+  for (const Mutant& m : mutants()) {
+    Image8 mask = s.control;
+    m.mutate(mask);
+    if (mask.pixels == s.control.pixels) continue;  // changes nothing on this scene
+    for (const Declaration& d : grid()) {
+      const conform::CaseJudgement j = s.judged(std::string(m.name) + "-" + d.name, mask, d.json);
+      const compare::MaskMetrics& t = j.comparison.total;
+      if (known_gap(s.scene.name, m.name, d.name)) {
+        EXPECT_NE(j.comparison.judgement.verdict, compare::Verdict::Fail)
+            << m.name << " declared " << d.name << " FAILs now: remove it from kKnownGaps";
+        EXPECT_EQ(t.unexplained_core, 0u) << m.name << " declared " << d.name << ": not the predicted kind of gap";
+        continue;
+      }
+      EXPECT_EQ(j.comparison.judgement.verdict, compare::Verdict::Fail)
+          << m.name << " declared " << d.name << ": " << compare::to_string(j.comparison.judgement.verdict) << " with "
+          << t.unexplained << " px unexplained of " << t.wrong << " wrong (" << 100 * t.unexplained_ratio() << " % of "
+          << t.edge_pixels << " edge px, core " << t.unexplained_core << ")";
+    }
+  }
+}
+
+TEST_P(DeclarationGrid, DeclaringLessNeverExplainsMore) {
+  SceneUnderTest s(GetParam());
+  std::vector<Mutant> masks = mutants();
+  masks.insert(masks.begin(), Mutant{"control", [](Image8&) {}});
+  for (const Mutant& m : masks) {
+    Image8 mask = s.control;
+    m.mutate(mask);
+    for (const std::vector<Declaration>& chain : chains()) {
+      std::size_t before_unexplained = 0;
+      compare::Verdict before = compare::Verdict::Pass;
+      for (std::size_t i = 0; i < chain.size(); ++i) {
+        const conform::CaseJudgement j = s.judged(std::string(m.name) + "-chain-" + std::to_string(i), mask, chain[i].json);
+        if (i > 0) {
+          EXPECT_GE(j.comparison.total.unexplained, before_unexplained)
+              << m.name << ": declaring " << chain[i].name << " instead of " << chain[i - 1].name << " explained more";
+          EXPECT_GE(j.comparison.judgement.verdict, before)
+              << m.name << ": declaring " << chain[i].name << " instead of " << chain[i - 1].name << " improved the verdict";
+        }
+        before_unexplained = j.comparison.total.unexplained;
+        before = j.comparison.judgement.verdict;
+      }
+    }
+  }
+}
+
+// Directional light over flat ground (acne's home), a sun 8 degrees up (grazing), a slab on the ground
+// (contact shadows: peter-panning), a point light's cube over a sphere's whole shadow.
+INSTANTIATE_TEST_SUITE_P(Scenes, DeclarationGrid,
+                         ::testing::Values("directional_light", "grazing_light", "contact_shadow", "ground_sphere"),
+                         [](const ::testing::TestParamInfo<const char*>& i) { return std::string(i.param); });
+
+}  // namespace
+}  // namespace shadowref
