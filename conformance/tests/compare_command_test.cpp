@@ -103,5 +103,42 @@ TEST_F(CompareCommand, SceneGivesTheShadowMapCausesConformUses) {
   EXPECT_GT(a["total"]["unexplained"].get<int>(), 10 * b["total"]["unexplained"].get<int>());
 }
 
+
+// One judge: `compare` and `conform` give the same verdict and counts for the same folder. Our
+// correct pcss render of soft_penumbra with its visibility.png made all white (every pixel fully
+// lit: the lit fraction wrong over the whole penumbra and umbra) FAILs under both; `compare` takes
+// the technique from candidate.json (no --technique) and says so. The unmodified render is the
+// control: PASS under both.
+TEST_F(CompareCommand, CompareAndConformGiveTheSameVerdict) {
+  const std::string scene = std::string(SHADOWREF_CATALOGUE) + "/soft_penumbra.json";
+  const fs::path cand = root / "cands" / "soft_penumbra";
+  ASSERT_EQ(test::run_command({SHADOWREF_EXE, "reference", "--scene", scene, "--out", (root / "r").string(), "--quiet"}).exit_code, 0);
+  ASSERT_EQ(test::run_command({SHADOWREF_EXE, "render", "--scene", scene, "--technique", "pcss", "--out", cand.string()}).exit_code, 0);
+  const auto judge_both = [&](const char* what) {
+    const auto c = test::run_command({SHADOWREF_EXE, "compare", "--reference", (root / "r").string(), "--candidate",
+                                      cand.string(), "--scene", scene, "--json"});
+    const fs::path out = root / (std::string("conform-") + what);
+    const auto k = test::run_command({SHADOWREF_EXE, "conform", "--scenes", "soft_penumbra", "--candidate-dir",
+                                      (root / "cands").string(), "--technique", "pcss", "--out", out.string(),
+                                      "--cache", (root / "cache").string(), "--quiet"});
+    EXPECT_EQ(c.exit_code, k.exit_code) << what << ": compare " << c.err << "\nconform " << k.err << k.out;
+    const nlohmann::json a = nlohmann::json::parse(c.out);
+    std::ifstream in(out / "report.json");
+    const nlohmann::json r = nlohmann::json::parse(in);
+    const nlohmann::json& b = r["cases"][0]["comparison"];
+    EXPECT_EQ(a["technique"], "pcss");
+    EXPECT_EQ(a["technique_source"], "candidate.json");
+    EXPECT_EQ(a["verdict"], b["verdict"]) << what;
+    EXPECT_EQ(a["total"]["unexplained"], b["total"]["unexplained"]) << what;
+    EXPECT_EQ(a["visibility"], b["visibility"]) << what;
+    EXPECT_EQ(a["status"], r["cases"][0]["status"]) << what;
+    return c.exit_code;
+  };
+  EXPECT_EQ(judge_both("control"), 0);
+  const outputs::Image8 vis = outputs::read_image8(cand / "visibility.png", 1);
+  grey(cand / "visibility.png", vis.width, vis.height, 255);
+  EXPECT_EQ(judge_both("all-white"), 2);
+}
+
 }  // namespace
 }  // namespace shadowref

@@ -365,6 +365,9 @@ std::string render_html(const json& r) {
       << "</span>";
     if (!str(c, "why", "").empty()) h << "<div class=\"why\"><b>why it is expected to fail:</b> " << escape_html(str(c, "why")) << "</div>";
     if (!str(c, "signature", "").empty()) h << "<div class=\"why\"><b>signature:</b> " << escape_html(str(c, "signature")) << "</div>";
+    if (!str(c, "unmet_expectation", "").empty())
+      h << "<div class=\"why\"><b>expectation not met:</b> " << escape_html(str(c, "unmet_expectation")) << "</div>";
+    if (!str(c, "causes", "").empty()) h << "<div class=\"notes\">causes judged: " << escape_html(str(c, "causes")) << "</div>";
     if (c.contains("error")) h << "<p class=\"error\">" << escape_html(str(c, "error")) << "</p>";
     if (c.contains("candidate")) {
       const json& d = c["candidate"];
