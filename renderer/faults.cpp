@@ -28,6 +28,8 @@ std::string describe(const Faults& f) {
   on(s.neg_one_to_one_bias, "shadow_map.neg_one_to_one_bias");
   on(s.no_polygon_offset, "shadow_map.no_polygon_offset");
   on(s.large_constant_offset, "shadow_map.large_constant_offset");
+  const std::string world = "shadow_map.constant_offset_world=" + std::to_string(s.constant_offset_world);
+  on(s.constant_offset_world > 0, world.c_str());
   on(s.cull_casters_outside_view, "shadow_map.cull_casters_outside_view");
   on(s.fit == FitFault::NearTooTight, "shadow_map.fit=near_too_tight");
   on(s.fit == FitFault::FarTooTight, "shadow_map.fit=far_too_tight");

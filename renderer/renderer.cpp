@@ -624,6 +624,10 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_
       // A deliberately wrong render declares what it does, honestly: the judge must fail it all the same.
       if (options.faults.shadow_map.no_polygon_offset) result.declaration.slope_bias_texels = result.declaration.depth_bias = 0;
       if (options.faults.shadow_map.large_constant_offset) result.declaration.depth_bias = kPeterPanUnits * kWindowDepthPerUnit;
+      if (options.faults.shadow_map.constant_offset_world > 0) {
+        result.declaration.depth_bias = 0;
+        result.declaration.constant_bias = options.faults.shadow_map.constant_offset_world;
+      }
       result.declaration.light_views_from_pack = true;  // the prepared scene's light fits: the pack's
       result.declaration.defaulted.clear();
     }

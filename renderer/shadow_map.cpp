@@ -184,28 +184,30 @@ GLuint nearest_array_texture(const GlFunctions& gl, GLint wrap) {
   return t;
 }
 
-LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant variant) {
-  const GlFunctions& gl = frame.gl;
-  const RunConvention& conv = frame.convention();
-  const int size = lc.size;
-  const auto layers = static_cast<GLsizei>(lc.views.size());
-  LightMap map;
-  map.gl = &gl;
-  map.size = size;
-  map.layout = lc.cube ? 1 : lc.cascade_splits.empty() ? 0 : 2;
-  if (map.layout == 2) {
-    const std::vector<double>& s = lc.cascade_splits;
-    const std::size_t n = s.size() - 1;
-    if (n > 4) throw GlError("the shader picks among at most 4 cascades");
-    map.cascade_depth = lc.cascade_depth_from_scene.cast<float>();
-    for (std::size_t c = 0; c < n; ++c) {
-      map.cascade_begin[c] = c == 0 ? -3e38f : static_cast<float>(s[c]);
-      double end = c + 1 < n ? s[c + 1] : 3e38;  // the last one open-ended, as light_view_of
-      // FAULT: the selection ends short of the split the next cascade begins at.
-      if (frame.faults().cascade.gap && c + 1 < n) end = s[c] + kCascadeGapFraction * (s[c + 1] - s[c]);
-      map.cascade_end[c] = static_cast<float>(end);
-    }
+// The light map's phases, in order: which cascade a pixel reads (cascaded fits), the matrices
+// from the world to each view's texels, the textures and framebuffer, the depth pass's state, and
+// the depth pass itself.
+
+// Cascaded fits: each cascade's range of camera depth (the shader picks among at most 4).
+void select_cascades(const Frame& frame, const LightFit& lc, LightMap& map) {
+  if (map.layout != 2) return;
+  const std::vector<double>& s = lc.cascade_splits;
+  const std::size_t n = s.size() - 1;
+  if (n > 4) throw GlError("the shader picks among at most 4 cascades");
+  map.cascade_depth = lc.cascade_depth_from_scene.cast<float>();
+  for (std::size_t c = 0; c < n; ++c) {
+    map.cascade_begin[c] = c == 0 ? -3e38f : static_cast<float>(s[c]);
+    double end = c + 1 < n ? s[c + 1] : 3e38;  // the last one open-ended, as light_view_of
+    // FAULT: the selection ends short of the split the next cascade begins at.
+    if (frame.faults().cascade.gap && c + 1 < n) end = s[c] + kCascadeGapFraction * (s[c + 1] - s[c]);
+    map.cascade_end[c] = static_cast<float>(end);
   }
+}
+
+// The light's projections (FitFault: with a depth range that clips casters), and for each view the
+// matrices between the world and its texels and the line of 1 / view depth in window depth.
+std::vector<Mat4<double>> light_matrices(const Frame& frame, const LightFit& lc, LightMap& map) {
+  const RunConvention& conv = frame.convention();
   const ShadowMapFaults& faults = frame.faults().shadow_map;
   Mat4<double> bias = shadow_bias<double>(conv);
   // FAULT: the −1..1 bias matrix whatever the clip depth range.
@@ -213,10 +215,9 @@ LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant varian
   if (faults.no_bias_matrix) bias = Mat4<double>::Identity();  // FAULT: clip coordinates read as texture coordinates
   if (faults.half_texel_offset) {  // FAULT: half a texel added to s and t
     Mat4<double> shift = Mat4<double>::Identity();
-    shift(0, 3) = shift(1, 3) = 0.5 / size;
+    shift(0, 3) = shift(1, 3) = 0.5 / map.size;
     bias = shift * bias;
   }
-  // The light's projections (FitFault: with a depth range that clips casters).
   std::vector<Mat4<double>> projections;
   for (const LightView& v : lc.views)
     projections.push_back(faults.fit == FitFault::None ? v.projection : fit_with_fault(conv, v.projection, faults.fit));
@@ -238,14 +239,22 @@ LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant varian
     map.inv_view_depth.push_back(static_cast<float>(1.0 - a * d1));
   }
   map.shadow_from_world = map.face_from_world[0];
+  return projections;
+}
 
+// The map's textures (depth, or RGBA8 with a depth renderbuffer; VSM's moments beside) and the
+// framebuffer the depth pass draws into, bound as `fbo`. Returns the depth renderbuffer (0: none).
+GLuint allocate_targets(const Frame& frame, LightMap& map, GLsizei layers, Variant variant, GLuint& fbo) {
+  const GlFunctions& gl = frame.gl;
+  const RunConvention& conv = frame.convention();
+  const int size = map.size;
   map.texture = nearest_array_texture(gl, GL_CLAMP_TO_BORDER);
   // The far depth (1, or 0 under reversed-Z) / its packed form: nothing occludes outside the map.
   const auto far = static_cast<float>(far_depth(conv));
   const float far_border[4] = {far, far, far, 1.0f};
   gl.TexParameterfv(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_BORDER_COLOR, far_border);
 
-  GLuint fbo = 0, depth_rb = 0;
+  GLuint depth_rb = 0;
   gl.GenFramebuffers(1, &fbo);
   gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
   if (variant == Variant::Rgba8) {
@@ -266,7 +275,7 @@ LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant varian
     // PCSS reads the stored depths themselves (its blocker search averages them).
     gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_MODE, soft(variant) ? GL_NONE : GL_COMPARE_REF_TO_TEXTURE);
     gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_FUNC,
-                     static_cast<GLint>(gl_compare(lit_compare(conv, faults.compare))));
+                     static_cast<GLint>(gl_compare(lit_compare(conv, frame.faults().shadow_map.compare))));
     gl.DrawBuffer(GL_NONE);
   }
   if (variant == Variant::Vsm) {
@@ -278,6 +287,16 @@ LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant varian
   }
   gl.ReadBuffer(GL_NONE);
 
+  return depth_rb;
+}
+
+// The depth pass's state: viewport, clear values, depth test, the program and its polygon offset
+// (the convention's sign, the variant's factor; the teeth's offset faults). Returns the program.
+const Program& set_depth_pass_state(const Frame& frame, const LightFit& lc, int size, Variant variant) {
+  const GlFunctions& gl = frame.gl;
+  const RunConvention& conv = frame.convention();
+  const ShadowMapFaults& faults = frame.faults().shadow_map;
+  const auto far = static_cast<float>(far_depth(conv));
   gl.Viewport(0, 0, size, size);
   gl.DepthMask(GL_TRUE);
   const float clear = faults.clear_to_one ? 1.0f : far;  // FAULT: 1 whatever the convention
@@ -296,6 +315,15 @@ LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant varian
   if (faults.offset_sign_ignored) sign = 1.0f;  // FAULT: + whatever the convention
   if (faults.no_polygon_offset) factor = units = 0.0f;  // FAULT: acne
   if (faults.large_constant_offset) units = kPeterPanUnits;  // FAULT: peter-panning
+  if (faults.constant_offset_world > 0) {  // FAULT: peter-panning of a given world size
+    // Window depth changes by |P(2,2)| / 2 (−1..1) or |P(2,2)| (0..1) per world unit along an
+    // orthographic view's axis; one unit of offset is one step of the 24-bit depth.
+    const Mat4<double>& projection = lc.views.front().projection;
+    if (lc.cube || projection(3, 3) != 1.0 || conv.float_depth)
+      throw GlError("shadow_map.constant_offset_world needs a directional light and a fixed-point depth convention");
+    const double per_world = std::abs(projection(2, 2)) * (conv.clip.depth == DepthRange::NegOneToOne ? 0.5 : 1.0);
+    units = static_cast<float>(faults.constant_offset_world * per_world / kWindowDepthPerUnit);
+  }
   // The offset in the shader: RGBA8's whole offset; VSM's moments only its constant part, the bias
   // VSM needs against the float tie of a receiver with its own moments (without it the Cornell box's
   // tall block, edge-on to the light, reads its own face as an occluder); the slope term would push a
@@ -313,6 +341,16 @@ LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant varian
     gl.PolygonOffset(sign * factor, sign * units);
     gl.Uniform4f(p.colour, 0, 0, 0, 0);
   }
+  return p;
+}
+
+// The depth pass: every view into its layer, casters culled as the fit says, front faces culled on
+// closed casters (but for the soft techniques, whose blocker search reads the first surfaces).
+void draw_depth_pass(const Frame& frame, const LightFit& lc, const std::vector<Mat4<double>>& projections,
+                     const LightMap& map, Variant variant, const Program& p) {
+  const GlFunctions& gl = frame.gl;
+  const ShadowMapFaults& faults = frame.faults().shadow_map;
+  const auto layers = static_cast<GLsizei>(lc.views.size());
   gl.CullFace(GL_FRONT);
   // PCSS averages the depths of the first surfaces toward the light (the blockers), so its map keeps
   // front faces; its receiver-plane compare stands in for the culling's protection from self-shadowing.
@@ -352,6 +390,20 @@ LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant varian
       frame.objects[i].draw();
     }
   }
+}
+
+LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant variant) {
+  const GlFunctions& gl = frame.gl;
+  LightMap map;
+  map.gl = &gl;
+  map.size = lc.size;
+  map.layout = lc.cube ? 1 : lc.cascade_splits.empty() ? 0 : 2;
+  select_cascades(frame, lc, map);
+  const std::vector<Mat4<double>> projections = light_matrices(frame, lc, map);
+  GLuint fbo = 0;
+  const GLuint depth_rb = allocate_targets(frame, map, static_cast<GLsizei>(lc.views.size()), variant, fbo);
+  const Program& p = set_depth_pass_state(frame, lc, map.size, variant);
+  draw_depth_pass(frame, lc, projections, map, variant, p);
   gl.Disable(GL_CULL_FACE);
   gl.CullFace(GL_BACK);
   gl.Disable(GL_POLYGON_OFFSET_FILL);

@@ -192,6 +192,29 @@ double CauseModel::mask_reach_texels(const outputs::CandidateDeclaration& d) {
   return (d.light_views_from_pack ? 0.5 : 1.0) + std::min(d.filter_radius_texels, kMaxMaskFilterTexels);
 }
 
+bool CauseModel::filter_may_answer(const Lookup& k, const outputs::CandidateDeclaration& d, bool candidate_lit,
+                                   const std::function<BiasOf(double, double)>& bias_at) const {
+  if (!(d.filter_radius_texels > kMaxMaskFilterTexels)) return false;
+  // The box's taps at whole-texel offsets out to the radius (at most kMaxFilterTapsPerAxis per axis:
+  // wider boxes are sampled at a coarser stride), placed at p's texel and at the 4 diagonal shifts
+  // of the lookup's grid uncertainty (1/2 texel on the pack's grid, 1 on the candidate's own).
+  const int radius = static_cast<int>(std::ceil(d.filter_radius_texels));
+  const int stride = std::max(1, (2 * radius + 1 + kMaxFilterTapsPerAxis - 1) / kMaxFilterTapsPerAxis);
+  const double h = d.light_views_from_pack ? 0.5 : 1.0;
+  static constexpr std::array<std::array<double, 2>, 5> kPlacements{{{0, 0}, {1, 1}, {-1, 1}, {1, -1}, {-1, -1}}};
+  for (const auto& place : kPlacements) {
+    int taps = 0, giving = 0;
+    for (int ty = -radius; ty <= radius; ty += stride)
+      for (int tx = -radius; tx <= radius; tx += stride) {
+        const double dx = tx + place[0] * h, dy = ty + place[1] * h;
+        ++taps;
+        giving += texel_gives(k, dx, dy, candidate_lit, bias_at(dx, dy));
+      }
+    if (2 * giving >= taps) return true;
+  }
+  return false;
+}
+
 Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::CandidateDeclaration& d, bool candidate_lit) const {
   const std::optional<Surface> surface = surface_at(x, y);
   if (!surface) return Cause::Unexplained;
@@ -230,6 +253,7 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
     for (const double r : rings)
       for (const auto& dv : kDirs)
         if (texel_gives(k, dv[0] * r, dv[1] * r, true, bias)) return Cause::TexelFootprint;
+    if (filter_may_answer(k, d, true, [&](double, double) { return bias; })) return Cause::TexelFootprint;
     return Cause::Unexplained;
   }
   // False shadow: a texel within the reach holds an occluder nearer than p by more than the bias a
@@ -244,6 +268,13 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
       };
       if (texel_gives(k, dv[0] * r, dv[1] * r, false, needed)) return Cause::TexelFootprint;
     }
+  const auto needed_at = [&](double dx, double dy) -> BiasOf {
+    const double distance = std::hypot(dx, dy);
+    return [&slope, distance, precision](const Vec3<double>& ng, const Vec3<double>& along, double at) {
+      return distance * slope(ng, along, at) + precision;
+    };
+  };
+  if (filter_may_answer(k, d, false, needed_at)) return Cause::TexelFootprint;
   for (const double r : rings)
     for (const auto& dv : kDirs)
       if (texel_gives(k, dv[0] * r, dv[1] * r, false, none)) return Cause::Acne;

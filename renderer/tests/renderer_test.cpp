@@ -11,6 +11,11 @@
 #include <string>
 
 #include "shadowref/reference/render.hpp"
+#include "shadowref/conform/judge.hpp"
+#include "shadowref/conform/reference_cache.hpp"
+#include "shadowref/scene/prepared_scene.hpp"
+
+#include <unistd.h>
 #include "shadowref/outputs/techniques.hpp"
 #include "shadowref/renderer/renderer.hpp"
 #include "shadowref/scene/load_scene.hpp"
@@ -105,6 +110,29 @@ TEST(Renderer, SimplestSceneAgreesWithReference) {
     for (std::size_t i = 0; i < r.masks[0].pixels.size(); ++i)
       ASSERT_EQ(r.masks[0].pixels[i] == outputs::kMaskNoSurface, ref.lights[0].mask[i] == outputs::kMaskNoSurface) << "pixel " << i;
   }
+}
+
+// Every technique, judged by the one judge (conform/judge.hpp) as `conform` judges it: the small
+// scene's reference (the conformance run's settings), our render's folder, its candidate.json, the
+// technique's threshold, causes and lit fraction. ground_sphere expects every technique to pass.
+TEST(Renderer, EveryTechniqueIsJudgedAPassByTheOneJudge) {
+  const scene::Scene s = load("ground_sphere");
+  const scene::PreparedScene prepared = scene::prepare_scene(s);
+  const std::filesystem::path root = std::filesystem::temp_directory_path() /
+                                     ("shadowref-renderer-judged-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(root);
+  conform::render_reference_to(prepared, root / "reference", conform::ReferenceSettings{});
+  conform::Judge judge;
+  for (const Technique& t : techniques()) {
+    const std::string name(t.name);
+    ASSERT_TRUE(s.expect.find(name) == s.expect.end() || s.expect.at(name).pass) << name << ": the scene expects a failure";
+    write_outputs(renderer().render(prepared, name), renderer().info(), s, root / name);
+    const conform::CaseJudgement j = judge.judge(&prepared, {root / "reference", root / name, name, true, {}});
+    const compare::MaskMetrics& m = j.comparison.total;
+    EXPECT_EQ(j.status, conform::Status::Pass) << name << ": " << conform::to_string(j.status) << ", " << m.unexplained
+                                               << " px unexplained of " << m.wrong << " wrong (core " << m.unexplained_core << ")";
+  }
+  std::filesystem::remove_all(root);
 }
 
 // Planar shadows land on the receiver only: on the scene with a second object in the first one's

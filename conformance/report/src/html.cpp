@@ -262,16 +262,8 @@ std::string escape_html(const std::string& text) {
   return out;
 }
 
-std::string render_html(const json& r) {
-  std::ostringstream h;
-  const json cases = r.contains("cases") && r["cases"].is_array() ? r["cases"] : json::array();
-  const json summary = r.value("summary", json::object());
-  h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
-    << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
-    << "<title>shadowref conformance — " << escape_html(str(r, "backend", "candidate renders")) << "</title><style>"
-    << kStyle << "</style></head>\n<body data-checked=\"0\">\n";
-
-  // Header.
+// The page's parts, in the order render_html writes them.
+void header_section(std::ostringstream& h, const json& r) {
   const json gl = r.value("gl", json::object());
   h << "<header><h1>shadowref conformance</h1><div class=\"meta\">";
   if (str(r, "mode") == "candidate-dir")
@@ -283,7 +275,11 @@ std::string render_html(const json& r) {
     << "² samples per pixel · " << escape_html(str(r, "tool")) << " " << escape_html(str(r, "version")) << " · "
     << escape_html(str(r, "generated")) << " · " << num(r, "seconds", "%.1f") << " s</div></header>\n<main>\n";
 
-  // Counts and the scene × technique table.
+}
+
+// Counts and the scene × technique table.
+void summary_section(std::ostringstream& h, const json& r, const json& cases) {
+  const json summary = r.value("summary", json::object());
   h << "<section><h2>Summary</h2><div class=\"counts\">";
   const auto count = [&](const char* key, const char* label, const char* cls) {
     h << "<span class=\"" << cls << "\">" << label << " " << str(summary, key, "0") << "</span>";
@@ -326,7 +322,10 @@ std::string render_html(const json& r) {
   }
   h << "</tbody></table></section>\n";
 
-  // Legend.
+}
+
+// How to read the images: the mask values and the error colours (compare.hpp's one definition).
+void legend_section(std::ostringstream& h) {
   h << "<section><h2>Reading the images</h2><div class=\"legend\">"
     << "<span><i style=\"background:#fff\"></i>reference / candidate mask: white lit</span>"
     << "<span><i style=\"background:#000\"></i>black shadowed</span>"
@@ -348,81 +347,87 @@ std::string render_html(const json& r) {
     << swatch(compare::kErrorColours.undecided, "not judged: not covered by one surface")
     << "<span>grey: the reference's lit fraction, dimmed</span></div></section>\n";
 
-  // Cases, one row each.
-  h << "<section><h2>Cases</h2><div class=\"filters\" style=\"margin-bottom:10px\">"
-    << "<button class=\"on\" onclick=\"shadowrefFilter('all', this)\">all</button>"
-    << "<button onclick=\"shadowrefFilter('problems', this)\">FAIL / XPASS / WARN / ERROR</button>"
-    << "<button onclick=\"shadowrefFilter('xfail', this)\">XFAIL</button></div>"
-    << "<table id=\"cases\"><thead><tr><th>case</th><th>reference · candidate · error · shaded</th></tr></thead><tbody>\n";
-  for (const json& c : cases) {
-    const std::string st = str(c, "status");
-    const json cmp = c.value("comparison", json::object());
-    h << "<tr class=\"case\" id=\"" << anchor(str(c, "scene"), str(c, "technique")) << "\" data-status=\""
-      << escape_html(st) << "\"><td class=\"info\"><h3>" << escape_html(str(c, "scene")) << " · "
-      << escape_html(str(c, "technique")) << "</h3><span class=\"badge " << status_class(st) << "\">"
-      << escape_html(st) << "</span> <span class=\"notes\">expected " << escape_html(str(c, "expected"))
-      << (cmp.contains("threshold") ? ", threshold " + escape_html(str(cmp["threshold"], "name")) : std::string())
-      << "</span>";
-    if (!str(c, "why", "").empty()) h << "<div class=\"why\"><b>why it is expected to fail:</b> " << escape_html(str(c, "why")) << "</div>";
-    if (!str(c, "signature", "").empty()) h << "<div class=\"why\"><b>signature:</b> " << escape_html(str(c, "signature")) << "</div>";
-    if (!str(c, "unmet_expectation", "").empty())
-      h << "<div class=\"why\"><b>expectation not met:</b> " << escape_html(str(c, "unmet_expectation")) << "</div>";
-    if (!str(c, "causes", "").empty()) h << "<div class=\"notes\">causes judged: " << escape_html(str(c, "causes")) << "</div>";
-    if (c.contains("error")) h << "<p class=\"error\">" << escape_html(str(c, "error")) << "</p>";
-    if (c.contains("candidate")) {
-      const json& d = c["candidate"];
-      std::string defaulted;
-      for (const auto& k : d.value("defaulted", json::array())) defaulted += (defaulted.empty() ? "" : ", ") + k.get<std::string>();
-      h << "<div class=\"notes\">candidate: " << escape_html(str(d, "producer")) << " " << escape_html(str(d, "version"))
-        << " · " << escape_html(str(d, "convention")) << " · map " << escape_html(str(d, "shadow_map_size"))
-        << " · filter " << escape_html(str(d, "filter_radius_texels")) << " texel · light taps "
-        << escape_html(str(d, "light_taps", "8")) << " · slope bias "
-        << escape_html(str(d, "slope_bias_texels")) << " · constant bias " << escape_html(str(d, "constant_bias"))
-        << (defaulted.empty() ? std::string() : " (defaulted: " + escape_html(defaulted) + ")") << "</div>";
-    }
-    if (cmp.contains("reasons") && !cmp["reasons"].empty()) {
-      h << "<ul class=\"reasons\">";
-      for (const auto& reason : cmp["reasons"]) h << "<li>" << escape_html(reason.get<std::string>()) << "</li>";
-      h << "</ul>";
-    }
-    if (cmp.contains("total")) metrics_table(h, cmp["total"]);
-    if (cmp.contains("visibility")) visibility_table(h, cmp["visibility"]);
-    if (c.contains("notes") && !c["notes"].empty()) {
-      h << "<div class=\"notes\">";
-      for (const auto& n : c["notes"]) h << "note: " << escape_html(n.get<std::string>()) << "<br>";
+}
+
+// A case's left cell: status, expectation, signature, declaration, reasons and numbers.
+void case_info(std::ostringstream& h, const json& c) {
+  const std::string st = str(c, "status");
+  const json cmp = c.value("comparison", json::object());
+  h << "<tr class=\"case\" id=\"" << anchor(str(c, "scene"), str(c, "technique")) << "\" data-status=\""
+    << escape_html(st) << "\"><td class=\"info\"><h3>" << escape_html(str(c, "scene")) << " · "
+    << escape_html(str(c, "technique")) << "</h3><span class=\"badge " << status_class(st) << "\">"
+    << escape_html(st) << "</span> <span class=\"notes\">expected " << escape_html(str(c, "expected"))
+    << (cmp.contains("threshold") ? ", threshold " + escape_html(str(cmp["threshold"], "name")) : std::string())
+    << "</span>";
+  if (!str(c, "why", "").empty()) h << "<div class=\"why\"><b>why it is expected to fail:</b> " << escape_html(str(c, "why")) << "</div>";
+  if (!str(c, "signature", "").empty()) h << "<div class=\"why\"><b>signature:</b> " << escape_html(str(c, "signature")) << "</div>";
+  if (!str(c, "unmet_expectation", "").empty())
+    h << "<div class=\"why\"><b>expectation not met:</b> " << escape_html(str(c, "unmet_expectation")) << "</div>";
+  if (!str(c, "causes", "").empty()) h << "<div class=\"notes\">causes judged: " << escape_html(str(c, "causes")) << "</div>";
+  if (c.contains("error")) h << "<p class=\"error\">" << escape_html(str(c, "error")) << "</p>";
+  if (c.contains("candidate")) {
+    const json& d = c["candidate"];
+    std::string defaulted;
+    for (const auto& k : d.value("defaulted", json::array())) defaulted += (defaulted.empty() ? "" : ", ") + k.get<std::string>();
+    h << "<div class=\"notes\">candidate: " << escape_html(str(d, "producer")) << " " << escape_html(str(d, "version"))
+      << " · " << escape_html(str(d, "convention")) << " · map " << escape_html(str(d, "shadow_map_size"))
+      << " · filter " << escape_html(str(d, "filter_radius_texels")) << " texel · light taps "
+      << escape_html(str(d, "light_taps", "8")) << " · slope bias "
+      << escape_html(str(d, "slope_bias_texels")) << " · constant bias " << escape_html(str(d, "constant_bias"))
+      << " · normal offset " << escape_html(str(d, "normal_offset", "0")) << " + "
+      << escape_html(str(d, "normal_offset_texels", "0")) << " texel · depth bias " << escape_html(str(d, "depth_bias", "0"))
+      << " · depth faces " << escape_html(str(d, "depth_faces", "back"))
+      << (defaulted.empty() ? std::string() : " (defaulted: " + escape_html(defaulted) + ")") << "</div>";
+    if (d.contains("settings") && !d["settings"].empty())
+      h << "<div class=\"notes\">engine settings (recorded, not judged): <code>" << escape_html(d["settings"].dump())
+        << "</code></div>";
+  }
+  if (cmp.contains("reasons") && !cmp["reasons"].empty()) {
+    h << "<ul class=\"reasons\">";
+    for (const auto& reason : cmp["reasons"]) h << "<li>" << escape_html(reason.get<std::string>()) << "</li>";
+    h << "</ul>";
+  }
+  if (cmp.contains("total")) metrics_table(h, cmp["total"]);
+  if (cmp.contains("visibility")) visibility_table(h, cmp["visibility"]);
+  if (c.contains("notes") && !c["notes"].empty()) {
+    h << "<div class=\"notes\">";
+    for (const auto& n : c["notes"]) h << "note: " << escape_html(n.get<std::string>()) << "<br>";
+    h << "</div>";
+  }
+  if (c.contains("frame_ms") && c["frame_ms"].is_number() && c["frame_ms"].get<double>() > 0)
+    h << "<div class=\"notes\">frame " << num(c, "frame_ms", "%.1f") << " ms</div>";
+}
+
+// A case's right cell: per light, the reference, the candidate, the error image, the swipe viewer,
+// and a soft technique's lit fraction.
+void case_images(std::ostringstream& h, const json& c) {
+  if (c.contains("lights")) {
+    const json& lights = c["lights"];
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+      const json& l = lights[i];
+      const std::string suffix = lights.size() > 1 ? " (light " + std::to_string(i) + ")" : "";
+      h << "<div class=\"light\">";
+      figure(h, str(l, "reference", ""), "reference" + suffix);
+      figure(h, str(l, "candidate", ""), "candidate" + suffix);
+      figure(h, str(l, "error", ""), "error" + suffix + ": " + str(l.value("metrics", json::object()), "wrong") + " wrong");
+      viewer(h, l);
+      if (i == 0) figure(h, str(c, "shaded", ""), "candidate shaded");
+      if (l.contains("visibility")) {
+        const json& v = l["visibility"];
+        figure(h, str(l, "candidate_visibility", ""), "candidate lit fraction" + suffix);
+        figure(h, str(l, "visibility_error", ""),
+               "visibility error" + suffix + ": mean " + num(v, "mean_penumbra_error", "%.3f") + " over the penumbra, " +
+                   str(v, "unexplained") + " px unexplained");
+      }
       h << "</div>";
     }
-    if (c.contains("frame_ms") && c["frame_ms"].is_number() && c["frame_ms"].get<double>() > 0)
-      h << "<div class=\"notes\">frame " << num(c, "frame_ms", "%.1f") << " ms</div>";
-    h << "</td><td>";
-    if (c.contains("lights")) {
-      const json& lights = c["lights"];
-      for (std::size_t i = 0; i < lights.size(); ++i) {
-        const json& l = lights[i];
-        const std::string suffix = lights.size() > 1 ? " (light " + std::to_string(i) + ")" : "";
-        h << "<div class=\"light\">";
-        figure(h, str(l, "reference", ""), "reference" + suffix);
-        figure(h, str(l, "candidate", ""), "candidate" + suffix);
-        figure(h, str(l, "error", ""), "error" + suffix + ": " + str(l.value("metrics", json::object()), "wrong") + " wrong");
-        viewer(h, l);
-        if (i == 0) figure(h, str(c, "shaded", ""), "candidate shaded");
-        if (l.contains("visibility")) {
-          const json& v = l["visibility"];
-          figure(h, str(l, "candidate_visibility", ""), "candidate lit fraction" + suffix);
-          figure(h, str(l, "visibility_error", ""),
-                 "visibility error" + suffix + ": mean " + num(v, "mean_penumbra_error", "%.3f") + " over the penumbra, " +
-                     str(v, "unexplained") + " px unexplained");
-        }
-        h << "</div>";
-      }
-    } else {
-      h << "<span class=\"notes\">no images: the case could not be compared</span>";
-    }
-    h << "</td></tr>\n";
+  } else {
+    h << "<span class=\"notes\">no images: the case could not be compared</span>";
   }
-  h << "</tbody></table></section>\n";
+}
 
-  // Thresholds with their reasons.
+// Thresholds with their reasons.
+void thresholds_section(std::ostringstream& h, const json& r) {
   h << "<section><h2>Thresholds</h2><table id=\"thresholds\"><thead><tr><th>name</th><th>bands</th><th>fail</th><th>warn</th><th>why</th></tr></thead><tbody>";
   if (r.contains("thresholds"))
     for (const json& t : r["thresholds"])
@@ -433,6 +438,33 @@ std::string render_html(const json& r) {
   h << "</tbody></table><p class=\"notes\">Every wrong decided pixel is explained by a cause the reference computes "
        "(texel footprint, depth bias; shadow-map families only) or is unexplained. Edge pixels: the reference's "
        "boundaries, in pixels; the ratios mean the same at any resolution (docs/tolerance-model.md).</p></section>\n";
+}
+
+std::string render_html(const json& r) {
+  std::ostringstream h;
+  const json cases = r.contains("cases") && r["cases"].is_array() ? r["cases"] : json::array();
+  h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+    << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
+    << "<title>shadowref conformance — " << escape_html(str(r, "backend", "candidate renders")) << "</title><style>"
+    << kStyle << "</style></head>\n<body data-checked=\"0\">\n";
+
+  header_section(h, r);
+  summary_section(h, r, cases);
+  legend_section(h);
+  // Cases, one row each.
+  h << "<section><h2>Cases</h2><div class=\"filters\" style=\"margin-bottom:10px\">"
+    << "<button class=\"on\" onclick=\"shadowrefFilter('all', this)\">all</button>"
+    << "<button onclick=\"shadowrefFilter('problems', this)\">FAIL / XPASS / WARN / ERROR</button>"
+    << "<button onclick=\"shadowrefFilter('xfail', this)\">XFAIL</button></div>"
+    << "<table id=\"cases\"><thead><tr><th>case</th><th>reference · candidate · error · shaded</th></tr></thead><tbody>\n";
+  for (const json& c : cases) {
+    case_info(h, c);
+    h << "</td><td>";
+    case_images(h, c);
+    h << "</td></tr>\n";
+  }
+  h << "</tbody></table></section>\n";
+  thresholds_section(h, r);
   h << "<pre id=\"broken-images\" class=\"notes\"></pre>\n</main>\n<script>" << kScript << "</script>\n</body></html>\n";
   return h.str();
 }

@@ -19,6 +19,9 @@
 //     for false light with the bias above; for false shadow with the bias a correct map needs at that
 //     texel's distance d from p (d texels of its polygon's slope, plus the precision), whatever is
 //     declared, so the receiver's own surface never shadows p: a true boundary lies within the footprint.
+//     A filter wider than that may also answer by its 1/2 threshold: its box of taps (placed within
+//     the grid's uncertainty) holding at least half that give the answer, each with the bias above —
+//     a thin shadow fading, a corner rounding — never a boundary moved.
 //   * Acne (unexplained) — a false shadow only a texel with less than that bias gives: the receiver
 //     shadowing itself.
 //   * Unexplained — nothing gives it, or p faces away from the light (attached shadow).
@@ -64,6 +67,9 @@ inline constexpr double kDepthPrecision = 1.0 / 16384.0;
 // A filtered mask's reach grows with the declared filter radius by at most this many texels (a
 // 1/2 threshold over a box of any radius keeps a straight boundary where one tap would put it).
 inline constexpr double kMaxMaskFilterTexels = 1.0;
+
+// A wide filter's box is sampled at most this many taps per axis (a coarser stride beyond).
+inline constexpr int kMaxFilterTapsPerAxis = 13;
 
 // The probes' spacing in texels: rings at 1/4, 1/2, ... out to the reach, 8 directions each (the
 // pack's nearest reach of 1/2 is probed at 1/4 and 1/2).
@@ -122,6 +128,12 @@ class CauseModel {
   bool texel_gives(const Lookup& k, double dx, double dy, bool candidate_lit, const BiasOf& bias) const;
   // The mask's reach in texels: the lookup's grid (pack or own) and the filter, capped.
   static double mask_reach_texels(const outputs::CandidateDeclaration& d);
+  // A filter wider than kMaxMaskFilterTexels: whether its box of taps, placed at p's texel or
+  // shifted by the grid's uncertainty, may have at least half of them give the candidate's answer
+  // (a 1/2 threshold: thin shadows fade, corners round), each tap's stored depth carrying
+  // bias_at(its offset). False for narrower filters (the rings cover them).
+  bool filter_may_answer(const Lookup& k, const outputs::CandidateDeclaration& d, bool candidate_lit,
+                         const std::function<BiasOf(double, double)>& bias_at) const;
   // The light's views at map size `size` (0: the prepared size), cascaded with `cascades` cascades
   // (0: not cascaded).
   const LightFit& fit_for(std::size_t light, int size, int cascades) const;

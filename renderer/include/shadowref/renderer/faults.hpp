@@ -93,6 +93,10 @@ struct ShadowMapFaults {
   // A constant offset far larger than needed (kPeterPanUnits): peter-panning, shadows detached from
   // their casters at the contact.
   bool large_constant_offset = false;
+  // A constant offset of this many world units along the light's view axis (0: off), for
+  // directional lights in a fixed-point depth convention: a measured peter-panning, declared as
+  // candidate.json's constant_bias.
+  double constant_offset_world = 0.0;
   // Casters whose bounding sphere lies outside the camera's frustum left out of the depth pass.
   bool cull_casters_outside_view = false;
   FitFault fit = FitFault::None;
