@@ -120,8 +120,6 @@ struct Frame {
 
   // Binds the W × H target and its viewport; clears what `mask` says (GL_*_BUFFER_BIT).
   void bind_target(GLbitfield clear_mask, float clear_grey = 0.0f) const;
-  // Draws every object with the flat program (depth pre-pass etc.) under `clip`.
-  void draw_objects_flat(const Mat4<float>& clip, const float colour[4]) const;
   // Ambient pre-pass: clears the target, writes depth (depth_nearer) and ambient colour for every object.
   void ambient_pass(const Mat4<float>& clip) const;
   // Light i's additive Lambert pass over the surfaces already in the depth buffer (GL_EQUAL),

@@ -247,13 +247,6 @@ void Frame::bind_target(GLbitfield clear_mask, float clear_grey) const {
   if (clear_mask) gl.Clear(clear_mask);
 }
 
-void Frame::draw_objects_flat(const Mat4<float>& clip, const float colour[4]) const {
-  gl.UseProgram(programs.flat.id);
-  set_matrix(gl, programs.flat.clip_from_world, clip);
-  gl.Uniform4f(programs.flat.colour, colour[0], colour[1], colour[2], colour[3]);
-  for (const GpuMesh& m : objects) m.draw();
-}
-
 void Frame::ambient_pass(const Mat4<float>& clip) const {
   bind_target(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
   // The picture's background (linear, like everything drawn here; read_rgb encodes sRGB).

@@ -2,7 +2,7 @@
 //
 // Per light, the scene's depth is rendered from the light into a texture; each camera fragment
 // is then mapped through B · P_light · V_light (mathlib's shadow_bias_matrix, projections, look_at)
-// and compared with the stored depth. Three variants:
+// and compared with the stored depth. Seven techniques (csm and csm-pcf below):
 //   shadowmap        a GL_DEPTH_COMPONENT24 texture, GL_COMPARE_REF_TO_TEXTURE with GL_LEQUAL
 //                    through a sampler2DArrayShadow (one layer, or six for a cube), one nearest tap;
 //   shadowmap-pcf    percentage-closer filtering (Reeves, Salesin & Cook 1987): a 3 × 3 box of

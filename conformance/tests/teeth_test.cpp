@@ -225,6 +225,11 @@ int survey() {
 
 // The CTest script: one test per row and control, each requiring the reference fixtures of its
 // scenes in its convention (registered by conformance/tests/CMakeLists.txt).
+// Hang guards (cmake/HangGuard.cmake's rule: ten times the quiet time, never below ten minutes): a
+// row runs in at most 3.4 s beside the suite, a row at another size (every row) in 58.6 s.
+constexpr int kRowTimeout = 600;
+constexpr int kRowsAtSizeTimeout = 600;
+
 int write_ctest_script(const std::filesystem::path& file, const std::string& fixture_prefix, const std::string& exe) {
   std::ofstream f(file);
   const auto add = [&](const std::string& name, const std::string& convention, const std::vector<std::string>& scenes) {
@@ -232,7 +237,7 @@ int write_ctest_script(const std::filesystem::path& file, const std::string& fix
     for (const std::string& s : scenes) fixtures += (fixtures.empty() ? "" : ";") + fixture_prefix + convention + "_" + s;
     f << "add_test([=[conformance.teeth." << name << "]=] [=[" << exe << "]=] [=[" << name << "]=])\n"
       << "set_tests_properties([=[conformance.teeth." << name << "]=] PROPERTIES LABELS [=[conformance;teeth;llvmpipe;convention-"
-      << convention << "]=] FIXTURES_REQUIRED [=[" << fixtures << "]=] ENVIRONMENT LP_NUM_THREADS=1 TIMEOUT 300)\n";
+      << convention << "]=] FIXTURES_REQUIRED [=[" << fixtures << "]=] ENVIRONMENT LP_NUM_THREADS=1 TIMEOUT " << kRowTimeout << ")\n";
   };
   for (const Row& r : rows()) add(std::string(r.name), std::string(r.convention), r.scene_list());
   for (const Control& c : controls()) add(c.name, c.convention, c.scenes);
@@ -251,7 +256,7 @@ int write_ctest_script(const std::filesystem::path& file, const std::string& fix
                               : size.name == "256x384" ? "conformance.sweep.resolution-256x384" : "";
     f << "add_test([=[" << name << "]=] [=[" << exe << "]=] --at [=[" << size.name << "]=])\n"
       << "set_tests_properties([=[" << name << "]=] PROPERTIES LABELS [=[conformance;teeth;sweep;llvmpipe]=] FIXTURES_REQUIRED [=["
-      << fixtures << "]=] ENVIRONMENT LP_NUM_THREADS=1 TIMEOUT 600" << (after.empty() ? "" : " DEPENDS " + after) << ")\n";
+      << fixtures << "]=] ENVIRONMENT LP_NUM_THREADS=1 TIMEOUT " << kRowsAtSizeTimeout << (after.empty() ? "" : " DEPENDS " + after) << ")\n";
   }
   return f ? 0 : 1;
 }

@@ -25,7 +25,6 @@ class StagedFolder {
   // Where to write now.
   const std::filesystem::path& path() const { return staging_; }
   // The folder that commit() fills.
-  const std::filesystem::path& final_path() const { return final_; }
   // What commit() does when final_dir exists already.
   enum class IfExists {
     Replace,       // remove it and put ours in its place
