@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "shadowref/reference/embree_scene.hpp"
+#include "shadowref/reference/pixel_surface.hpp"
 #include "shadowref/reference/shadow_ray.hpp"
 #include "shadowref/cascades.hpp"
 #include "shadowref/outputs/techniques.hpp"
@@ -71,25 +72,15 @@ const LightFit& CauseModel::fit_for(std::size_t light, int size, int cascades) c
 }
 
 std::optional<CauseModel::Surface> CauseModel::surface_at(int x, int y) const {
-  const scene::Scene& s = *scene_.scene;
-  // The pixel centre's surface, as the reference finds it (render.hpp).
-  const Vec2<double> ndc = scene::pixel_to_ndc<double>(x, y, 0.5, 0.5, s.width, s.height);
-  const double zn = near_ndc_z(*scene_.convention), zf = far_ndc_z(*scene_.convention);
-  const Vec3<double> o = unproject(inverse_clip_, ndc.x(), ndc.y(), zn);
-  const Vec3<double> dir = (unproject(inverse_clip_, ndc.x(), ndc.y(), 0.5 * (zn + zf)) - o).normalized();
-  const RTCRayHit rh = first_hit(embree_->handle(), o, dir, std::numeric_limits<float>::infinity());
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-  const auto& mesh = s.objects[rh.hit.geomID].mesh;
-  const auto& tri = mesh.triangles[rh.hit.primID];
-  const Vec3<double> v0 = mesh.positions[tri[0]].cast<double>(), v1 = mesh.positions[tri[1]].cast<double>(),
-                     v2 = mesh.positions[tri[2]].cast<double>();
-  Surface out;
-  out.p = v0 + rh.hit.u * (v1 - v0) + rh.hit.v * (v2 - v0);
-  out.n = (v1 - v0).cross(v2 - v0);
-  if (!(out.n.norm() > 0)) return std::nullopt;
-  out.n.normalize();
-  if (out.n.dot(dir) > 0) out.n = -out.n;  // toward the viewer
-  return out;
+  // The pixel centre's surface, exactly as the reference finds it (pixel_surface.hpp).
+  RTCRayHit rh;
+  pixel_ray(scene_, inverse_clip_, x, y, 0.5, 0.5, rh);
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  rtcIntersect1(embree_->handle(), &ctx, &rh);
+  const reference::Surface found = surface_of(*scene_.scene, rh);
+  if (!found.hit) return std::nullopt;
+  return Surface{found.p, found.n};
 }
 
 namespace {

@@ -24,6 +24,7 @@
 #include "shadowref/outputs/image.hpp"
 #include "shadowref/outputs/shading.hpp"
 #include "shadowref/reference/embree_scene.hpp"
+#include "shadowref/reference/pixel_surface.hpp"
 #include "shadowref/reference/shadow_ray.hpp"
 #include "shadowref/scene/camera.hpp"
 #include "shadowref/scene/prepared_scene.hpp"
@@ -56,13 +57,6 @@ class FlushDenormalsGuard {
   unsigned saved_;
 };
 
-struct Surface {
-  bool hit = false;
-  Vec3<double> p = Vec3<double>::Zero();
-  Vec3<double> n = Vec3<double>::Zero();  // unit face normal, toward the viewer
-  Vec3<float> albedo = Vec3<float>::Zero();
-  std::uint32_t object = 0;  // the scene object hit (Embree's geomID)
-};
 
 struct LightSetup {
   const scene::Light* light = nullptr;
@@ -83,7 +77,7 @@ struct TileBuffers {
 class Renderer {
  public:
   Renderer(const scene::PreparedScene& prepared, const Options& options, const EmbreeScene& embree, Images& out)
-      : scene_(*prepared.scene), embree_(embree), out_(out), n_(options.samples_per_axis) {
+      : prepared_(prepared), scene_(*prepared.scene), embree_(embree), out_(out), n_(options.samples_per_axis) {
     // The prepared scene's camera, in its run convention: the very matrices the renderer draws with.
     inverse_view_proj_ = prepared.camera.clip_from_scene.inverse();
     near_ndc_ = near_ndc_z(*prepared.convention);
@@ -157,10 +151,6 @@ class Renderer {
   }
 
  private:
-  // Written straight into the stream slot `rh`, never returned by value: the 80-byte RTCRayHit
-  // assembled field by field (4- and 8-byte stores) and then copied 16 bytes at a time stalled on
-  // store forwarding — perf put a third of the tile's time on that copy (reference_bench,
-  // BM_ReferenceRender; shadow_ray.hpp has the same story for the shadow rays).
   void primary_ray(int x, int y, std::size_t s, RTCRayHit& rh) const {
     double sx = 0.5, sy = 0.5;
     if (s > 0) {
@@ -168,49 +158,10 @@ class Renderer {
       sx = (i + 0.5) / n_;
       sy = (j + 0.5) / n_;
     }
-    const Vec2<double> ndc = scene::pixel_to_ndc<double>(x, y, sx, sy, scene_.width, scene_.height);
-    auto unproject = [&](double z) {
-      const Vec4<double> h = inverse_view_proj_ * Vec4<double>(ndc.x(), ndc.y(), z, 1.0);
-      return Vec3<double>(h.head<3>() / h[3]);
-    };
-    // From the near plane (what a rasteriser clips at), toward the point halfway to the far plane in
-    // clip depth, which is finite even with an infinite far.
-    const Vec3<double> o = unproject(near_ndc_);
-    const Vec3<double> d = (unproject(0.5 * (near_ndc_ + far_ndc_)) - o).normalized();
-    const double tfar = scene_.camera.far ? (unproject(far_ndc_) - o).norm() : std::numeric_limits<double>::infinity();
-    rh = RTCRayHit{};
-    rh.ray.org_x = static_cast<float>(o.x());
-    rh.ray.org_y = static_cast<float>(o.y());
-    rh.ray.org_z = static_cast<float>(o.z());
-    rh.ray.dir_x = static_cast<float>(d.x());
-    rh.ray.dir_y = static_cast<float>(d.y());
-    rh.ray.dir_z = static_cast<float>(d.z());
-    rh.ray.tnear = 0.0f;
-    rh.ray.tfar = static_cast<float>(tfar);
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    pixel_ray(prepared_, inverse_view_proj_, x, y, sx, sy, rh);
   }
 
-  Surface surface(const RTCRayHit& rh) const {
-    Surface s;
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return s;
-    const auto& obj = scene_.objects[rh.hit.geomID];
-    const auto& tri = obj.mesh.triangles[rh.hit.primID];
-    const Vec3<double> v0 = obj.mesh.positions[tri[0]].cast<double>();
-    const Vec3<double> v1 = obj.mesh.positions[tri[1]].cast<double>();
-    const Vec3<double> v2 = obj.mesh.positions[tri[2]].cast<double>();
-    const double u = rh.hit.u, v = rh.hit.v;
-    s.hit = true;
-    s.p = v0 + u * (v1 - v0) + v * (v2 - v0);
-    const Vec3<double> dir(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
-    Vec3<double> n = (v1 - v0).cross(v2 - v0);
-    n = n.norm() > 0 ? Vec3<double>(n.normalized()) : Vec3<double>(-dir.normalized());
-    s.n = n.dot(dir) > 0 ? Vec3<double>(-n) : n;  // two-sided: the side the camera sees
-    s.albedo = obj.color;
-    s.object = rh.hit.geomID;
-    return s;
-  }
+  Surface surface(const RTCRayHit& rh) const { return surface_of(scene_, rh); }
 
   static std::int32_t add_ray(const Surface& s, const Vec4<double>& L, double offset, std::vector<RTCRay>& rays) {
     if (!s.hit) return kSlotShadowed;  // never read
@@ -263,10 +214,7 @@ class Renderer {
         continue;
       }
       ++hits;
-      if (c.hit) {
-        const Vec3<double> d = h.p - c.p;
-        if (h.object != c.object || std::abs(c.n.dot(d)) > kCreaseSine * d.norm() + eps_) one_surface = false;
-      }
+      if (c.hit && !same_smooth_surface(c, h, eps_)) one_surface = false;
       double radiance = outputs::kAmbient;
       for (std::size_t li = 0; li < lights_.size(); ++li) {
         const LightSetup& l = lights_[li];
@@ -313,6 +261,7 @@ class Renderer {
     for (int ch = 0; ch < 3; ++ch) out_.shaded[3 * out + static_cast<std::size_t>(ch)] = outputs::encode_srgb8(colour[ch]);
   }
 
+  const scene::PreparedScene& prepared_;
   const scene::Scene& scene_;
   const EmbreeScene& embree_;
   Images& out_;

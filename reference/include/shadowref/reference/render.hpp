@@ -17,7 +17,8 @@
 //             the light at a grazing angle (|facing| >= kGrazingCosine), and the pixel is FULLY
 //             covered by one smooth surface: every sub-pixel sample hits the centre's object, no
 //             farther from the centre's tangent plane than kCreaseSine times its distance from
-//             the centre (no depth discontinuity or sharp fold inside the pixel). 0 otherwise.
+//             the centre, with a normal within 30° of the centre's (no depth discontinuity or
+//             fold inside the pixel: pixel_surface.hpp's same_smooth_surface). 0 otherwise.
 //             The last rule is the VK-GL-CTS rasterization verifier's "partially covered" class:
 //             where an edge crosses a pixel, a rasteriser may honestly resolve the centre to
 //             either side, and a shadow map's texel may hold either surface's depth.
@@ -42,11 +43,6 @@ namespace shadowref::reference {
 // n · l in float from interpolated data (relative errors around 1e-6), so its sign can differ
 // from ours; 1e-4 gives that a 100-fold margin, about 0.006 degrees of grazing angle.
 inline constexpr double kGrazingCosine = 1e-4;
-
-// A pixel whose sub-pixel samples fold away from the centre's tangent plane by more than
-// asin(kCreaseSine) = 30° is not one smooth surface: boxes, stairs and walls fold by 90°, while
-// the catalogue's tessellated spheres and tori (≥ 24 segments) bend by at most 15° per facet.
-inline constexpr double kCreaseSine = 0.5;
 
 struct Options {
   int samples_per_axis = 4;  // sub-pixel grid: samples_per_axis², in [1, 16]
