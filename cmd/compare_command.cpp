@@ -8,7 +8,8 @@
 // and the scene file's expectation gives the case's status. Without --scene nothing explains a
 // wrong pixel (the strictest reading) and a soft technique is refused. Prints the numbers per mask
 // and the verdict, or one JSON object with --json; writes the error image(s) with --out.
-// Exit: 0 pass, 1 quality warning, 2 fail, 3 size mismatch, 4 bad input.
+// Exit: 0 pass, 1 quality warning, 2 fail, 3 size mismatch, 4 bad input; with --scene, the case's
+// status as conform's exit code reads it (status.hpp).
 #include <CLI/CLI.hpp>
 
 #include <nlohmann/json.hpp>
@@ -118,7 +119,10 @@ int run_compare(const CompareArgs& a) {
       throw BadInput(e.what());
     }
   }
-  const int code = c.judgement.verdict == compare::Verdict::Pass             ? kExitPass
+  // With the scene, the exit code is the case's status under its expectation, as conform's: an
+  // expected failure seen as predicted (XFAIL) or an expected quality warning exits 0.
+  const int code = !a.scene.empty() ? conform::exit_code({j.status}, {j.expectation.warn})
+                   : c.judgement.verdict == compare::Verdict::Pass             ? kExitPass
                    : c.judgement.verdict == compare::Verdict::QualityWarning ? kExitWarnings
                                                                              : kExitFailures;
   if (a.json) {
@@ -189,7 +193,8 @@ void register_compare_command(CLI::App& app, int& exit_code) {
   cmd->footer(
       "Error image: red = false shadow (reference lit), blue = false light (reference shadowed), magenta = "
       "coverage (surface vs no surface), green = undecided (not judged), grey = the dimmed reference.\n"
-      "Exit: 0 pass, 1 quality warning, 2 fail, 3 size mismatch, 4 bad input.");
+      "Exit: 0 pass, 1 quality warning, 2 fail, 3 size mismatch, 4 bad input; with --scene, the case's status under the "
+      "scene's expectation as conform gives it (an XFAIL or an expected WARN exits 0, an XPASS 2).");
   cmd->callback([args, &exit_code] { exit_code = run_compare(*args); });
 }
 
