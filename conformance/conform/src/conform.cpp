@@ -20,6 +20,7 @@
 #include "shadowref/scene/load_scene.hpp"
 #include "shadowref/scene/prepared_scene.hpp"
 #include "shadowref/outputs/candidate.hpp"
+#include "shadowref/outputs/errors.hpp"
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/outputs/techniques.hpp"
 #include "shadowref/conform/judge.hpp"
@@ -206,6 +207,8 @@ CaseResult run_case(Run& run, std::size_t si, const std::string& technique) {
     if (!run.gl)
       for (auto& e : c.error_images) e = (error_dir / e).string();
     phases.error_images += since(t);
+  } catch (const outputs::FileError&) {
+    throw;  // --out cannot be written (a full disk): the run's failure, not this case's verdict
   } catch (const std::exception& e) {
     c.status = Status::Error;
     c.error = e.what();
