@@ -9,6 +9,7 @@
 
 #include "partial_name.hpp"
 #include "shadowref/outputs/errors.hpp"
+#include "shadowref/outputs/interruption.hpp"
 
 namespace shadowref::outputs {
 namespace {
@@ -50,6 +51,7 @@ class TemporaryFile {
     const int fd = fd_;
     fd_ = -1;
     if (::close(fd) != 0) throw FileError(shown_, "write", errno);
+    throw_if_interrupted();
     if (::rename(path_.c_str(), final_.c_str()) != 0) throw FileError(shown_, "move the written file into place", errno);
     published_ = true;
   }

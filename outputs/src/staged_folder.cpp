@@ -11,6 +11,7 @@
 
 #include "partial_name.hpp"
 #include "shadowref/outputs/errors.hpp"
+#include "shadowref/outputs/interruption.hpp"
 
 namespace shadowref::outputs {
 namespace {
@@ -36,6 +37,7 @@ StagedFolder::~StagedFolder() {
 }
 
 bool StagedFolder::commit(IfExists if_exists) {
+  throw_if_interrupted();  // the destructor removes what was staged
   std::error_code ec;
   if (fs::is_symlink(final_, ec))
     throw FileError(final_.string() + ": is a symbolic link; refusing to replace it (nothing is written through links)");

@@ -1,9 +1,10 @@
-// outputs_test.cpp — the output contract's naming rule, image round trip, staged folder and atomic
-// file write. (A full disk, kills and signals in a real run: reliability/faults/.)
+// outputs_test.cpp — the output contract's naming rule, image round trip, staged folder, atomic
+// file write and interruption. (A full disk, kills and signals in a real run: reliability/faults/.)
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -13,6 +14,7 @@
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/outputs/image_io.hpp"
 #include "shadowref/outputs/errors.hpp"
+#include "shadowref/outputs/interruption.hpp"
 #include "shadowref/outputs/staged_folder.hpp"
 #include "shadowref/outputs/techniques.hpp"
 
@@ -164,6 +166,33 @@ TEST(AtomicFile, ReplacesASymlinkInsteadOfWritingThroughIt) {
   EXPECT_FALSE(fs::is_symlink(d / "link.txt"));
   EXPECT_EQ(text_of(d / "link.txt"), "new");
   EXPECT_EQ(text_of(d / "target.txt"), "kept");
+}
+
+// After SIGINT (the handlers installed, as the command line does) nothing more is published: a
+// staged folder and a file in flight are removed, and Interrupted carries the signal. In a child
+// process (the flag stays set for the rest of a process).
+TEST(Interruption, ASignalStopsAtTheNextCommitPointAndLeavesNothing) {
+  const fs::path d = fresh_dir("interrupted");
+  EXPECT_EXIT(
+      {
+        install_interrupt_handlers();
+        std::raise(SIGINT);  // handled: the process goes on
+        int stopped = 0;
+        try {
+          StagedFolder s(d / "folder");
+          std::ofstream(s.path() / "f.txt") << "x";
+          s.commit();
+        } catch (const Interrupted& i) {
+          stopped += i.signal() == SIGINT;
+        }
+        try {
+          write_file_atomically(d / "file.txt", "x");
+        } catch (const Interrupted& i) {
+          stopped += i.signal() == SIGINT;
+        }
+        ::_exit(stopped == 2 && entries(d) == 0 ? 0 : 1);  // not exit(): the fork has none of the parent's threads to join
+      },
+      ::testing::ExitedWithCode(0), "");
 }
 
 TEST(Techniques, NamesAreUniqueAndFindable) {

@@ -22,6 +22,7 @@
 #include "shadowref/outputs/candidate.hpp"
 #include "shadowref/outputs/errors.hpp"
 #include "shadowref/outputs/file_names.hpp"
+#include "shadowref/outputs/interruption.hpp"
 #include "shadowref/outputs/techniques.hpp"
 #include "shadowref/conform/judge.hpp"
 #include "shadowref/outputs/limits.hpp"
@@ -125,6 +126,7 @@ void compute_references(Run& run) {
   settings.threads = run.o.jobs;
   const auto start = Clock::now();
   for (const scene::PreparedScene& p : run.prepared) {
+    outputs::throw_if_interrupted();
     const CachedReference r = ensure_reference(p, run.cache, settings);
     run.reference_dirs.push_back(r.dir);
     char buf[64];
@@ -246,6 +248,7 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
     const std::size_t total = run.scenes.size() * result.techniques.size();
     for (std::size_t si = 0; si < run.scenes.size(); ++si)
       for (const std::string& technique : result.techniques) {
+        outputs::throw_if_interrupted();
         const auto case_start = Clock::now();
         result.cases.push_back(run_case(run, si, technique));
         result.cases.back().seconds = since(case_start);

@@ -18,7 +18,8 @@
 
 namespace shadowref::outputs {
 
-// Writes `bytes` as `file` (its folder must exist). Throws FileError.
+// Writes `bytes` as `file` (its folder must exist). Throws FileError; Interrupted (interruption.hpp)
+// when a signal arrived, before anything is published.
 void write_file_atomically(const std::filesystem::path& file, std::string_view bytes);
 
 // Copies `from` to `to` the same way. Throws FileError (naming `from` when it cannot be read).

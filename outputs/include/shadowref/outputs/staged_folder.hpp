@@ -4,7 +4,7 @@
 // caller writes every file; commit() then replaces `final_dir` by it with one rename (an atomic
 // exchange when `final_dir` exists), so that a reader (a person, CTest, a concurrent run) sees either
 // the old folder or the complete new one, never half a result under the final name. Destroyed
-// without commit() (an exception, a failed write), it removes the staging folder and
+// without commit() (an exception, a failed write, an interruption), it removes the staging folder and
 // leaves `final_dir` as it was. Single files outside a staged folder: atomic_file.hpp.
 // Symlinks: the staging folder is created fresh (never through an existing link), and commit()
 // refuses to replace a `final_dir` that is a symbolic link (it would write through it).
@@ -33,7 +33,8 @@ class StagedFolder {
     KeepExisting,  // keep it and drop ours (a cache entry that a concurrent run finished first)
   };
   // Moves the staging folder to final_dir. Returns false only for KeepExisting when final_dir was
-  // there. Throws like the constructor.
+  // there. Throws like the constructor, or Interrupted (interruption.hpp) before publishing anything
+  // when a signal arrived.
   bool commit(IfExists if_exists = IfExists::Replace);
 
  private:
