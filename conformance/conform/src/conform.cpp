@@ -128,6 +128,8 @@ void compute_references(Run& run) {
   for (const scene::PreparedScene& p : run.prepared) {
     outputs::throw_if_interrupted();
     const CachedReference r = ensure_reference(p, run.cache, settings);
+    if (!r.recomputed_because.empty())
+      run.say("reference " + p.scene->name + ": the cached entry failed verification (" + r.recomputed_because + "): recomputed");
     run.reference_dirs.push_back(r.dir);
     char buf[64];
     std::snprintf(buf, sizeof buf, "computed in %.1f s", r.seconds);
