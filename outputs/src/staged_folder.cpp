@@ -14,11 +14,8 @@
 #include "shadowref/outputs/interruption.hpp"
 
 namespace shadowref::outputs {
-namespace {
 
 namespace fs = std::filesystem;
-
-}  // namespace
 
 StagedFolder::StagedFolder(const fs::path& final_dir) : final_(fs::absolute(final_dir).lexically_normal()) {
   if (final_.filename().empty()) final_ = final_.parent_path();
