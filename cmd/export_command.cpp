@@ -27,6 +27,7 @@
 #include <system_error>
 
 #include "command.hpp"
+#include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/outputs/image.hpp"
 #include "shadowref/outputs/staged_folder.hpp"
@@ -70,11 +71,7 @@ json both_layouts(const Mat4<double>& m) {
   return {{"canonical", rows(m)}, {"d3dx", a}};
 }
 
-void write_text(const fs::path& file, const std::string& text) {
-  std::ofstream f(file, std::ios::binary);
-  f << text;
-  if (!f) throw BadInput("cannot write " + file.string());
-}
+void write_text(const fs::path& file, const std::string& text) { outputs::write_file_atomically(file, text); }
 
 std::string safe_name(std::string s) {
   for (char& c : s)

@@ -19,7 +19,9 @@
 #include <unistd.h>
 
 #include "command.hpp"
+#include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/image_io.hpp"
+#include "shadowref/outputs/staged_folder.hpp"
 #include "shadowref/conform/catalogue.hpp"
 #include "shadowref/conform/reference_cache.hpp"
 #include "shadowref/scene/load_scene.hpp"
@@ -86,6 +88,11 @@ int run_goldens(const GoldensArgs& a) {
   conform::ReferenceSettings settings;
   settings.threads = a.jobs;
   const fs::path scratch = fs::temp_directory_path() / ("shadowref-goldens-" + std::to_string(::getpid()));
+  // Removed however the command ends (an error, an interruption), not only at its end.
+  const std::unique_ptr<const fs::path, void (*)(const fs::path*)> remove_scratch(&scratch, [](const fs::path* p) {
+    std::error_code ignored;
+    fs::remove_all(*p, ignored);
+  });
   std::size_t problems = 0, checked = 0;
   std::set<std::string> names;
   for (const fs::path& f : files) {
@@ -106,10 +113,10 @@ int run_goldens(const GoldensArgs& a) {
     const fs::path golden = fs::path(a.dir) / s.name;
     const std::set<std::string> want = golden_names(fresh);
     if (a.update) {
-      std::error_code ec;
-      fs::remove_all(golden, ec);
-      fs::create_directories(golden);
-      for (const std::string& n : want) fs::copy_file(fresh / n, golden / n, fs::copy_options::overwrite_existing);
+      // Staged: an interrupted or failed update leaves the old goldens, never a folder of some new images.
+      outputs::StagedFolder staged(golden);
+      for (const std::string& n : want) outputs::copy_file_atomically(fresh / n, staged.path() / n);
+      staged.commit();
       std::printf("updated %s (%zu files)\n", golden.string().c_str(), want.size());
       continue;
     }
@@ -134,7 +141,6 @@ int run_goldens(const GoldensArgs& a) {
       }
   }
   std::error_code ec;
-  fs::remove_all(scratch, ec);
   if (a.update) {
     // Scene folders whose scene left the catalogue (only when the whole default catalogue was run).
     if (a.scenes.empty())

@@ -1,7 +1,9 @@
 // main.cpp — the `shadowref` command: dispatches to the subcommands in kCommands.
 //
 // Every error ends here as one line on stderr: exit 4 (3 for a size mismatch) when the user's input
-// caused it, 5 when it is an internal failure (report_error); `--help` works on every level and exits 0.
+// or the environment (a full disk, no permission) caused it, 5 when it is an internal failure
+// (report_error); SIGINT and SIGTERM stop the work at its next commit point and exit 128 + the signal
+// (outputs/interruption.hpp); `--help` works on every level and exits 0.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -11,6 +13,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "shadowref/outputs/interruption.hpp"
 
 namespace {
 
@@ -56,6 +59,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("shadowref ") + SHADOWREF_VERSION);
   int exit_code = shadowref::cli::kExitPass;
   for (RegisterCommand add : kCommands) add(app, exit_code);
+  shadowref::outputs::install_interrupt_handlers();
 
   try {
     app.parse(argc, argv);
@@ -78,6 +82,9 @@ int main(int argc, char** argv) {
     const shadowref::cli::ErrorReport r = shadowref::cli::report_error(e);
     std::cerr << command_path(app) << ": " << r.line << "\n";
     return r.exit_code;
+  } catch (const shadowref::outputs::Interrupted& stop) {
+    std::cerr << command_path(app) << ": " << stop.message() << "\n";
+    return 128 + stop.signal();
   }
   return exit_code;
 }

@@ -1,6 +1,7 @@
 // report_error.cpp — which escaped exception is the user's input and which is ours (command.hpp).
 #include <filesystem>
 #include <new>
+#include <system_error>
 
 #include "command.hpp"
 #include "shadowref/outputs/errors.hpp"
@@ -16,6 +17,13 @@ ErrorReport report_error(const std::exception& e) {
     return {kExitBadInput, e.what()};
   if (const auto* f = dynamic_cast<const std::filesystem::filesystem_error*>(&e))
     return {kExitBadInput, f->path1().string() + ": " + f->code().message()};
+  // The environment refusing a system call (a full disk, a read-only file system, an I/O error),
+  // wherever it was raised: the user's machine to fix, not a bug to report.
+  if (const auto* s = dynamic_cast<const std::system_error*>(&e)) {
+    const std::error_category& c = s->code().category();
+    if ((c == std::generic_category() || c == std::system_category()) && outputs::is_environment_errno(s->code().value()))
+      return {kExitBadInput, e.what()};
+  }
   if (const auto* in = dynamic_cast<const outputs::InputError*>(&e))
     return {in->kind() == outputs::InputError::Kind::SizeMismatch ? kExitSizeMismatch : kExitBadInput, e.what()};
   // A GL context that cannot be made, an Embree error, a broken invariant (std::logic_error),

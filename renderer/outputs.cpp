@@ -4,10 +4,10 @@
 // output contract's writers into a staged folder that is renamed into place when complete.
 #include <nlohmann/json.hpp>
 
-#include <fstream>
 #include <stdexcept>
 #include <string>
 
+#include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/candidate.hpp"
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/outputs/image_io.hpp"
@@ -56,11 +56,7 @@ void write_outputs(const RenderResult& result, const GlInfo& info, const scene::
   j["frame_ms_note"] = "all passes of one frame to glFinish, mask read-backs included (median of frames)";
   j["notes"] = result.notes;
   if (!result.faults.empty()) j["faults"] = result.faults;  // a deliberately wrong render (faults.hpp)
-  {
-    std::ofstream f(tmp / "render.json");
-    f << outputs::json_text(j, 2) << "\n";
-    if (!f) throw std::runtime_error("cannot write " + (tmp / "render.json").string());
-  }
+  outputs::write_file_atomically(tmp / "render.json", outputs::json_text(j, 2) + "\n");
   folder.commit();
 }
 

@@ -3,6 +3,7 @@
 // types the libraries throw.
 #include <gtest/gtest.h>
 
+#include <cerrno>
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
@@ -29,6 +30,21 @@ TEST(ReportError, TheUsersInputIsExit4) {
   const ErrorReport r = report_error(fs);
   EXPECT_EQ(r.exit_code, kExitBadInput);
   EXPECT_NE(r.line.find("/root/x"), std::string::npos) << r.line;
+}
+
+// A full disk, a quota, a read-only file system, no permission, a failing device: the environment's
+// doing, exit 4 with the path and the system's reason, never "please report it".
+TEST(ReportError, TheEnvironmentIsExit4WithThePathAndTheSystemsReason) {
+  const ErrorReport full = report_error(outputs::FileError(std::filesystem::path("out/report.json"), "write", ENOSPC));
+  EXPECT_EQ(full.exit_code, kExitBadInput);
+  EXPECT_EQ(full.line, "out/report.json: cannot write: No space left on device");
+  for (int e : {ENOSPC, EDQUOT, EROFS, EACCES, EIO}) {
+    const ErrorReport r = report_error(std::system_error(e, std::generic_category(), "out/x.png"));
+    EXPECT_EQ(r.exit_code, kExitBadInput) << r.line;
+    EXPECT_EQ(r.line.find("internal error"), std::string::npos) << r.line;
+  }
+  // A call our code got wrong stays ours.
+  EXPECT_EQ(report_error(std::system_error(EBADF, std::generic_category(), "fd")).exit_code, kExitInternal);
 }
 
 TEST(ReportError, ASizeMismatchIsExit3) {

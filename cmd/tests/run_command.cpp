@@ -32,7 +32,7 @@ int make_temp(std::string& path) {
 
 }  // namespace
 
-CommandResult run_command(const std::vector<std::string>& argv) {
+CommandResult run_command(const std::vector<std::string>& argv, const std::vector<std::string>& environment) {
   std::string out_path, err_path;
   const int out_fd = make_temp(out_path);
   const int err_fd = make_temp(err_path);
@@ -41,6 +41,7 @@ CommandResult run_command(const std::vector<std::string>& argv) {
   if (pid == 0) {
     dup2(out_fd, 1);
     dup2(err_fd, 2);
+    for (const std::string& e : environment) putenv(const_cast<char*>(e.c_str()));  // the child's own copy
     std::vector<char*> args;
     for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);

@@ -14,6 +14,7 @@ struct CommandResult {
 };
 
 // Runs `argv[0]` with arguments argv[1..] (no shell), waits for it, and captures both streams.
-CommandResult run_command(const std::vector<std::string>& argv);
+// `environment`: "NAME=value" entries set in the child on top of ours (LD_PRELOAD for a fault shim).
+CommandResult run_command(const std::vector<std::string>& argv, const std::vector<std::string>& environment = {});
 
 }  // namespace shadowref::test

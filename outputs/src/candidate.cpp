@@ -8,6 +8,7 @@
 #include <set>
 
 #include "shadowref/cascades.hpp"
+#include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/errors.hpp"
 #include "shadowref/outputs/limits.hpp"
 #include "shadowref/outputs/techniques.hpp"
@@ -145,9 +146,7 @@ std::string declaration_text(const CandidateDeclaration& d) {
 }
 
 void write_declaration(const CandidateDeclaration& d, const std::filesystem::path& dir) {
-  std::ofstream f(dir / kCandidateFile, std::ios::binary);
-  f << declaration_text(d) << "\n";
-  if (!f) throw FileError((dir / kCandidateFile).string() + ": cannot write");
+  write_file_atomically(dir / kCandidateFile, declaration_text(d) + "\n");
 }
 
 }  // namespace shadowref::outputs

@@ -1,14 +1,17 @@
 // image_io.cpp — OpenImageIO reading and writing of the contract's images (image_io.hpp).
 #include "shadowref/outputs/image_io.hpp"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <unistd.h>
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <system_error>
 
+#include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/errors.hpp"
 
 namespace shadowref::outputs {
@@ -58,12 +61,18 @@ void silence_uncaught_errors() {
   (void)done;
 }
 
+// The image is encoded in memory and written by write_file_atomically: a file appears whole or not at
+// all, and a failed write says the system's reason ("No space left on device"), which OpenImageIO's
+// own file writing does not pass on. An encoding failure is ours (exit 5), never the disk's.
 void write_image(const std::filesystem::path& file, const OIIO::ImageSpec& spec, const void* data) {
   silence_uncaught_errors();
+  std::vector<unsigned char> encoded;
+  OIIO::Filesystem::IOVecOutput memory(encoded);  // outlives the writer, which may flush into it when destroyed
   auto out = OIIO::ImageOutput::create(file.string());
   if (!out) throw std::runtime_error(file.string() + ": no image writer: " + first_line(OIIO::geterror(), "unknown format"));
-  if (!out->open(file.string(), spec) || !out->write_image(spec.format, data) || !out->close())
-    throw FileError(file.string() + ": cannot write: " + first_line(out->geterror(), "write failed"));
+  if (!out->set_ioproxy(&memory) || !out->open(file.string(), spec) || !out->write_image(spec.format, data) || !out->close())
+    throw std::runtime_error(file.string() + ": cannot encode: " + first_line(out->geterror(), "encoding failed"));
+  write_file_atomically(file, std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()));
 }
 
 }  // namespace

@@ -1,15 +1,20 @@
-// outputs_test.cpp — the output contract's naming rule, image round trip and staged folder.
+// outputs_test.cpp — the output contract's naming rule, image round trip, staged folder, atomic
+// file write and interruption. (A full disk, kills and signals in a real run: reliability/faults/.)
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
 
+#include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/outputs/image_io.hpp"
 #include "shadowref/outputs/errors.hpp"
+#include "shadowref/outputs/interruption.hpp"
 #include "shadowref/outputs/staged_folder.hpp"
 #include "shadowref/outputs/techniques.hpp"
 
@@ -101,6 +106,93 @@ TEST(StagedFolder, RefusesToReplaceASymlink) {
   EXPECT_THROW(s.commit(), std::runtime_error);
   EXPECT_TRUE(fs::is_symlink(d / "result"));
   EXPECT_FALSE(fs::exists(d / "elsewhere" / "new.txt"));
+}
+
+std::size_t entries(const fs::path& d) {
+  return static_cast<std::size_t>(std::distance(fs::directory_iterator(d), fs::directory_iterator()));
+}
+
+std::string text_of(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+TEST(StagedFolder, ReplacingLeavesNoPartialName) {
+  const fs::path d = fresh_dir("exchange");
+  for (const char* content : {"first", "second"}) {
+    StagedFolder s(d / "result");
+    std::ofstream(s.path() / "f.txt") << content;
+    s.commit();
+  }
+  EXPECT_EQ(text_of(d / "result" / "f.txt"), "second");
+  EXPECT_EQ(entries(d), 1u) << "the old folder was left under a partial name";
+}
+
+TEST(AtomicFile, ReplacesTheWholeFileAndLeavesNoPartialName) {
+  const fs::path d = fresh_dir("atomic");
+  write_file_atomically(d / "a.json", "{\"old\": 1}");
+  write_file_atomically(d / "a.json", "{}");
+  EXPECT_EQ(text_of(d / "a.json"), "{}");
+  copy_file_atomically(d / "a.json", d / "b.json");
+  EXPECT_EQ(text_of(d / "b.json"), "{}");
+  EXPECT_EQ(entries(d), 2u);
+}
+
+// The final path and the system's reason, one line; the temporary file is gone.
+TEST(AtomicFile, AFailedWriteNamesThePathAndTheReasonAndLeavesNothing) {
+  const fs::path d = fresh_dir("atomic_fail");
+  fs::create_directories(d / "taken");  // a folder where the file should go: the rename fails
+  try {
+    write_file_atomically(d / "taken", "bytes");
+    ADD_FAILURE() << "no error";
+  } catch (const FileError& e) {
+    EXPECT_EQ(std::string(e.what()), (d / "taken").string() + ": cannot move the written file into place: Is a directory");
+    EXPECT_EQ(e.errno_value(), EISDIR);
+  }
+  EXPECT_EQ(entries(d), 1u) << "the temporary file was left";
+  try {
+    write_png(Image8{1, 1, 1, {kMaskLit}}, d / "no_such_folder" / "mask.png");
+    ADD_FAILURE() << "no error";
+  } catch (const FileError& e) {
+    EXPECT_EQ(std::string(e.what()), (d / "no_such_folder" / "mask.png").string() + ": cannot write: No such file or directory");
+  }
+}
+
+TEST(AtomicFile, ReplacesASymlinkInsteadOfWritingThroughIt) {
+  const fs::path d = fresh_dir("atomic_link");
+  std::ofstream(d / "target.txt") << "kept";
+  fs::create_symlink(d / "target.txt", d / "link.txt");
+  write_file_atomically(d / "link.txt", "new");
+  EXPECT_FALSE(fs::is_symlink(d / "link.txt"));
+  EXPECT_EQ(text_of(d / "link.txt"), "new");
+  EXPECT_EQ(text_of(d / "target.txt"), "kept");
+}
+
+// After SIGINT (the handlers installed, as the command line does) nothing more is published: a
+// staged folder and a file in flight are removed, and Interrupted carries the signal. In a child
+// process (the flag stays set for the rest of a process).
+TEST(Interruption, ASignalStopsAtTheNextCommitPointAndLeavesNothing) {
+  const fs::path d = fresh_dir("interrupted");
+  EXPECT_EXIT(
+      {
+        install_interrupt_handlers();
+        std::raise(SIGINT);  // handled: the process goes on
+        int stopped = 0;
+        try {
+          StagedFolder s(d / "folder");
+          std::ofstream(s.path() / "f.txt") << "x";
+          s.commit();
+        } catch (const Interrupted& i) {
+          stopped += i.signal() == SIGINT;
+        }
+        try {
+          write_file_atomically(d / "file.txt", "x");
+        } catch (const Interrupted& i) {
+          stopped += i.signal() == SIGINT;
+        }
+        ::_exit(stopped == 2 && entries(d) == 0 ? 0 : 1);  // not exit(): the fork has none of the parent's threads to join
+      },
+      ::testing::ExitedWithCode(0), "");
 }
 
 TEST(Techniques, NamesAreUniqueAndFindable) {

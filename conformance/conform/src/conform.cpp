@@ -20,7 +20,9 @@
 #include "shadowref/scene/load_scene.hpp"
 #include "shadowref/scene/prepared_scene.hpp"
 #include "shadowref/outputs/candidate.hpp"
+#include "shadowref/outputs/errors.hpp"
 #include "shadowref/outputs/file_names.hpp"
+#include "shadowref/outputs/interruption.hpp"
 #include "shadowref/outputs/techniques.hpp"
 #include "shadowref/conform/judge.hpp"
 #include "shadowref/outputs/limits.hpp"
@@ -124,7 +126,10 @@ void compute_references(Run& run) {
   settings.threads = run.o.jobs;
   const auto start = Clock::now();
   for (const scene::PreparedScene& p : run.prepared) {
+    outputs::throw_if_interrupted();
     const CachedReference r = ensure_reference(p, run.cache, settings);
+    if (!r.recomputed_because.empty())
+      run.say("reference " + p.scene->name + ": the cached entry failed verification (" + r.recomputed_because + "): recomputed");
     run.reference_dirs.push_back(r.dir);
     char buf[64];
     std::snprintf(buf, sizeof buf, "computed in %.1f s", r.seconds);
@@ -206,6 +211,8 @@ CaseResult run_case(Run& run, std::size_t si, const std::string& technique) {
     if (!run.gl)
       for (auto& e : c.error_images) e = (error_dir / e).string();
     phases.error_images += since(t);
+  } catch (const outputs::FileError&) {
+    throw;  // --out cannot be written (a full disk): the run's failure, not this case's verdict
   } catch (const std::exception& e) {
     c.status = Status::Error;
     c.error = e.what();
@@ -243,6 +250,7 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
     const std::size_t total = run.scenes.size() * result.techniques.size();
     for (std::size_t si = 0; si < run.scenes.size(); ++si)
       for (const std::string& technique : result.techniques) {
+        outputs::throw_if_interrupted();
         const auto case_start = Clock::now();
         result.cases.push_back(run_case(run, si, technique));
         result.cases.back().seconds = since(case_start);

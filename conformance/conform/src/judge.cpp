@@ -5,6 +5,7 @@
 #include <chrono>
 #include <utility>
 
+#include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/errors.hpp"
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/outputs/techniques.hpp"
@@ -70,7 +71,7 @@ std::filesystem::path Judge::draw_model(const scene::PreparedScene& prepared, co
   // The model is judged on the reference's decided pixels, with the same causes.
   for (std::size_t l = 0; l < s.lights.size(); ++l) {
     const std::string d = outputs::decided_name(l, s.lights.size());
-    std::filesystem::copy_file(reference_dir / d, dir / d, std::filesystem::copy_options::overwrite_existing);
+    outputs::copy_file_atomically(reference_dir / d, dir / d);
   }
   return dir;
 }

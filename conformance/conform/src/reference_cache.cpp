@@ -12,6 +12,7 @@
 #include <system_error>
 #include <vector>
 
+#include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/staged_folder.hpp"
 #include "shadowref/reference/render.hpp"
 #include "shadowref/reference/write_images.hpp"
@@ -86,6 +87,56 @@ std::string hex(std::uint64_t v) {
   return buf;
 }
 
+// What key.json says an entry holds. 2: `files`, each file's FNV-1a 64 of its bytes, and
+// `key_json_hash`, that of key.json's own text without that field (a flipped byte in key.json is
+// caught too); an entry of another format (1: before the hashes) is recomputed, never read as if it
+// were this one.
+constexpr int kEntryFormat = 2;
+
+std::string content_hash(const std::string& bytes) {
+  Fnv1a f;
+  f.add(bytes.data(), bytes.size());
+  return hex(f.h);
+}
+
+// Why the entry folder `dir` cannot be used as the entry of `key`, or "" when every file it recorded
+// is there with the bytes it recorded. Reads every file: a few megabytes at 1024², milliseconds.
+std::string entry_problem(const std::filesystem::path& dir, const std::string& key) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path key_file = dir / "key.json";
+  if (!fs::is_regular_file(key_file, ec)) return "key.json is missing";
+  std::ifstream in(key_file, std::ios::binary);
+  const nlohmann::json k = nlohmann::json::parse(in, nullptr, false);
+  if (!k.is_object()) return "key.json does not parse";
+  const auto format = k.find("format");
+  if (format == k.end() || !format->is_number_integer())
+    return "key.json has no format: written by an older shadowref, before entries recorded their files' hashes";
+  if (format->get<int>() != kEntryFormat)
+    return "key.json is of format " + format->dump() + ", this shadowref reads " + std::to_string(kEntryFormat);
+  nlohmann::json rest = k;
+  rest.erase("key_json_hash");
+  if (!k.contains("key_json_hash") || k["key_json_hash"] != content_hash(outputs::json_text(rest, 2)))
+    return "key.json: its text differs from the hash it recorded of itself (corrupted)";
+  if (k.value("key", std::string()) != key) return "key.json names another key";
+  const auto files = k.find("files");
+  if (files == k.end() || !files->is_object() || files->empty()) return "key.json lists no files";
+  for (const auto& [name, recorded] : files->items()) {
+    // A plain file name of the folder: an entry never makes us read elsewhere.
+    if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos || !recorded.is_string())
+      return "key.json: files: '" + name + "' is not a file of the entry";
+    const fs::path file = dir / name;
+    if (!fs::is_regular_file(file, ec)) return name + " is missing";
+    std::ifstream f(file, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(f)), {});
+    if (!f && !f.eof()) return name + " cannot be read";
+    if (content_hash(bytes) != recorded.get<std::string>())
+      return name + ": its bytes differ from the hash key.json recorded (" + std::to_string(bytes.size()) +
+             " bytes: truncated or corrupted)";
+  }
+  return "";
+}
+
 }  // namespace
 
 std::string reference_key(const scene::PreparedScene& prepared, const ReferenceSettings& settings) {
@@ -108,12 +159,14 @@ std::string reference_key(const scene::PreparedScene& prepared, const ReferenceS
 
 namespace {
 
-void render_into(const scene::PreparedScene& scene, const std::filesystem::path& dir, const ReferenceSettings& settings) {
+// Returns the names of the files written.
+std::vector<std::string> render_into(const scene::PreparedScene& scene, const std::filesystem::path& dir,
+                                     const ReferenceSettings& settings) {
   reference::Options options;
   options.samples_per_axis = settings.samples_per_axis;
   options.threads = settings.threads;
   const reference::Images images = reference::render(scene, options);
-  reference::write_images(images, dir);
+  return reference::write_images(images, dir);
 }
 
 }  // namespace
@@ -131,13 +184,21 @@ CachedReference ensure_reference(const scene::PreparedScene& prepared, const std
   CachedReference out;
   out.dir = std::filesystem::absolute(cache / (scene.name + "-" + key));
   std::error_code ec;
-  if (std::filesystem::is_regular_file(out.dir / "key.json", ec)) return out;  // key.json is written last
+  if (std::filesystem::exists(out.dir, ec)) {
+    out.recomputed_because = entry_problem(out.dir, key);
+    if (out.recomputed_because.empty()) return out;
+  }
   const auto start = std::chrono::steady_clock::now();
   outputs::StagedFolder folder(out.dir);
   const std::filesystem::path& tmp = folder.path();
-  render_into(prepared, tmp, settings);
+  const std::vector<std::string> written = render_into(prepared, tmp, settings);
   {
     nlohmann::json k;
+    k["format"] = kEntryFormat;
+    nlohmann::json files = nlohmann::json::object();
+    for (const std::string& name : written) files[name] = content_hash(read_bytes(tmp / name));
+    k["files"] = files;
+    k["files_hash"] = "FNV-1a 64 of each file's bytes, checked before every use: an entry that fails is recomputed";
     k["scene"] = scene.name;
     k["scene_file"] = std::filesystem::absolute(scene.file).string();
     k["samples_per_axis"] = settings.samples_per_axis;
@@ -145,12 +206,13 @@ CachedReference ensure_reference(const scene::PreparedScene& prepared, const std
     k["resolution"] = {scene.width, scene.height};
     k["key"] = key;
     k["key_inputs"] = "FNV-1a 64 of the scene file, its mesh files, the settings, the convention and the shadowref executable";
-    std::ofstream f(tmp / "key.json");
-    f << outputs::json_text(k, 2) << "\n";
-    if (!f) throw std::runtime_error("cannot write " + (tmp / "key.json").string());
+    k["key_json_hash"] = content_hash(outputs::json_text(k, 2));  // of the text above, this field left out
+    outputs::write_file_atomically(tmp / "key.json", outputs::json_text(k, 2) + "\n");
   }
-  // Another process may have finished the same key first: theirs is as good as ours.
-  folder.commit(outputs::StagedFolder::IfExists::KeepExisting);
+  // Another process may have finished the same key first: theirs is as good as ours. A damaged entry
+  // is replaced (one atomic exchange: a run reading it meanwhile sees the old files or the new ones).
+  folder.commit(out.recomputed_because.empty() ? outputs::StagedFolder::IfExists::KeepExisting
+                                               : outputs::StagedFolder::IfExists::Replace);
   out.computed = true;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

@@ -1,13 +1,20 @@
 // report_writer.cpp — report.json (every metric, versions, GL strings) and report/index.html.
+//
+// All or nothing (docs/output-contract.md): report/ is staged and renamed into place, every other
+// file is written atomically, and report.json comes last — the one an earlier run left is removed
+// first — so that a report.json means the run finished and report/, report.junit.xml and summary.md
+// beside it are the same run's.
 #include "report_writer.hpp"
 
 #include <chrono>
 #include <ctime>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <system_error>
 
+#include "shadowref/outputs/atomic_file.hpp"
+#include "shadowref/outputs/errors.hpp"
+#include "shadowref/outputs/staged_folder.hpp"
 #include "shadowref/report/comparison_json.hpp"
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/report/ci_summary.hpp"
@@ -29,22 +36,26 @@ std::string now_utc() {
   return buf;
 }
 
-// Copies `from` to <report>/<rel> and returns rel; "" when `from` is missing.
-std::string copy_in(const fs::path& from, const fs::path& report, const std::string& rel) {
+// Copies `from` to <report>/<rel> and returns rel; "" when `from` is missing (a case that ended in an
+// ERROR before its image was written). A copy that fails is a FileError: the report is not written
+// with holes the disk made.
+std::string copy_in(const fs::path& from, const outputs::StagedFolder& report, const std::string& rel) {
   std::error_code ec;
   if (!fs::is_regular_file(from, ec)) return "";
-  fs::create_directories((report / rel).parent_path());
-  fs::copy_file(from, report / rel, fs::copy_options::overwrite_existing, ec);
-  return ec ? "" : rel;
+  fs::create_directories((report.path() / rel).parent_path(), ec);
+  if (ec) throw outputs::FileError((report.final_path() / rel).parent_path(), "create the folder", ec.value());
+  outputs::copy_file_atomically(from, report.path() / rel);
+  return rel;
 }
 
 }  // namespace
 
 void write_reports(const ConformResult& r, const ConformOptions& o, const fs::path& cache) {
-  const fs::path report_dir = r.report_html.parent_path();
   std::error_code ec;
-  fs::remove_all(report_dir / "img", ec);
-  fs::create_directories(report_dir);
+  fs::remove(r.report_json, ec);
+  if (ec) throw outputs::FileError(r.report_json, "remove the previous report", ec.value());
+  outputs::StagedFolder staged(r.report_html.parent_path());
+  const fs::path& report_dir = staged.path();
 
   json j;
   j["tool"] = "shadowref";
@@ -116,29 +127,29 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
         const std::string& m = c.comparison->masks[i];
         json l;
         l["mask"] = m;
-        l["reference"] = copy_in(c.reference_dir / m, report_dir, "img/" + c.scene + "/reference_" + m);
+        l["reference"] = copy_in(c.reference_dir / m, staged, "img/" + c.scene + "/reference_" + m);
         const std::string d = outputs::decided_name(i, c.comparison->masks.size());
-        l["decided"] = copy_in(c.reference_dir / d, report_dir, "img/" + c.scene + "/reference_" + d);
-        l["candidate"] = copy_in(c.candidate_dir / m, report_dir, base + "candidate_" + m);
+        l["decided"] = copy_in(c.reference_dir / d, staged, "img/" + c.scene + "/reference_" + d);
+        l["candidate"] = copy_in(c.candidate_dir / m, staged, base + "candidate_" + m);
         const fs::path err = fs::path(c.error_images[i]).is_absolute() ? fs::path(c.error_images[i])
                                                                        : c.candidate_dir / c.error_images[i];
-        l["error"] = copy_in(err, report_dir, base + fs::path(c.error_images[i]).filename().string());
+        l["error"] = copy_in(err, staged, base + fs::path(c.error_images[i]).filename().string());
         l["metrics"] = report::to_json(c.comparison->per_light[i].metrics);
         if (i < c.comparison->visibility.size() && c.comparison->visibility[i]) {
           // Soft shadows: the candidate's lit fraction and its error in visibility units.
           const std::size_t n = c.comparison->masks.size();
           const std::string vis = outputs::visibility_name(i, n);
           const std::string vis_err = outputs::per_light_name("visibility_error", "png", i, n);
-          l["candidate_visibility"] = copy_in(c.candidate_dir / vis, report_dir, base + "candidate_" + vis);
-          l["visibility_error"] = copy_in(err.parent_path() / vis_err, report_dir, base + vis_err);
+          l["candidate_visibility"] = copy_in(c.candidate_dir / vis, staged, base + "candidate_" + vis);
+          l["visibility_error"] = copy_in(err.parent_path() / vis_err, staged, base + vis_err);
           l["visibility"] = report::to_json(c.comparison->visibility[i]->metrics);
         }
         lights.push_back(l);
       }
       k["lights"] = lights;
-      k["shaded"] = copy_in(c.candidate_dir / "shaded.png", report_dir, base + "shaded.png");
+      k["shaded"] = copy_in(c.candidate_dir / "shaded.png", staged, base + "shaded.png");
       if (!scenes_copied.count(c.scene)) {
-        copy_in(c.reference_dir / "shaded.png", report_dir, "img/" + c.scene + "/reference_shaded.png");
+        copy_in(c.reference_dir / "shaded.png", staged, "img/" + c.scene + "/reference_shaded.png");
         scenes_copied.insert(c.scene);
       }
       k["reference_shaded"] = fs::is_regular_file(report_dir / ("img/" + c.scene + "/reference_shaded.png"), ec)
@@ -149,15 +160,12 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
   }
   j["cases"] = cases;
 
-  {
-    std::ofstream f(r.report_json);
-    f << outputs::json_text(j, 2) << "\n";
-    if (!f) throw std::runtime_error("cannot write " + r.report_json.string());
-  }
-  report::write_html(j, r.report_html);
+  report::write_html(j, report_dir / r.report_html.filename());
+  staged.commit();
   // For CI: a JUnit XML file and a Markdown summary beside report.json.
   report::write_junit(j, r.report_json.parent_path() / "report.junit.xml");
   report::write_markdown(j, r.report_json.parent_path() / "summary.md");
+  outputs::write_file_atomically(r.report_json, outputs::json_text(j, 2) + "\n");
 }
 
 }  // namespace shadowref::conform

@@ -2,12 +2,12 @@
 #include "shadowref/report/ci_summary.hpp"
 
 #include <algorithm>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
 
+#include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/report/html.hpp"
 
 namespace shadowref::report {
@@ -39,9 +39,7 @@ std::string cell(std::string s) {
 
 void write_file(const std::string& content, const std::filesystem::path& file) {
   std::filesystem::create_directories(file.parent_path());
-  std::ofstream f(file, std::ios::binary);
-  f << content;
-  if (!f) throw std::runtime_error("cannot write " + file.string());
+  outputs::write_file_atomically(file, content);
 }
 
 }  // namespace

@@ -5,10 +5,11 @@
 #include "shadowref/compare/compare.hpp"
 
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <stdexcept>
+
+#include "shadowref/outputs/atomic_file.hpp"
 
 namespace shadowref::report {
 namespace {
@@ -471,9 +472,7 @@ std::string render_html(const json& r) {
 
 void write_html(const json& report, const std::filesystem::path& file) {
   if (!file.parent_path().empty()) std::filesystem::create_directories(file.parent_path());
-  std::ofstream f(file);
-  f << render_html(report);
-  if (!f) throw std::runtime_error("cannot write " + file.string());
+  outputs::write_file_atomically(file, render_html(report));
 }
 
 }  // namespace shadowref::report

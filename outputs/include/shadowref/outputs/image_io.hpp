@@ -8,9 +8,9 @@
 // Nothing is converted behind the caller's back (an RGB "grey" mask is refused, not averaged).
 //
 // Writing: PNG for Image8 (grey or RGB), OpenEXR (zip, one float channel "Y", no wall-clock
-// DateTime so that two runs write identical bytes) for float images. Errors are one-line
-// std::runtime_error naming the file. Callers that need all-or-nothing folders write into a
-// StagedFolder (staged_folder.hpp).
+// DateTime so that two runs write identical bytes) for float images, each file all or nothing
+// (atomic_file.hpp): FileError naming the file and the system's reason when it cannot be written.
+// Callers that need all-or-nothing folders write into a StagedFolder (staged_folder.hpp).
 #pragma once
 
 #include <filesystem>

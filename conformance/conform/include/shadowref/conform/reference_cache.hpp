@@ -5,9 +5,14 @@
 // reference renderer never reads a stale picture: a cache that can lie is worse than none; a test
 // program may name another executable built from the same tree: ReferenceSettings::key_executable).
 // An entry is a folder <cache>/<scene name>-<16 hex digits>/ holding what `shadowref reference`
-// writes plus key.json (the inputs of the key, for people). It is written into a temporary
-// sibling and renamed into place, so concurrent runs (CTest fixtures, --jobs) never see half an
-// entry; two runs racing for the same key both compute it and one rename wins.
+// writes plus key.json (the inputs of the key, for people; a format number; and the FNV-1a 64 hash
+// of every file the entry holds). It is written into a temporary sibling and renamed into place, so
+// concurrent runs (CTest fixtures, --jobs) never see half an entry; two runs racing for the same key
+// both compute it and one rename wins.
+// Before each use the entry is verified: every file key.json lists, with the bytes it recorded. An
+// entry that fails (a truncated or bit-flipped file after a crash or a bad disk, a missing or
+// unparsable key.json, an entry of another format) is recomputed and replaced, and the caller is told
+// which file and why (CachedReference::recomputed_because): a damaged cache heals, never misleads.
 #pragma once
 
 #include <cstdint>
@@ -35,6 +40,7 @@ struct CachedReference {
   std::filesystem::path dir;  // the entry folder: mask(_<i>).png, decided(_<i>).png, visibility.exr, shaded.png
   bool computed = false;      // false: found in the cache
   double seconds = 0;         // time spent computing it (0 when found)
+  std::string recomputed_because;  // non-empty: an entry was there but failed verification (which file, why)
 };
 
 // The entry of `scene`, computed with the Embree reference when missing. Throws
