@@ -613,10 +613,10 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_
       const bool filtered = named && (named->family == outputs::TechniqueFamily::ShadowMapPcf ||
                                       named->family == outputs::TechniqueFamily::SoftShadow);
       result.declaration.slope_bias_texels = filtered ? kPcfOffsetFactor : kShadowMapOffsetFactor;
-      result.declaration.depth_bias = kShadowMapOffsetUnits * kWindowDepthPerUnit;
+      result.declaration.depth_bias = double{kShadowMapOffsetUnits} * kWindowDepthPerUnit;
       // A deliberately wrong render declares what it does, honestly: the judge must fail it all the same.
       if (options.faults.shadow_map.no_polygon_offset) result.declaration.slope_bias_texels = result.declaration.depth_bias = 0;
-      if (options.faults.shadow_map.large_constant_offset) result.declaration.depth_bias = kPeterPanUnits * kWindowDepthPerUnit;
+      if (options.faults.shadow_map.large_constant_offset) result.declaration.depth_bias = double{kPeterPanUnits} * kWindowDepthPerUnit;
       if (options.faults.shadow_map.constant_offset_world > 0) {
         result.declaration.depth_bias = 0;
         result.declaration.constant_bias = options.faults.shadow_map.constant_offset_world;

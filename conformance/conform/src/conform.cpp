@@ -50,6 +50,7 @@ std::filesystem::path candidate_folder(const std::filesystem::path& dir, const s
 // Everything a run holds between its phases. The scenes do not move once prepared (the prepared
 // scenes point at them).
 struct Run {
+  Run(const ConformOptions& options, const Log& l, ConformResult& r) : o(options), log(l), result(r) {}
   const ConformOptions& o;
   const Log& log;
   ConformResult& result;
@@ -242,7 +243,7 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
   result.techniques = plan_techniques(o);
   check_sizes(o);
   result.convention = std::string(o.convention->name);
-  Run run{o, log, result};
+  Run run(o, log, result);
   prepare(run);
   compute_references(run);
   if (!o.references_only) {
