@@ -170,9 +170,7 @@ void register_conform_command(CLI::App& app, int& exit_code) {
       "conform",
       "Render the scene catalogue with every technique (or judge an engine team's renders), compare each with "
       "the reference, print the scene x technique table and write report.json and report/index.html.");
-  cmd->add_option("--scenes", args->scenes,
-                  "comma-separated globs over the catalogue's scene names, or scene files (default: every scene not "
-                  "tagged 'large')");
+  cmd->add_option("--scenes", args->scenes, conform::kScenesHelp);
   cmd->add_option("--techniques", args->techniques, "comma-separated technique names (default: all)");
   cmd->add_option("--technique", args->technique, "one technique (the name an engine team's renders are judged as)");
   add_convention_option(*cmd, args->convention);

@@ -27,6 +27,7 @@
 #include <system_error>
 
 #include "command.hpp"
+#include "shadowref/compare/compare.hpp"
 #include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/outputs/image.hpp"
@@ -270,6 +271,24 @@ json matrices(const scene::Scene& s) {
   return j;
 }
 
+// The error image's colours, from the one definition (compare.hpp's kErrorColours).
+std::string error_image_legend() {
+  const compare::ErrorColours& c = compare::kErrorColours;
+  const auto rgb = [](const unsigned char (&v)[3]) {
+    return "rgb(" + std::to_string(v[0]) + ", " + std::to_string(v[1]) + ", " + std::to_string(v[2]) + ")";
+  };
+  return "## Reading the error image\n\n"
+         "Each case's `error.png` (`error_<i>.png` per light) paints the wrong pixels over your dimmed reference:\n\n"
+         "| colour | meaning |\n| --- | --- |\n"
+         "| " + rgb(c.false_shadow) + " red | false shadow, unexplained (reference lit) |\n"
+         "| " + rgb(c.acne) + " yellow | false shadow, unexplained: self-shadowing (acne) |\n"
+         "| " + rgb(c.false_light) + " blue | false light, unexplained (reference shadowed) |\n"
+         "| " + rgb(c.coverage) + " magenta | coverage: a surface in one, none in the other |\n"
+         "| " + rgb(c.texel) + " orange | explained: within the texel footprint of a real boundary |\n"
+         "| " + rgb(c.bias) + " cyan | explained: within the bias a correct map needs at a contact |\n"
+         "| " + rgb(c.undecided) + " dark green | undecided: not judged |\n\n";
+}
+
 std::string readme(const json& manifest) {
   std::string t =
       "# shadowref scene pack\n\n"
@@ -371,14 +390,16 @@ std::string readme(const json& manifest) {
       "shadowref conform --catalogue scenes --scenes ground_sphere --candidate-dir my-renders --technique shadowmap --out my-verdict\n"
       "```\n\n"
       "`--catalogue scenes` is this pack's copy of the scene files (the references are recomputed from them into\n"
-      "`my-verdict/reference-cache`); `--scenes` picks some (globs over the names below). `--technique` picks the\n"
+      "`my-verdict/reference-cache`); `--scenes` picks some (comma-separated globs over the names below, e.g.\n"
+      "`--scenes 'ground_sphere,soft_*'`). `--technique` picks the\n"
       "threshold (our technique names: planar, volume-*, shadowmap, shadowmap-pcf, shadowmap-rgba8, csm, csm-pcf, pcss, vsm;\n"
       "any other name\n"
       "gets the strictest) and the catalogue's expectations (a scene where the technique is known to fail expects a\n"
       "FAIL: see `manifest.json`). The table, `my-verdict/report.json` and `my-verdict/report/index.html` (reference,\n"
       "your mask and the error image side by side) follow. Exit code: 0 every case PASS or XFAIL, 1 quality warnings,\n"
-      "2 failures.\n\n"
-      "## Scenes\n\n| scene | resolution | lights | description |\n| --- | --- | --- | --- |\n";
+      "2 failures.\n\n";
+  t += error_image_legend();
+  t += "## Scenes\n\n| scene | resolution | lights | description |\n| --- | --- | --- | --- |\n";
   for (const json& s : manifest["scenes"])
     t += "| " + s["name"].get<std::string>() + " | " + std::to_string(s["resolution"][0].get<int>()) + "x" +
          std::to_string(s["resolution"][1].get<int>()) + " | " + std::to_string(s["lights"].get<int>()) + " | " +
@@ -491,7 +512,7 @@ void register_export_command(CLI::App& app, int& exit_code) {
       "Write a scene pack for engine teams: scenes, meshes (OBJ, glTF), camera and light matrices in canonical and "
       "D3DX layout, reference masks, and a README saying what to render and how to name the files.");
   cmd->add_option("--out", args->out, "the pack folder")->required();
-  cmd->add_option("--scenes", args->scenes, "globs over scene names (default: the default catalogue)");
+  cmd->add_option("--scenes", args->scenes, conform::kScenesHelp);
   cmd->add_option("--catalogue", args->catalogue, "scene folder (default: the installed catalogue; from the build tree, the source tree's)");
   cmd->add_option("--cache", args->cache, "reference cache folder, kept between runs (default: none; the references are computed inside the "
                   "pack's staging folder, and nothing is written outside --out). `shadowref conform --out O` keeps "

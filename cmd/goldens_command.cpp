@@ -176,7 +176,7 @@ void register_goldens_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--check", args->check, "re-render and demand bit-identical masks and decided images (exit 2 otherwise)");
   cmd->add_flag("--update", args->update, "rewrite the golden images from fresh references");
   cmd->add_option("--dir", args->dir, "the golden image folder")->capture_default_str();
-  cmd->add_option("--scenes", args->scenes, "globs over scene names (default: the default catalogue, no 'large' scenes)");
+  cmd->add_option("--scenes", args->scenes, conform::kScenesHelp);
   cmd->add_option("--catalogue", args->catalogue, "scene folder (default: the installed catalogue; from the build tree, the source tree's)");
   cmd->add_option("--cache", args->cache, "take references from this conformance cache (keyed by this executable)");
   cmd->add_option("--jobs", args->jobs, "reference threads (0: all cores)")->check(CLI::Range(0, 256));

@@ -34,6 +34,11 @@ std::filesystem::path default_golden_images();
 std::vector<std::filesystem::path> select_scenes(const std::filesystem::path& catalogue,
                                                  const std::vector<std::string>& patterns);
 
+// What every command's --scenes takes (select_scenes over split_list), said once for their --help.
+inline constexpr const char* kScenesHelp =
+    "comma-separated globs over the catalogue's scene names, or scene files (e.g. ground_sphere,soft_*); "
+    "default: every scene not tagged 'large'";
+
 // Splits "a,b, c" into {"a", "b", "c"} (empty items dropped).
 std::vector<std::string> split_list(const std::string& text);
 
