@@ -21,17 +21,8 @@ namespace {
 
 // The first hit along the ray from `o` along the unit `dir`, up to `tfar` (Embree: geomID invalid on a miss).
 RTCRayHit first_hit(RTCScene scene, const Vec3<double>& o, const Vec3<double>& dir, float tfar) {
-  RTCRayHit r{};
-  r.ray.org_x = static_cast<float>(o.x());
-  r.ray.org_y = static_cast<float>(o.y());
-  r.ray.org_z = static_cast<float>(o.z());
-  r.ray.dir_x = static_cast<float>(dir.x());
-  r.ray.dir_y = static_cast<float>(dir.y());
-  r.ray.dir_z = static_cast<float>(dir.z());
-  r.ray.tnear = 0.0f;
-  r.ray.tfar = tfar;
-  r.ray.mask = 0xFFFFFFFFu;
-  r.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHit r;
+  start_ray(o, dir, tfar, r);
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   rtcIntersect1(scene, &ctx, &r);

@@ -46,6 +46,23 @@ inline bool same_smooth_surface(const Surface& centre, const Surface& sample, do
   return std::abs(centre.n.dot(d)) <= kCreaseSine * d.norm() + epsilon;
 }
 
+// `rh` set to the ray from `o` along the unit `d` up to `tfar`, in float as Embree takes it, with
+// no hit yet (geomID invalid): how every ray the reference and its cause model trace starts.
+inline void start_ray(const Vec3<double>& o, const Vec3<double>& d, double tfar, RTCRayHit& rh) {
+  rh = RTCRayHit{};
+  rh.ray.org_x = static_cast<float>(o.x());
+  rh.ray.org_y = static_cast<float>(o.y());
+  rh.ray.org_z = static_cast<float>(o.z());
+  rh.ray.dir_x = static_cast<float>(d.x());
+  rh.ray.dir_y = static_cast<float>(d.y());
+  rh.ray.dir_z = static_cast<float>(d.z());
+  rh.ray.tnear = 0.0f;
+  rh.ray.tfar = static_cast<float>(tfar);
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+}
+
 // The pixel point's camera ray for `scene` (pixel (x, y), row 0 at the top, at (sx, sy) inside it),
 // written into `rh` as Embree wants it (geomID invalid: no hit yet); and the surface `rh` hit after
 // tracing (hit false on a miss). Inline: the reference's tiles build and read millions of these,
@@ -65,18 +82,7 @@ inline void pixel_ray(const scene::PreparedScene& scene, const Mat4<double>& inv
   const Vec3<double> o = unproject(near_ndc);
   const Vec3<double> d = (unproject(0.5 * (near_ndc + far_ndc)) - o).normalized();
   const double tfar = s.camera.far ? (unproject(far_ndc) - o).norm() : std::numeric_limits<double>::infinity();
-  rh = RTCRayHit{};
-  rh.ray.org_x = static_cast<float>(o.x());
-  rh.ray.org_y = static_cast<float>(o.y());
-  rh.ray.org_z = static_cast<float>(o.z());
-  rh.ray.dir_x = static_cast<float>(d.x());
-  rh.ray.dir_y = static_cast<float>(d.y());
-  rh.ray.dir_z = static_cast<float>(d.z());
-  rh.ray.tnear = 0.0f;
-  rh.ray.tfar = static_cast<float>(tfar);
-  rh.ray.mask = 0xFFFFFFFFu;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  start_ray(o, d, tfar, rh);
 }
 
 inline Surface surface_of(const scene::Scene& scene, const RTCRayHit& rh) {
