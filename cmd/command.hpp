@@ -53,6 +53,8 @@ const RunConvention& parse_convention(const std::string& name);
 // `--shadow-map-size`'s check (outputs/limits.hpp): 0 (automatic) or a size in the limits; the
 // same line in every subcommand that takes it.
 CLI::Validator shadow_map_size_check();
+// --random-taps: 0, or a square of renderer::kMinRandomTapsPerAxis .. kMaxRandomTapsPerAxis.
+CLI::Validator random_taps_check();
 
 // Adds one subcommand to `app`. Its callback stores the exit code in `exit_code`.
 using RegisterCommand = void (*)(CLI::App& app, int& exit_code);

@@ -28,6 +28,7 @@ struct ConformArgs {
   std::string technique;
   std::string convention = "gl";
   int shadow_map_size = 0;
+  int random_taps = 0;
   double resolution_scale = 1.0;
   std::string resolution;
   std::string backend = "llvmpipe";
@@ -55,6 +56,7 @@ int run_conform_command(const ConformArgs& a) {
   if (!a.technique.empty()) o.techniques.push_back(a.technique);
   o.convention = &parse_convention(a.convention);
   o.shadow_map_size = a.shadow_map_size;
+  o.random_taps = a.random_taps;
   o.resolution_scale = a.resolution_scale;
   if (!a.resolution.empty()) {
     const Size2 size = parse_size("--resolution", a.resolution, outputs::kMaxResolution);
@@ -182,6 +184,9 @@ void register_conform_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--shadow-map-size", args->shadow_map_size,
                   "texels per side of our shadow maps; 0: automatic (3 texels per camera pixel at the view centres)")
       ->check(shadow_map_size_check())
+      ->capture_default_str();
+  cmd->add_option("--random-taps", args->random_taps, "0: every filter on its fixed grid; N (a square, 4..64): our PCF and PCSS take N taps of a Vogel disk turned per pixel by noise (declared \"sampling\": \"random\")")
+      ->check(random_taps_check())
       ->capture_default_str();
   cmd->add_option("--backend", args->backend, "Mesa driver: llvmpipe, softpipe, or native (a GPU's EGL)")->capture_default_str();
   cmd->add_option("--gl", args->gl, "context: osmesa or egl")->capture_default_str();

@@ -30,6 +30,7 @@ struct RenderArgs {
   std::string gl = "osmesa";
   int shadow_map_size = 0;
   int frames = 1;
+  int random_taps = 0;
 };
 
 std::string technique_help() {
@@ -67,6 +68,7 @@ void run_render(const RenderArgs& a) {
   }
   renderer::RenderOptions options;
   options.frames = a.frames;
+  options.random_taps = a.random_taps;
   scene::PrepareOptions prepare;
   prepare.shadow_map_size = a.shadow_map_size;
   const RunConvention& convention = parse_convention(a.convention);
@@ -110,6 +112,9 @@ void register_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--shadow-map-size", args->shadow_map_size,
                   "shadow-map texels per side; 0: automatic (3 texels per camera pixel at the centre, 1024..8192)")
       ->check(shadow_map_size_check())
+      ->capture_default_str();
+  cmd->add_option("--random-taps", args->random_taps, "0: every filter on its fixed grid; N (a square, 4..64): PCF and PCSS take N taps of a Vogel disk turned per pixel by noise (declared \"sampling\": \"random\")")
+      ->check(random_taps_check())
       ->capture_default_str();
   cmd->add_option("--frames", args->frames, "frames to render and time (render.json keeps the median)")
       ->check(CLI::Range(1, 1000))

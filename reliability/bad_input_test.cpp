@@ -575,6 +575,18 @@ std::vector<CandidateCase> candidate_cases() {
       {"declaration_not_utf8", "one", text("candidate.json", "{\"producer\": \"\xff\xfe\"}"), "@/candidate.json"},
       {"declaration_light_taps_out_of_range", "one", text("candidate.json", R"({"light_taps": 0})"),
        "@/candidate.json: light_taps: must be in [1, 64]"},
+      {"declaration_sampling_unknown", "one", text("candidate.json", R"({"sampling": "poisson"})"),
+       "@/candidate.json: sampling: must be \"grid\" or \"random\""},
+      {"declaration_light_unknown_key", "two", text("candidate.json", R"({"lights": [{}, {"bias": 0.001}]})"),
+       "@/candidate.json: lights[1].bias: unknown key"},
+      {"declaration_light_not_per_light", "two", text("candidate.json", R"({"lights": [{"technique": "pcss"}]})"),
+       "@/candidate.json: lights[0].technique: not a per-light key"},
+      {"declaration_light_wrong_type", "two", text("candidate.json", R"({"lights": [{"slope_bias_texels": "2"}]})"),
+       "@/candidate.json: lights[0].slope_bias_texels: must be a number"},
+      {"declaration_distance_bias_without_range", "one", text("candidate.json", R"({"depth": "distance", "depth_bias": 0.01})"),
+       "@/candidate.json: depth_range: a \"distance\" map's depth_bias is in units of its range"},
+      {"declaration_more_lights_than_scene", "one", text("candidate.json", R"({"lights": [{}, {}]})"),
+       "@/candidate.json: lights: 2 entries, but scene 'one' has 1 light(s)"},
   };
 }
 

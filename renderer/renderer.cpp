@@ -165,6 +165,7 @@ Program link(const GlFunctions& gl, std::initializer_list<const char*> fragment,
   p.moment_map = loc("u_moment_map");
   p.layer_inv_view_depth = loc("u_layer_inv_view_depth");
   p.taps_in_own_face = loc("u_taps_in_own_face");
+  p.random_taps = loc("u_random_taps");
   gl.UseProgram(p.id);
   if (p.shadow_map >= 0) gl.Uniform1i(p.shadow_map, 0);
   if (p.packed_map >= 0) gl.Uniform1i(p.packed_map, 1);
@@ -620,6 +621,11 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_
       if (options.faults.shadow_map.constant_offset_world > 0) {
         result.declaration.depth_bias = 0;
         result.declaration.constant_bias = options.faults.shadow_map.constant_offset_world;
+      }
+      if (filtered && options.random_taps > 0) {  // a rotated Vogel disk: its taps and its PCF radius
+        result.declaration.sampling = outputs::Sampling::Random;
+        result.declaration.light_taps = static_cast<int>(std::lround(std::sqrt(options.random_taps)));
+        result.declaration.filter_radius_texels = kRandomPcfRadiusTexels;
       }
       result.declaration.light_views_from_pack = true;  // the prepared scene's light fits: the pack's
       result.declaration.defaulted.clear();

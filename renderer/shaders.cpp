@@ -120,6 +120,7 @@ uniform vec3 u_rect_u;               // the rect light's edges (world); u_light 
 uniform vec3 u_rect_v;
 uniform int u_blocker_at_receiver;   // fault switches (renderer/faults.hpp, SoftShadowFaults)
 uniform int u_taps_in_own_face;
+uniform int u_random_taps;           // 0: each filter's fixed grid; N: N taps of a Vogel disk rotated per pixel
 // VSM (u_shadow 5): the moments (view depth, its square) of the same layers; (0, 0) where nothing was drawn.
 uniform sampler2DArray u_moment_map; // unit 3
 out vec4 o_colour;
@@ -131,6 +132,21 @@ int cube_face(vec3 d) {
   return (a.x >= a.y && a.x >= a.z) ? (d.x >= 0.0 ? 0 : 1)
        : (a.y >= a.z)               ? (d.y >= 0.0 ? 2 : 3)
                                     : (d.z >= 0.0 ? 4 : 5);
+}
+
+// A randomized kernel (RenderOptions::random_taps): tap i of N of a Vogel disk (Vogel 1979: radius
+// sqrt((i + 1/2) / N), angle i times the golden angle; evenly spread at any N), turned per pixel by
+// interleaved gradient noise (Jimenez 2014, "Next generation post processing in Call of Duty:
+// Advanced Warfare"), as engines take their PCF and PCSS taps. A point of the unit disk.
+const float kPi = 3.14159265;
+float pixel_rotation() {
+  vec2 xy = floor(gl_FragCoord.xy);
+  return 2.0 * kPi * fract(52.9829189 * fract(dot(xy, vec2(0.06711056, 0.00583715))));
+}
+vec2 vogel_tap(int i, int n, float rotation) {
+  float r = sqrt((float(i) + 0.5) / float(n));
+  float a = float(i) * 2.39996323 + rotation;
+  return r * vec2(cos(a), sin(a));
 }
 
 #ifdef SHADOWREF_PCSS  // only in the soft program (kPcssDefine): llvmpipe pays for dead branches
@@ -275,9 +291,33 @@ Filter filter_for(float receiver_depth, int layer) {
   f.t = penumbra_plane(f.plane, f.world_plane, receiver_depth, layer, f.blockers);
   return f;
 }
+// Shirley & Chiu 1997's concentric map inverted: a point of the unit disk to the square [-1, 1]²,
+// area-preserving, so that a disk kernel's taps stay uniform over the rect light.
+vec2 disk_to_square(vec2 d) {
+  float r = length(d);
+  if (r == 0.0) return vec2(0.0);
+  float phi = atan(d.y, d.x);
+  if (phi < -0.25 * kPi) phi += 2.0 * kPi;  // [-pi/4, 7pi/4): the four wedges in order
+  float w = phi / (0.25 * kPi);
+  if (w < 1.0) return vec2(r, r * w);
+  if (w < 3.0) return vec2(-r * (w - 2.0), r);
+  if (w < 5.0) return vec2(-r, -r * (w - 4.0));
+  return vec2(r * (w - 6.0), -r);
+}
 float pcss(float receiver_depth, int layer) {
   Filter f = filter_for(receiver_depth, layer);
   float lit = 0.0;
+  if (u_random_taps > 0) {
+    float rotation = pixel_rotation();
+    for (int i = 0; i < u_random_taps; ++i) {
+      vec2 ab = 0.5 * disk_to_square(vogel_tap(i, u_random_taps, rotation));
+      vec3 l = u_light.xyz + ab.x * u_rect_u + ab.y * u_rect_v;
+      if (dot(f.n, l - v_world) <= 0.0) continue;
+      if (f.blockers == 0 || blocker_at(tap_at(v_world + (l - v_world) * f.t, layer, f.plane, f.world_plane), layer) < 0.0)
+        lit += 1.0;
+    }
+    return lit / float(u_random_taps);
+  }
   for (int j = 0; j < kFilterTaps; ++j)
     for (int i = 0; i < kFilterTaps; ++i) {
       vec3 l = filter_light_point(i, j);
@@ -369,6 +409,15 @@ float shadow_visibility() {
   if (u_shadow == 5) return vsm(s.w, int(layer));
 #endif
   if (u_shadow == 1) return texture(u_shadow_map, vec4(p.xy, layer, p.z));
+  if (u_shadow == 2 && u_random_taps > 0) {
+    // PCF on a randomized kernel: the Vogel disk's taps out to kRandomPcfRadius texels (the 3x3
+    // box's corner taps' reach, which the PCF maps' slope bias covers).
+    const float kRandomPcfRadius = 1.41421356;
+    float rotation = pixel_rotation(), sum = 0.0;
+    for (int i = 0; i < u_random_taps; ++i)
+      sum += texture(u_shadow_map, vec4(p.xy + kRandomPcfRadius * vogel_tap(i, u_random_taps, rotation) * u_texel, layer, p.z));
+    return sum / float(u_random_taps);
+  }
   if (u_shadow == 2) {
     // PCF: a 3x3 box of depth compares one texel apart, equal weights (GL_NEAREST taps).
     float sum = 0.0;

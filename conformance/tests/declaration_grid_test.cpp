@@ -4,10 +4,10 @@
 // — all shadowed, all lit, inverted, shifted by 1 and 2 px, the shadow grown and shrunk by 1 and 2 px,
 // a swapped 8 × 8 tile — are judged under every declaration of a grid (slope bias 0 … 8 texels,
 // constant bias 0 … a scene-sized metre, normal offset, window-depth bias, filter radius 0 … 8,
-// `pack` / `own`, maps of 512 … 4096 texels, and all of the largest at once): each must FAIL. And
-// declaring less (a smaller bias, a smaller filter, `pack` for `own`) never explains more: the
-// unexplained count and the verdict of every mask, control included, never improve along a chain
-// of ever smaller declarations.
+// `pack` / `own`, maps of 512 … 4096 texels, and all of the largest at once, a randomized kernel of
+// one tap among them): each must FAIL. And declaring less (a smaller bias, a smaller filter, `pack`
+// for `own`) never explains more: the unexplained count and the verdict of every mask, control
+// included, never improve along a chain of ever smaller declarations.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -132,11 +132,13 @@ std::vector<Declaration> grid() {
       {"constant-1m", R"("constant_bias": 1.0)"},
       {"normal-offset-4-texels", R"("normal_offset_texels": 4)"},
       {"depth-bias-1%", R"("depth_bias": 0.01)"},
+      {"distance-bias-1m", R"("depth": "distance", "depth_bias": 0.1, "depth_range": 10, "slope_bias_texels": 0)"},
       {"filter-8", R"("filter_radius_texels": 8)"},
       {"map-512", R"("shadow_map_size": 512)"},
       {"map-4096-pack", R"("shadow_map_size": 4096, "light_views": "pack")"},
       {"largest", R"("slope_bias_texels": 8, "constant_bias": 1.0, "normal_offset_texels": 4, "depth_bias": 0.01, )"
-                  R"("filter_radius_texels": 8, "light_views": "own", "shadow_map_size": 512)"},
+                  R"("filter_radius_texels": 8, "light_views": "own", "shadow_map_size": 512, "sampling": "random", )"
+                  R"("light_taps": 1)"},
   };
 }
 
@@ -150,6 +152,9 @@ std::vector<std::vector<Declaration>> chains() {
       {{"normal offset 4 texels", R"("normal_offset_texels": 4, "slope_bias_texels": 0)"},
        {"normal offset 0", R"("normal_offset_texels": 0, "slope_bias_texels": 0)"}},
       {{"depth bias 1 %", R"("depth_bias": 0.01, "slope_bias_texels": 0)"}, {"depth bias 0", R"("depth_bias": 0, "slope_bias_texels": 0)"}},
+      {{"distance bias 1 m", R"("depth": "distance", "depth_range": 10, "depth_bias": 0.1, "slope_bias_texels": 0)"},
+       {"distance bias 6.4 cm", R"("depth": "distance", "depth_range": 10, "depth_bias": 0.0064, "slope_bias_texels": 0)"},
+       {"distance bias 0", R"("depth": "distance", "depth_range": 10, "depth_bias": 0, "slope_bias_texels": 0)"}},
       {{"filter 8", R"("filter_radius_texels": 8)"}, {"filter 1", R"("filter_radius_texels": 1)"}, {"filter 0", R"("filter_radius_texels": 0)"}},
       {{"own", R"("light_views": "own")"}, {"pack", R"("light_views": "pack")"}},
   };
@@ -284,6 +289,57 @@ TEST(PeterPanning, AConstantBiasDeclaredHonestlyStillFailsOnItsLeak) {
         << metres << " m declared: " << m.false_light << " px false light, " << m.explained_bias << " explained by bias, "
         << m.unexplained << " unexplained (" << 100 * m.unexplained_ratio() << " % of " << m.edge_pixels << " edge px)";
   }
+}
+
+// Per-light declarations ("lights" in candidate.json) reach their own light only, and buy nothing
+// there either: on two_lights (two point lights over a ground), our correct masks with an entry for
+// light 1 only judge light 0 as without it; light 1's mask made all shadowed FAILs under the largest
+// declaration the entry can make.
+TEST(PerLightDeclarations, AnEntryReachesItsLightAndBuysNothing) {
+  const scene::Scene scene = scene::load_scene(conform::default_catalogue() / "two_lights.json");
+  const scene::PreparedScene prepared = scene::prepare_scene(scene);
+  conform::ReferenceSettings settings;
+  settings.key_executable = SHADOWREF_EXE;
+  const fs::path reference = conform::ensure_reference(prepared, SHADOWREF_TEST_CACHE, settings).dir;
+  const renderer::RenderResult ours = test::llvmpipe_renderer().render(prepared, "shadowmap");
+  ASSERT_EQ(ours.masks.size(), 2u);
+  conform::Judge judge;
+  const auto judged = [&](const std::string& name, const Image8& mask_0, const Image8& mask_1, const std::string& keys) {
+    const fs::path dir = fs::path(SHADOWREF_TEST_OUT) / "per-light" / name;
+    fs::create_directories(dir);
+    outputs::write_png(mask_0, dir / "mask_0.png");
+    outputs::write_png(mask_1, dir / "mask_1.png");
+    std::ofstream(dir / "candidate.json") << R"({"technique": "shadowmap", "slope_bias_texels": 2, "light_views": "pack")"
+                                          << keys << "}\n";
+    return judge.judge(&prepared, {reference, dir, "", false, {}});
+  };
+  const std::string largest = R"("slope_bias_texels": 8, "constant_bias": 1.0, "normal_offset_texels": 4, )"
+                              R"("depth_bias": 0.01, "filter_radius_texels": 8, "light_views": "own", "shadow_map_size": 512)";
+  const std::string entry_for_1 = R"(, "lights": [{}, {)" + largest + "}]";
+  // Our masks: PASS with or without the entry.
+  EXPECT_EQ(judged("plain", ours.masks[0], ours.masks[1], "").comparison.judgement.verdict, compare::Verdict::Pass);
+  EXPECT_EQ(judged("entry", ours.masks[0], ours.masks[1], entry_for_1).comparison.judgement.verdict, compare::Verdict::Pass);
+  // Both masks shifted by a pixel: light 0 is judged the same with or without light 1's entry, and
+  // light 1 under its entry (the larger footprint explains more of its shift).
+  Image8 shifted_0 = ours.masks[0], shifted_1 = ours.masks[1];
+  shifted(1)(shifted_0);
+  shifted(1)(shifted_1);
+  const conform::CaseJudgement plain = judged("shifted-plain", shifted_0, shifted_1, "");
+  const conform::CaseJudgement entry = judged("shifted-entry", shifted_0, shifted_1, entry_for_1);
+  const compare::MaskMetrics& p0 = plain.comparison.per_light.at(0).metrics;
+  const compare::MaskMetrics& e0 = entry.comparison.per_light.at(0).metrics;
+  const compare::MaskMetrics& p1 = plain.comparison.per_light.at(1).metrics;
+  const compare::MaskMetrics& e1 = entry.comparison.per_light.at(1).metrics;
+  std::printf("two_lights shifted 1 px, explained by the footprint: light 0 %zu / %zu, light 1 %zu / %zu (plain / entry)\n",
+              p0.explained_texel, e0.explained_texel, p1.explained_texel, e1.explained_texel);
+  EXPECT_EQ(e0.unexplained, p0.unexplained) << "light 0 has no entry: judged as without one";
+  EXPECT_EQ(e0.explained_texel, p0.explained_texel);
+  EXPECT_GT(e1.explained_texel, p1.explained_texel) << "light 1 is judged under its entry";
+  Image8 dark = ours.masks[1];
+  for_surface(dark, [](std::uint8_t& v) { v = kMaskShadowed; });
+  const conform::CaseJudgement bought = judged("all-shadowed", ours.masks[0], dark, entry_for_1);
+  EXPECT_EQ(bought.comparison.judgement.verdict, compare::Verdict::Fail)
+      << bought.comparison.per_light.at(1).metrics.unexplained << " px unexplained on light 1";
 }
 
 // Directional light over flat ground (acne's home), a sun 8 degrees up (grazing), a slab on the ground

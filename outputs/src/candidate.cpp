@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <set>
 
 #include "shadowref/cascades.hpp"
@@ -25,6 +26,10 @@ const char* to_string(DepthFaces f) {
   return "?";
 }
 
+const char* to_string(StoredDepth d) { return d == StoredDepth::Distance ? "distance" : "window"; }
+
+const char* to_string(Sampling s) { return s == Sampling::Random ? "random" : "grid"; }
+
 CandidateDeclaration default_declaration(const std::string& technique) {
   CandidateDeclaration d;
   d.technique = technique;
@@ -34,35 +39,41 @@ CandidateDeclaration default_declaration(const std::string& technique) {
   return d;
 }
 
-CandidateDeclaration read_declaration(const std::filesystem::path& dir, const std::string& technique) {
-  const std::filesystem::path file = dir / kCandidateFile;
-  CandidateDeclaration d = default_declaration(technique);
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) return d;
-  const auto bad = [&](const std::string& what) { return InputError(InputError::Kind::BadInput, file.string() + ": " + what); };
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw bad("cannot read");
-  const nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-  if (j.is_discarded()) throw bad("not valid JSON");
-  if (!j.is_object()) throw bad("must be a JSON object");
-  const std::set<std::string> known(kCandidateKeys.begin(), kCandidateKeys.end());
-  for (const auto& item : j.items())
-    if (!known.count(item.key()))
-      throw bad(item.key() + ": unknown key (an engine's own settings go in the \"settings\" object, which is recorded and never judged)");
-  std::set<std::string> given;
+namespace {
+
+using Json = nlohmann::json;
+using Bad = std::function<InputError(const std::string&)>;
+
+// The keys a `lights` entry may override: everything that can differ between two lights of one render.
+bool per_light_key(const std::string& key) {
+  return key != "producer" && key != "version" && key != "technique" && key != "convention" && key != "settings" &&
+         key != "lights";
+}
+
+// Reads the keys of object `j` into `d` (`where` prefixes messages: "" or "lights[1].").
+void read_keys(const Json& j, CandidateDeclaration& d, std::set<std::string>& given, const Bad& bad,
+               const std::string& where, const std::string& technique) {
   const auto string_key = [&](const char* key, std::string& out) {
     if (!j.contains(key)) return;
-    if (!j[key].is_string()) throw bad(std::string(key) + ": must be a string");
+    if (!j[key].is_string()) throw bad(where + key + ": must be a string");
     out = j[key].get<std::string>();
-    if (out.size() > 200) throw bad(std::string(key) + ": longer than 200 characters");
+    if (out.size() > 200) throw bad(where + key + ": longer than 200 characters");
     given.insert(key);
   };
   const auto number_key = [&](const char* key, double& out, double hi) {
     if (!j.contains(key)) return;
-    if (!j[key].is_number()) throw bad(std::string(key) + ": must be a number");
+    if (!j[key].is_number()) throw bad(where + key + ": must be a number");
     const double v = j[key].get<double>();
-    if (!std::isfinite(v) || v < 0 || v > hi) throw bad(std::string(key) + ": must be in [0, " + std::to_string(hi) + "]");
+    if (!std::isfinite(v) || v < 0 || v > hi) throw bad(where + key + ": must be in [0, " + std::to_string(hi) + "]");
     out = v;
+    given.insert(key);
+  };
+  const auto integer_key = [&](const char* key, int& out, long long lo, long long hi, const std::string& range) {
+    if (!j.contains(key)) return;
+    if (!j[key].is_number_integer()) throw bad(where + key + ": must be an integer");
+    const auto v = j[key].get<long long>();
+    if (v < lo || v > hi) throw bad(where + key + ": " + range);
+    out = static_cast<int>(v);
     given.insert(key);
   };
   string_key("producer", d.producer);
@@ -70,57 +81,109 @@ CandidateDeclaration read_declaration(const std::filesystem::path& dir, const st
   string_key("technique", d.technique);
   string_key("convention", d.convention);
   if (j.contains("shadow_map_size")) {
-    if (!j["shadow_map_size"].is_number_integer()) throw bad("shadow_map_size: must be an integer");
+    if (!j["shadow_map_size"].is_number_integer()) throw bad(where + "shadow_map_size: must be an integer");
     const auto v = j["shadow_map_size"].get<long long>();
-    if (const std::string p = shadow_map_size_problem(v); !p.empty()) throw bad("shadow_map_size: " + p);
+    if (const std::string p = shadow_map_size_problem(v); !p.empty()) throw bad(where + "shadow_map_size: " + p);
     d.shadow_map_size = static_cast<int>(v);
     given.insert("shadow_map_size");
   }
-  if (!given.count("technique") || d.technique.empty()) d.technique = technique;
-  // A known technique's family decides the filter default before the file may override it.
-  d.filter_radius_texels = default_declaration(d.technique).filter_radius_texels;
+  if (where.empty()) {
+    if (!given.count("technique") || d.technique.empty()) d.technique = technique;
+    // A known technique's family decides the filter default before the file may override it.
+    d.filter_radius_texels = default_declaration(d.technique).filter_radius_texels;
+  }
   number_key("filter_radius_texels", d.filter_radius_texels, 64.0);
   number_key("slope_bias_texels", d.slope_bias_texels, 64.0);
   number_key("constant_bias", d.constant_bias, 1e6);
   if (j.contains("light_views")) {
     if (!j["light_views"].is_string() || (j["light_views"] != "pack" && j["light_views"] != "own"))
-      throw bad("light_views: must be \"pack\" or \"own\"");
+      throw bad(where + "light_views: must be \"pack\" or \"own\"");
     d.light_views_from_pack = j["light_views"] == "pack";
     given.insert("light_views");
   }
-  if (j.contains("cascades")) {
-    if (!j["cascades"].is_number_integer()) throw bad("cascades: must be an integer");
-    const auto v = j["cascades"].get<long long>();
-    if (v < 0 || v > kMaxCascades)
-      throw bad("cascades: must be in [0, " + std::to_string(kMaxCascades) + "] (0: the pack's count)");
-    d.cascades = static_cast<int>(v);
-    given.insert("cascades");
-  }
-  if (j.contains("light_taps")) {
-    if (!j["light_taps"].is_number_integer()) throw bad("light_taps: must be an integer");
-    const auto v = j["light_taps"].get<long long>();
-    if (v < 1 || v > kMaxLightTaps) throw bad("light_taps: must be in [1, " + std::to_string(kMaxLightTaps) + "]");
-    d.light_taps = static_cast<int>(v);
-    given.insert("light_taps");
+  integer_key("cascades", d.cascades, 0, kMaxCascades,
+              "must be in [0, " + std::to_string(kMaxCascades) + "] (0: the pack's count)");
+  integer_key("light_taps", d.light_taps, 1, kMaxLightTaps, "must be in [1, " + std::to_string(kMaxLightTaps) + "]");
+  if (j.contains("sampling")) {
+    const Json& v = j["sampling"];
+    if (!v.is_string() || (v != "grid" && v != "random")) throw bad(where + "sampling: must be \"grid\" or \"random\"");
+    d.sampling = v == "random" ? Sampling::Random : Sampling::Grid;
+    given.insert("sampling");
   }
   number_key("normal_offset", d.normal_offset, 1e6);
   number_key("normal_offset_texels", d.normal_offset_texels, 64.0);
   number_key("depth_bias", d.depth_bias, 1.0);
   if (j.contains("depth_faces")) {
-    const nlohmann::json& f = j["depth_faces"];
-    if (!f.is_string() || (f != "front" && f != "back" && f != "both")) throw bad("depth_faces: must be \"front\", \"back\" or \"both\"");
+    const Json& f = j["depth_faces"];
+    if (!f.is_string() || (f != "front" && f != "back" && f != "both"))
+      throw bad(where + "depth_faces: must be \"front\", \"back\" or \"both\"");
     d.depth_faces = f == "front" ? DepthFaces::Front : f == "back" ? DepthFaces::Back : DepthFaces::Both;
     given.insert("depth_faces");
   }
+  if (j.contains("depth")) {
+    const Json& v = j["depth"];
+    if (!v.is_string() || (v != "window" && v != "distance")) throw bad(where + "depth: must be \"window\" or \"distance\"");
+    d.depth = v == "distance" ? StoredDepth::Distance : StoredDepth::Window;
+    given.insert("depth");
+  }
+  number_key("depth_range", d.depth_range, 1e9);
+  if (d.depth == StoredDepth::Distance && d.depth_bias > 0 && !(d.depth_range > 0))
+    throw bad(where + "depth_range: a \"distance\" map's depth_bias is in units of its range: give depth_range (world units, far - near)");
   if (j.contains("settings")) {
-    if (!j["settings"].is_object()) throw bad("settings: must be a JSON object");
+    if (!j["settings"].is_object()) throw bad(where + "settings: must be a JSON object");
     d.settings_json = j["settings"].dump();
-    if (d.settings_json.size() > 65536) throw bad("settings: larger than 64 KiB");
+    if (d.settings_json.size() > 65536) throw bad(where + "settings: larger than 64 KiB");
     given.insert("settings");
+  }
+}
+
+}  // namespace
+
+const CandidateDeclaration& CandidateDeclaration::for_light(std::size_t light) const {
+  return light < lights.size() ? lights[light] : *this;
+}
+
+CandidateDeclaration read_declaration(const std::filesystem::path& dir, const std::string& technique) {
+  const std::filesystem::path file = dir / kCandidateFile;
+  CandidateDeclaration d = default_declaration(technique);
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) return d;
+  const Bad bad = [&](const std::string& what) { return InputError(InputError::Kind::BadInput, file.string() + ": " + what); };
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw bad("cannot read");
+  const Json j = Json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded()) throw bad("not valid JSON");
+  if (!j.is_object()) throw bad("must be a JSON object");
+  const std::set<std::string> known(kCandidateKeys.begin(), kCandidateKeys.end());
+  for (const auto& item : j.items())
+    if (!known.count(item.key()))
+      throw bad(item.key() + ": unknown key (an engine's own settings go in the \"settings\" object, which is recorded and never judged)");
+  std::set<std::string> given;
+  read_keys(j, d, given, bad, "", technique);
+  if (j.contains("lights")) {
+    const Json& lights = j["lights"];
+    if (!lights.is_array()) throw bad("lights: must be an array of objects, one per light in the pack's order");
+    if (lights.size() > kMaxDeclaredLights) throw bad("lights: more than " + std::to_string(kMaxDeclaredLights) + " entries");
+    given.insert("lights");
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+      const std::string where = "lights[" + std::to_string(i) + "].";
+      if (!lights[i].is_object()) throw bad(where.substr(0, where.size() - 1) + ": must be a JSON object");
+      for (const auto& item : lights[i].items())
+        if (!known.count(item.key()) || !per_light_key(item.key()))
+          throw bad(where + item.key() + (known.count(item.key()) ? ": not a per-light key (give it at the top level)"
+                                                                  : ": unknown key (an engine's own settings go in the "
+                                                                    "top-level \"settings\" object)"));
+      CandidateDeclaration light = d;
+      light.lights.clear();
+      std::set<std::string> light_given;
+      read_keys(lights[i], light, light_given, bad, where, technique);
+      d.lights.push_back(std::move(light));
+    }
   }
   d.defaulted.clear();
   for (const char* k : kCandidateKeys)
     if (!given.count(k)) d.defaulted.push_back(k);
+  for (CandidateDeclaration& light : d.lights) light.defaulted = d.defaulted;
   return d;
 }
 
@@ -137,11 +200,31 @@ std::string declaration_text(const CandidateDeclaration& d) {
   j["light_views"] = d.light_views_from_pack ? "pack" : "own";
   j["cascades"] = d.cascades;
   j["light_taps"] = d.light_taps;
+  j["sampling"] = to_string(d.sampling);
   j["normal_offset"] = d.normal_offset;
   j["normal_offset_texels"] = d.normal_offset_texels;
   j["depth_bias"] = d.depth_bias;
   j["depth_faces"] = to_string(d.depth_faces);
+  j["depth"] = to_string(d.depth);
+  j["depth_range"] = d.depth_range;
   j["settings"] = nlohmann::json::parse(d.settings_json);
+  // Each light's entry: only the keys that differ from the top level.
+  if (!d.lights.empty()) {
+    CandidateDeclaration top_alone = d;
+    top_alone.lights.clear();
+    const nlohmann::json top = nlohmann::json::parse(declaration_text(top_alone));
+    nlohmann::json lights = nlohmann::json::array();
+    for (const CandidateDeclaration& l : d.lights) {
+      CandidateDeclaration alone = l;
+      alone.lights.clear();
+      nlohmann::json entry = nlohmann::json::object();
+      const nlohmann::json all = nlohmann::json::parse(declaration_text(alone));  // alive through the loop
+      for (const auto& item : all.items())
+        if (per_light_key(item.key()) && top.value(item.key(), nlohmann::json()) != item.value()) entry[item.key()] = item.value();
+      lights.push_back(entry);
+    }
+    j["lights"] = lights;
+  }
   return json_text(j, 2);
 }
 

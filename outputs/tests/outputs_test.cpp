@@ -11,6 +11,7 @@
 #include <string>
 
 #include "shadowref/outputs/atomic_file.hpp"
+#include "shadowref/outputs/candidate.hpp"
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/outputs/image_io.hpp"
 #include "shadowref/outputs/errors.hpp"
@@ -28,6 +29,35 @@ fs::path fresh_dir(const std::string& name) {
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
+}
+
+// candidate.json's `lights`: each entry overrides the top-level keys for its light, the rest take
+// the top level, and the writer gives back only what differs.
+TEST(Declaration, PerLightEntriesOverrideTheTopLevel) {
+  const fs::path dir = fs::temp_directory_path() / ("shadowref-declaration-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / kCandidateFile) << R"({"technique": "pcss", "shadow_map_size": 2048, "slope_bias_texels": 1.5,
+    "lights": [{"shadow_map_size": 683, "sampling": "random", "light_taps": 4}, {"depth_bias": 0.001}]})";
+  const CandidateDeclaration d = read_declaration(dir, "pcss");
+  ASSERT_EQ(d.lights.size(), 2u);
+  EXPECT_EQ(d.for_light(0).shadow_map_size, 683);
+  EXPECT_EQ(d.for_light(0).sampling, Sampling::Random);
+  EXPECT_EQ(d.for_light(0).light_taps, 4);
+  EXPECT_EQ(d.for_light(0).slope_bias_texels, 1.5) << "not overridden: the top level's";
+  EXPECT_EQ(d.for_light(1).shadow_map_size, 2048);
+  EXPECT_EQ(d.for_light(1).depth_bias, 0.001);
+  EXPECT_EQ(d.for_light(2).shadow_map_size, 2048) << "no entry: the top level";
+  EXPECT_EQ(d.for_light(2).sampling, Sampling::Grid);
+  // Written back: the entries hold only their overrides, and reading that gives the same lights.
+  const std::string text = declaration_text(d);
+  EXPECT_NE(text.find("\"lights\""), std::string::npos);
+  std::ofstream(dir / kCandidateFile) << text;
+  const CandidateDeclaration again = read_declaration(dir, "pcss");
+  ASSERT_EQ(again.lights.size(), 2u);
+  EXPECT_EQ(again.for_light(0).shadow_map_size, 683);
+  EXPECT_EQ(again.for_light(1).depth_bias, 0.001);
+  EXPECT_EQ(declaration_text(again), text);
+  fs::remove_all(dir);
 }
 
 TEST(FileNames, OneLightHasNoIndexSeveralDo) {

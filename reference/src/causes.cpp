@@ -111,7 +111,10 @@ std::optional<CauseModel::Lookup> CauseModel::lookup(std::size_t light, const Su
   k.tan_p = capped_tan(std::abs(s.n.dot(k.to_light)));
   // A window-depth bias, in world units at p: the depth the point moves when its window depth moves
   // by `depth_bias` toward the far plane (zf - zn is the NDC span of window depth 0..1: 2, 1, or -1 reversed).
-  if (d.depth_bias > 0) {
+  if (d.depth_bias > 0 && d.depth == outputs::StoredDepth::Distance) {
+    // A distance map's bias is a distance along the light ray: its share of the map's range.
+    k.depth_bias_world = d.depth_bias * d.depth_range;
+  } else if (d.depth_bias > 0) {
     const double z = k.q.z() + d.depth_bias * (k.zf - k.zn);
     k.depth_bias_world = std::abs(k.depth(unproject(k.inv, k.q.x(), k.q.y(), z)) - k.depth_p);
   }

@@ -311,7 +311,7 @@ FolderComparison compare_folders(const std::filesystem::path& reference_dir,
     out.per_light.push_back(compare_mask(ref, dec, cand, (candidate_dir / name).string(), i, o));
     out.total += out.per_light.back().metrics;
     // Soft shadows: the lit fraction of a light with an area.
-    const bool soft = i < options.visibility_tolerance.size() && options.visibility_tolerance[i] >= 0;
+    const bool soft = i < options.visibility.size() && options.visibility[i].tolerance >= 0;
     out.visibility.emplace_back();
     if (!soft) continue;
     const std::string vis = outputs::visibility_name(i, out.masks.size());
@@ -323,8 +323,8 @@ FolderComparison compare_folders(const std::filesystem::path& reference_dir,
     const std::vector<float> fraction =
         outputs::read_exr(reference_dir / outputs::per_light_name("visibility", "exr", i, out.masks.size()), ref.width, ref.height);
     const Image8 cand_vis = read_image8(candidate_dir / vis, 1, ref.width, ref.height);
-    out.visibility.back() = compare_visibility(fraction, covered, cand_vis, cand, options.visibility_tolerance[i],
-                                               options.visibility_mean_error_bound.at(i), options.explain_visibility, i);
+    out.visibility.back() =
+        compare_visibility(fraction, covered, cand_vis, cand, options.visibility[i], options.explain_visibility, i);
     if (!out.visibility_total) out.visibility_total = VisibilityMetrics{};
     *out.visibility_total += out.visibility.back()->metrics;
   }
@@ -349,10 +349,28 @@ void judge_visibility(const VisibilityMetrics& m, Judgement& j) {
                   100.0 * m.unexplained_ratio(), 100.0 * kPenumbra.unexplained_fail);
     fail(buf);
   }
-  if (m.mean_penumbra_error() > m.mean_error_bound) {
-    std::snprintf(buf, sizeof buf, "visibility: mean error over the penumbra %.3f (bound %.3f, what sampling alone leaves)",
-                  m.mean_penumbra_error(), m.mean_error_bound);
+  if (m.local_mean_error_bound == 0) {  // a grid: its plain mean judges the width
+    if (m.mean_penumbra_error() > m.mean_error_bound) {
+      std::snprintf(buf, sizeof buf, "visibility: mean error over the penumbra %.3f (bound %.3f, what sampling alone leaves)",
+                    m.mean_penumbra_error(), m.mean_error_bound);
+      fail(buf);
+    }
+    return;
+  }
+  // Random taps: the width on the local means, the rest is the estimator's noise (visibility.hpp).
+  if (m.mean_penumbra_local_error() > m.local_mean_error_bound) {
+    std::snprintf(buf, sizeof buf,
+                  "visibility: mean error of the 3x3 local means over the penumbra %.3f (bound %.3f, what random taps "
+                  "leave): a penumbra of the wrong width",
+                  m.mean_penumbra_local_error(), m.local_mean_error_bound);
     fail(buf);
+  } else if (m.mean_penumbra_error() > m.mean_error_bound) {
+    std::snprintf(buf, sizeof buf,
+                  "visibility: noise: mean error over the penumbra %.3f beyond the declared taps' spread (bound %.3f); "
+                  "its local means are right (%.3f)",
+                  m.mean_penumbra_error(), m.mean_error_bound, m.mean_penumbra_local_error());
+    if (j.verdict != Verdict::Fail) j.verdict = Verdict::QualityWarning;
+    j.reasons.push_back(buf);
   }
 }
 

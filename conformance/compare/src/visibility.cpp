@@ -22,12 +22,31 @@ double visibility_mean_error_bound(int reference_samples, int candidate_taps) {
   return 0.25 / std::max(1, reference_samples) + 0.25 / std::max(1, candidate_taps);
 }
 
+VisibilityBounds visibility_bounds(int reference_samples, int candidate_taps, outputs::Sampling sampling) {
+  VisibilityBounds b;
+  if (sampling == outputs::Sampling::Grid) {
+    b.tolerance = visibility_sampling_tolerance(reference_samples, candidate_taps);
+    b.mean_error_bound = visibility_mean_error_bound(reference_samples, candidate_taps);
+    return b;
+  }
+  const double n = std::max(1, reference_samples);
+  const double sigma_max = 0.5 / std::max(1, candidate_taps);
+  b.tolerance = 1.0 / n + 3.0 * sigma_max + 0.5 / 255.0;
+  b.mean_error_bound = 0.25 / n + sigma_max;
+  b.local_mean_error_bound = 0.25 / n + sigma_max / 3.0;
+  return b;
+}
+
 double VisibilityMetrics::unexplained_ratio() const {
   return penumbra == 0 ? 0.0 : static_cast<double>(unexplained) / static_cast<double>(penumbra);
 }
 
 double VisibilityMetrics::mean_penumbra_error() const {
   return penumbra == 0 ? 0.0 : sum_penumbra_error / static_cast<double>(penumbra);
+}
+
+double VisibilityMetrics::mean_penumbra_local_error() const {
+  return penumbra == 0 ? 0.0 : sum_penumbra_local_error / static_cast<double>(penumbra);
 }
 
 VisibilityMetrics& VisibilityMetrics::operator+=(const VisibilityMetrics& o) {
@@ -40,20 +59,24 @@ VisibilityMetrics& VisibilityMetrics::operator+=(const VisibilityMetrics& o) {
   unexplained_too_light_core += o.unexplained_too_light_core;
   unexplained_core += o.unexplained_core;
   sum_penumbra_error += o.sum_penumbra_error;
+  sum_penumbra_local_error += o.sum_penumbra_local_error;
   max_error = std::max(max_error, o.max_error);
   mean_error_bound = std::max(mean_error_bound, o.mean_error_bound);
+  local_mean_error_bound = std::max(local_mean_error_bound, o.local_mean_error_bound);
   return *this;
 }
 
 VisibilityComparison compare_visibility(const std::vector<float>& reference, const outputs::Image8& covered,
                                         const outputs::Image8& candidate, const outputs::Image8& candidate_mask,
-                                        double tolerance, double mean_error_bound, const VisibilityExplainer* explain,
+                                        const VisibilityBounds& bounds, const VisibilityExplainer* explain,
                                         std::size_t light) {
+  const double tolerance = bounds.tolerance;
   const int w = covered.width, h = covered.height;
   const std::size_t n = covered.pixel_count();
   VisibilityComparison out;
   VisibilityMetrics& m = out.metrics;
-  m.mean_error_bound = mean_error_bound;
+  m.mean_error_bound = bounds.mean_error_bound;
+  m.local_mean_error_bound = bounds.local_mean_error_bound;
   std::vector<std::uint8_t> code(n, kNotJudged);
   std::vector<float> error(n, 0.0f);
   for (int y = 0; y < h; ++y)
@@ -83,6 +106,22 @@ VisibilityComparison compare_visibility(const std::vector<float>& reference, con
       code[i] = explained ? kExplained : kUnexplained;
       ++(explained ? m.explained : m.unexplained);
       if (!explained && e > 0) ++m.unexplained_too_light;
+    }
+  // The local means: e averaged over the judged pixels of the 3 x 3 around each penumbra pixel.
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+      if (code[i] == kNotJudged || !(reference[i] > 0 && reference[i] < 1)) continue;
+      double sum = 0;
+      int count = 0;
+      for (int yy = std::max(0, y - 1); yy <= std::min(h - 1, y + 1); ++yy)
+        for (int xx = std::max(0, x - 1); xx <= std::min(w - 1, x + 1); ++xx) {
+          const std::size_t j = static_cast<std::size_t>(yy) * static_cast<std::size_t>(w) + static_cast<std::size_t>(xx);
+          if (code[j] == kNotJudged) continue;
+          sum += static_cast<double>(error[j]);
+          ++count;
+        }
+      m.sum_penumbra_local_error += std::abs(sum / count);
     }
   // Cores: a (2 kCoreRadius + 1)² block of unexplained pixels (compare.hpp).
   std::vector<std::uint8_t> unexplained(n);

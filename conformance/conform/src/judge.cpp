@@ -31,21 +31,23 @@ compare::CompareOptions options_for(const scene::Scene& s, const compare::Thresh
   causes = "none (an exact technique, or one the suite does not know: every wrong pixel is unexplained)";
   if (threshold.bands) {
     explainers.mask = [model, &declared](std::size_t light, int x, int y, bool candidate_lit) {
-      return model->explain(light, x, y, declared, candidate_lit);
+      return model->explain(light, x, y, declared.for_light(light), candidate_lit);
     };
     o.explain = &explainers.mask;
     causes = "texel footprint and depth bias, from the scene and the candidate's declaration";
   }
   if (technique && technique->family == outputs::TechniqueFamily::SoftShadow) {
     explainers.visibility = [model, &declared](std::size_t light, int x, int y) {
-      const reference::CauseModel::Band b = model->visibility_band(light, x, y, declared);
+      const reference::CauseModel::Band b = model->visibility_band(light, x, y, declared.for_light(light));
       return std::make_pair(b.lo, b.hi);
     };
     o.explain_visibility = &explainers.visibility;
-    for (const scene::Light& l : s.lights) {
+    for (std::size_t i = 0; i < s.lights.size(); ++i) {
+      const scene::Light& l = s.lights[i];
+      const outputs::CandidateDeclaration& d = declared.for_light(i);
       const bool area = l.type == scene::LightType::Rect;
-      o.visibility_tolerance.push_back(area ? compare::visibility_sampling_tolerance(l.samples, declared.light_taps) : -1.0);
-      o.visibility_mean_error_bound.push_back(area ? compare::visibility_mean_error_bound(l.samples, declared.light_taps) : 0.0);
+      o.visibility.push_back(area ? compare::visibility_bounds(l.samples, d.light_taps, d.sampling)
+                                  : compare::VisibilityBounds{});
     }
     causes += "; the lit fraction of every area light, within its sampling and the filter's footprint";
   }
@@ -100,6 +102,11 @@ CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJud
     return j;
   }
   const scene::Scene& s = *prepared->scene;
+  if (j.declaration.lights.size() > s.lights.size())
+    throw outputs::InputError(outputs::InputError::Kind::BadInput,
+                              (c.candidate_dir / outputs::kCandidateFile).string() + ": lights: " +
+                                  std::to_string(j.declaration.lights.size()) + " entries, but scene '" + s.name + "' has " +
+                                  std::to_string(s.lights.size()) + " light(s)");
   if (const auto e = s.expect.find(j.technique); e != s.expect.end()) j.expectation = e->second;
 
   // 2-4. Threshold, causes, lit fraction: the comparison.
@@ -133,8 +140,7 @@ CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJud
   // The model is the technique's masks: a soft technique's lit fraction has no model of its
   // failure here (our render's fraction is no ground truth to measure an engine's against).
   compare::CompareOptions model_options = options;
-  model_options.visibility_tolerance.clear();
-  model_options.visibility_mean_error_bound.clear();
+  model_options.visibility.clear();
   const compare::FolderComparison against_model = compare::compare_folders(model_dir, c.candidate_dir, threshold, model_options);
   j.model_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::string ours = " (our " + j.technique + ")";

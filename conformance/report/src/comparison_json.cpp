@@ -39,10 +39,15 @@ nlohmann::json to_json(const compare::VisibilityMetrics& m) {
           {"unexplained_core", m.unexplained_core},
           {"unexplained_percent_of_penumbra", 100.0 * m.unexplained_ratio()},
           {"mean_penumbra_error", m.mean_penumbra_error()},
+          {"mean_penumbra_local_error", m.mean_penumbra_local_error()},
           {"max_error", m.max_error},
           {"bounds",
            {{"unexplained_fail_percent_of_penumbra", 100.0 * compare::kPenumbra.unexplained_fail},
+            // A grid: FAIL beyond it (a wrong width). Random taps: WARN beyond it (noise), and FAIL
+            // when the local means exceed mean_penumbra_local_error_fail.
             {"mean_penumbra_error_fail", m.mean_error_bound},
+            {"sampling", m.local_mean_error_bound > 0 ? "random" : "grid"},
+            {"mean_penumbra_local_error_fail", m.local_mean_error_bound},
             {"why", compare::kPenumbra.why}}}};
 }
 

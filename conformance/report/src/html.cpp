@@ -234,8 +234,12 @@ void visibility_table(std::ostringstream& h, const json& v) {
     h << "<tr><td>" << label << "</td><td>" << escape_html(value) << "</td></tr>";
   };
   const json b = v.value("bounds", json::object());
-  row("mean error over the penumbra", num(v, "mean_penumbra_error", "%.3f") + " (bound " +
+  const bool random = str(b, "sampling", "grid") == "random";
+  row("mean error over the penumbra", num(v, "mean_penumbra_error", "%.3f") + (random ? " (noise bound " : " (bound ") +
                                           num(b, "mean_penumbra_error_fail", "%.3f") + ")");
+  if (random)
+    row("mean error of the 3x3 local means", num(v, "mean_penumbra_local_error", "%.3f") + " (bound " +
+                                                 num(b, "mean_penumbra_local_error_fail", "%.3f") + ": the width)");
   row("unexplained", str(v, "unexplained") + " px (" + num(v, "unexplained_percent_of_penumbra") + " % of " +
                          str(v, "penumbra") + " penumbra px; bound " + num(b, "unexplained_fail_percent_of_penumbra") +
                          " %), core " + str(v, "unexplained_core") + " px");
@@ -373,12 +377,15 @@ void case_info(std::ostringstream& h, const json& c) {
     h << "<div class=\"notes\">candidate: " << escape_html(str(d, "producer")) << " " << escape_html(str(d, "version"))
       << " · " << escape_html(str(d, "convention")) << " · map " << escape_html(str(d, "shadow_map_size"))
       << " · filter " << escape_html(str(d, "filter_radius_texels")) << " texel · light taps "
-      << escape_html(str(d, "light_taps", "8")) << " · slope bias "
+      << escape_html(str(d, "light_taps", "8")) << " (" << escape_html(str(d, "sampling", "grid")) << ") · slope bias "
       << escape_html(str(d, "slope_bias_texels")) << " · constant bias " << escape_html(str(d, "constant_bias"))
       << " · normal offset " << escape_html(str(d, "normal_offset", "0")) << " + "
       << escape_html(str(d, "normal_offset_texels", "0")) << " texel · depth bias " << escape_html(str(d, "depth_bias", "0"))
       << " · depth faces " << escape_html(str(d, "depth_faces", "back"))
       << (defaulted.empty() ? std::string() : " (defaulted: " + escape_html(defaulted) + ")") << "</div>";
+    if (d.contains("lights") && !d["lights"].empty())
+      h << "<div class=\"notes\">per light (overrides of the above, in the pack's light order): <code>"
+        << escape_html(d["lights"].dump()) << "</code></div>";
     if (d.contains("settings") && !d["settings"].empty())
       h << "<div class=\"notes\">engine settings (recorded, not judged): <code>" << escape_html(d["settings"].dump())
         << "</code></div>";

@@ -25,6 +25,11 @@
 //                                         of the filter over the light's area: its fraction moves in
 //                                         steps of about 1 / light_taps across a boundary (the
 //                                         visibility judgement's sampling tolerance)
+//     "sampling": "grid",                 "grid" | "random": how the filter places its taps. "grid": a
+//                                         fixed stratified kernel (light_taps x light_taps over the
+//                                         light, or the PCF box); "random": light_taps² taps placed
+//                                         anew per pixel (a disk rotated by noise, jittered taps), whose
+//                                         fraction is judged against a random estimator's spread
 //     "normal_offset": 0.0,               number >= 0: normal-offset bias in world units (the lookup
 //                                         point moved along the surface normal; three.js and Babylon
 //                                         `normalBias`, Unity, Unreal)
@@ -33,9 +38,22 @@
 //                                         depth (0..1 over its near..far; three.js and Babylon `bias`,
 //                                         as a magnitude); the judge converts it with the light view
 //     "depth_faces": "back",              "front" | "back" | "both": the faces the depth pass draws
-//     "settings": { ... }                 any JSON object: the engine's own settings (shadow camera,
+//     "depth": "window",                  "window": the maps store the light projection's window depth
+//                                         (a depth texture); "distance": they store the distance from
+//                                         the light over a range (a point light's cube written with
+//                                         gl_FragDepth or a colour: three.js and Babylon point lights),
+//                                         where glPolygonOffset does not apply and depth_bias is in
+//                                         units of that range
+//     "depth_range": 0.0,                 number > 0, world units: "distance" maps' range (far - near of
+//                                         the shadow camera); needed with "distance" and a depth_bias
+//     "settings": { ... },                any JSON object: the engine's own settings (shadow camera,
 //                                         caster faces, far distance...), recorded in report.json and
 //                                         the HTML and never judged
+//     "lights": [ {...}, {...} ]          one object per light, in the pack's light order (fewer: the
+//                                         rest take the top level): each overrides the top-level
+//                                         keys for its light — every key above but producer, version,
+//                                         technique, convention and settings (engines size, bias and
+//                                         filter each light's shadow apart)
 //   }
 // Every bias key (slope_bias_texels, constant_bias, normal_offset*, depth_bias) may only narrow what
 // is explained: the judge explains false light by bias only up to what a correct map at the declared
@@ -59,15 +77,26 @@ inline constexpr int kMaxLightTaps = 64;
 inline constexpr const char* kCandidateFile = "candidate.json";
 
 // Every key candidate.json may hold, the one list (the reader, `defaulted`, the pack README's table).
-inline constexpr std::array<const char*, 16> kCandidateKeys{
+inline constexpr std::array<const char*, 20> kCandidateKeys{
     "producer",          "version",       "technique",   "convention", "shadow_map_size",
     "filter_radius_texels", "slope_bias_texels", "constant_bias", "light_views", "cascades",
-    "light_taps",        "normal_offset", "normal_offset_texels", "depth_bias", "depth_faces",
-    "settings"};
+    "light_taps",        "sampling",      "normal_offset", "normal_offset_texels", "depth_bias",
+    "depth_faces",       "depth",         "depth_range", "settings",    "lights"};
+
+// The most `lights` entries a declaration may give (a scene's lights are far fewer).
+inline constexpr std::size_t kMaxDeclaredLights = 64;
 
 // The faces a depth pass draws.
 enum class DepthFaces { Front, Back, Both };
 const char* to_string(DepthFaces f);  // "front", "back", "both"
+
+// What a shadow map stores: the light projection's window depth, or the distance from the light.
+enum class StoredDepth { Window, Distance };
+const char* to_string(StoredDepth d);  // "window", "distance"
+
+// How a filter places its taps: a fixed stratified grid, or anew per pixel at random.
+enum class Sampling { Grid, Random };
+const char* to_string(Sampling s);  // "grid", "random"
 
 struct CandidateDeclaration {
   std::string producer = "unknown";
@@ -81,12 +110,21 @@ struct CandidateDeclaration {
   bool light_views_from_pack = false;  // "light_views": "pack"
   int cascades = 0;                    // cascaded techniques: cascades per directional light; 0: the pack's default
   int light_taps = 8;                  // soft techniques: filter taps per axis over the light (ours: 8 x 8)
+  Sampling sampling = Sampling::Grid;  // "random": light_taps² taps placed anew per pixel
   double normal_offset = 0.0;          // world units along the surface normal
   double normal_offset_texels = 0.0;   // texels of the map at the point, along the surface normal
   double depth_bias = 0.0;             // window depth of the light's projection (0..1 over near..far)
   DepthFaces depth_faces = DepthFaces::Back;  // ours: front faces culled (back faces drawn)
+  StoredDepth depth = StoredDepth::Window;    // Distance: depth_bias is in units of depth_range
+  double depth_range = 0.0;                   // world units, the distance maps' far - near
   std::string settings_json = "{}";    // "settings", as compact JSON text: recorded, never judged
   std::vector<std::string> defaulted;  // keys that were absent
+  // "lights": per light (the pack's order), this declaration with that entry's overrides; empty:
+  // every light takes this one. The judge refuses more entries than the scene has lights.
+  std::vector<CandidateDeclaration> lights;
+
+  // The declaration of light `light`: its `lights` entry, or this one.
+  const CandidateDeclaration& for_light(std::size_t light) const;
 };
 
 // The defaults for `technique` (its family's filter), every key marked defaulted.

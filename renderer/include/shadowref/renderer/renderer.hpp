@@ -45,6 +45,11 @@ struct RenderOptions {
   const RunConvention* convention = &kDefaultConvention;
   int shadow_map_size = 0;
   int frames = 1;              // frames rendered; frame_ms is their median (the first is output)
+  // 0: every filter on its fixed grid (PCF's 3 x 3 box, PCSS's 8 x 8 taps over the light). N (a
+  // square, outputs/limits.hpp): PCF and PCSS's filter take N taps of a Vogel disk turned per pixel by
+  // noise, as engines commonly do; PCF's disk reaches sqrt(2) texels. A correct render, declared
+  // "sampling": "random" with light_taps sqrt(N). VSM's filter stays a grid.
+  int random_taps = 0;
   // Deliberate bugs for the conformance suite's teeth (faults.hpp); all off: production.
   Faults faults;
 };

@@ -116,11 +116,10 @@ struct CompareOptions {
   // The scene's invariant holds on every surface pixel (the camera at the light sees no cast
   // shadow): undecided pixels where the reference is lit are judged too, for false shadows.
   bool no_cast_shadow_invariant = false;
-  // Soft shadows (visibility.hpp): per light, the sampling tolerance of its lit fraction, or a
-  // negative value where the light has no area (its fraction is the mask's). Empty: the technique's
-  // fraction is not judged. Judged lights need visibility.png (visibility_<i>.png) from the candidate.
-  std::vector<double> visibility_tolerance;
-  std::vector<double> visibility_mean_error_bound;  // per light, the same way
+  // Soft shadows (visibility.hpp): per light, the bounds of its lit fraction (a negative tolerance
+  // where the light has no area: its fraction is the mask's). Empty: the technique's fraction is
+  // not judged. Judged lights need visibility.png (visibility_<i>.png) from the candidate.
+  std::vector<VisibilityBounds> visibility;
   const VisibilityExplainer* explain_visibility = nullptr;
 };
 

@@ -17,6 +17,11 @@
 // strictly between 0 and 1. Its pixel count and the unexplained count both grow with the area of
 // the penumbrae, so their ratio means the same at any resolution; so does the mean |e| over it,
 // which catches a penumbra of the wrong width, whose error is spread thin over the whole band.
+// A filter whose taps are placed anew per pixel at random (candidate.json "sampling": "random": a
+// disk rotated by noise) errs by its estimator's spread as well, pixel by pixel and unbiased: a
+// mean over a 3 x 3 neighbourhood removes most of it and none of a wrong width, whose error is
+// smooth. Its width is therefore judged on those local means, and what only the pixels show is
+// noise: a WARN beyond the spread its declared taps may leave, never a wrong penumbra.
 // Speed: one pass over the pixels; the explainer only for pixels beyond the tolerance.
 #pragma once
 
@@ -25,6 +30,7 @@
 #include <utility>
 #include <vector>
 
+#include "shadowref/outputs/candidate.hpp"
 #include "shadowref/outputs/image.hpp"
 
 namespace shadowref::compare {
@@ -39,11 +45,14 @@ struct VisibilityMetrics {
   std::size_t unexplained_core = 0;  // unexplained pixels whose (2 kCoreRadius + 1)² neighbourhood is all unexplained
   std::size_t unexplained_too_light_core = 0;  // the same over the too-light unexplained pixels alone
   double sum_penumbra_error = 0;     // sum of |e| over the penumbra
+  double sum_penumbra_local_error = 0;  // sum over the penumbra of |the mean e over the judged 3 x 3 around|
   double max_error = 0;              // largest |e| over the judged pixels
-  double mean_error_bound = 0;       // visibility_mean_error_bound of the light (the largest over lights)
+  double mean_error_bound = 0;       // VisibilityBounds::mean_error_bound of the light (the largest over lights)
+  double local_mean_error_bound = 0; // VisibilityBounds::local_mean_error_bound (the largest; 0: grid sampling)
 
   double unexplained_ratio() const;     // unexplained / penumbra (0 without a penumbra)
   double mean_penumbra_error() const;   // sum_penumbra_error / penumbra (0 without a penumbra)
+  double mean_penumbra_local_error() const;  // sum_penumbra_local_error / penumbra
   VisibilityMetrics& operator+=(const VisibilityMetrics& other);
 };
 
@@ -61,6 +70,25 @@ double visibility_sampling_tolerance(int reference_samples, int candidate_taps);
 // at most uniform over one step, of mean 1/(4n): 1/(4n) + 1/(4n') (the 8-bit step is negligible).
 double visibility_mean_error_bound(int reference_samples, int candidate_taps);
 
+// What sampling alone may leave in a light's fraction (its judgement, judge_visibility):
+struct VisibilityBounds {
+  double tolerance = -1;         // a pixel's |e| within sampling; negative: a light without area, not judged
+  double mean_error_bound = 0;   // the mean |e| over the penumbra: beyond it a wrong width (grid), noise (random)
+  double local_mean_error_bound = 0;  // random sampling: the mean |local mean e| over the penumbra, beyond
+                                      // it a wrong width; 0 for a grid, whose width the plain mean judges
+};
+// The bounds for a light sampled by the reference at n x n points (`reference_samples`) and filtered
+// by the candidate with `candidate_taps` per axis, on a grid or at random:
+//   grid    tolerance visibility_sampling_tolerance, mean bound visibility_mean_error_bound;
+//   random  N = candidate_taps² taps of an unbiased estimator err by sigma = sqrt(f (1 - f) / N) <=
+//           1 / (2 candidate_taps) (the binomial spread, at its widest at f = 1/2). A pixel's
+//           tolerance: 1/n + 3 sigma_max + half an 8-bit step (beyond 3 sigma: 0.3 % of a correct
+//           penumbra, isolated: no core, a tenth of the 3 % bound); the mean |e| over the penumbra:
+//           1/(4n) + sigma_max (E|e| <= sqrt(E e²), Jensen); a 3 x 3 local mean of nine independent
+//           pixels: 1/(4n) + sigma_max / 3 (noise correlated the other way, e.g. interleaved
+//           gradient noise, leaves less).
+VisibilityBounds visibility_bounds(int reference_samples, int candidate_taps, outputs::Sampling sampling);
+
 // [lo, hi] of the true fraction over the declared footprint of pixel (x, y) for light `light`
 // (reference::CauseModel::visibility_band); lo > hi: no surface there.
 using VisibilityExplainer = std::function<std::pair<double, double>(std::size_t light, int x, int y)>;
@@ -70,7 +98,7 @@ using VisibilityExplainer = std::function<std::pair<double, double>(std::size_t 
 // that size (the caller has checked the sizes). `explain` may be null: nothing is explained.
 VisibilityComparison compare_visibility(const std::vector<float>& reference, const outputs::Image8& covered,
                                         const outputs::Image8& candidate, const outputs::Image8& candidate_mask,
-                                        double tolerance, double mean_error_bound, const VisibilityExplainer* explain,
+                                        const VisibilityBounds& bounds, const VisibilityExplainer* explain,
                                         std::size_t light);
 
 }  // namespace shadowref::compare

@@ -42,6 +42,7 @@ struct ConformOptions {
   std::vector<std::string> techniques;          // renderer technique names; empty: all
   const RunConvention* convention = &kDefaultConvention;  // the run convention (mathlib/convention.hpp)
   int shadow_map_size = 0;                      // texels per side of our shadow maps; 0: automatic
+  int random_taps = 0;                          // our filters' randomized kernel (renderer::RenderOptions)
   // Every scene rendered at another resolution (an engine's own): scale factor, or [W, H] (0: keep).
   double resolution_scale = 1.0;
   int width = 0, height = 0;
