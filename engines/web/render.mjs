@@ -105,8 +105,12 @@ async function main() {
   let failed = false;
   try {
     const page = await browser.newPage();
-    page.on('console', (m) => { if (m.type() === 'error' || m.type() === 'warn') process.stderr.write(`page: ${m.text()}\n`); });
+    // Chromium asks for /favicon.ico, which the server does not have: not worth a line.
+    page.on('console', (m) => {
+      if ((m.type() === 'error' || m.type() === 'warn') && !m.text().startsWith('Failed to load resource')) process.stderr.write(`page: ${m.text()}\n`);
+    });
     page.on('pageerror', (e) => process.stderr.write(`page error: ${e.message}\n`));
+    page.on('response', (r) => { if (r.status() >= 400 && !r.url().endsWith('/favicon.ico')) process.stderr.write(`page: ${r.status()} ${r.url()}\n`); });
     await page.goto(`${origin}/web/${a.engine}.html`, { waitUntil: 'load' });
     await page.waitForFunction('window.harness !== undefined', { timeout: 60000 });
     for (const scene of scenes) {
