@@ -35,6 +35,7 @@
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/outputs/image.hpp"
 #include "shadowref/outputs/staged_folder.hpp"
+#include "shadowref/outputs/spare_cores.hpp"
 #include "shadowref/conform/catalogue.hpp"
 #include "shadowref/conform/reference_cache.hpp"
 #include "shadowref/d3dx.hpp"
@@ -632,7 +633,7 @@ void run_export(const ExportArgs& a) {
   fs::create_directories(out / "scenes", ec);
   if (ec) throw BadInput("--out " + a.out + ": " + ec.message());
   conform::ReferenceSettings settings;
-  settings.threads = a.jobs;
+  settings.threads = a.jobs > 0 ? a.jobs : outputs::spare_cores();
   // Export writes only under --out: without --cache, the references are computed into the staging
   // folder and the cache is dropped before the commit (the pack keeps copies in <scene>/reference/).
   const fs::path private_cache = out / ".reference-cache";
@@ -712,7 +713,7 @@ void register_export_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--cache", args->cache, "reference cache folder, kept between runs (default: none; the references are computed inside the "
                   "pack's staging folder, and nothing is written outside --out). `shadowref conform --out O` keeps "
                   "its cache in O/reference-cache: name it to reuse conform's references");
-  cmd->add_option("--jobs", args->jobs, "reference threads (0: all cores)")->check(CLI::Range(0, 256));
+  cmd->add_option("--jobs", args->jobs, "reference threads (0: the cores the machine can spare, all less the one-minute load average, at least 1)")->check(CLI::Range(0, 256));
   cmd->callback([args, &exit_code] {
     run_export(*args);
     exit_code = kExitPass;
