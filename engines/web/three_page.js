@@ -171,10 +171,9 @@ async function render(url, variantName) {
     // a filter lights a pixel when at least half its weight is lit, as the suite's own PCF does.
     masks.push(base64(combine(cam.width, cam.height, shadowPixels, facePixels, (p, i) => p[i + 3] <= 127)));
   }
-  const shadow = lights.length ? loadedLights[0].shadow : new THREE.LightShadow(null);
   const mapSize = v.mapSize ?? 512;
   const bias = v.bias ?? 0;
-  const radius = v.radius ?? shadow.radius;
+  const radius = v.radius ?? 1;  // LightShadow's default
   const candidate = {
     producer: 'three.js',
     version: `r${THREE.REVISION}`,
@@ -182,8 +181,9 @@ async function render(url, variantName) {
     convention: 'gl',
     shadow_map_size: mapSize,
     // Basic: one nearest tap. PCF: five taps on a Vogel disk of `radius` texels (the farthest at
-    // 0.95 radius), each a bilinear hardware compare reaching half a texel further.
-    filter_radius_texels: v.type === THREE.PCFShadowMap ? radius + 0.5 : 0,
+    // 0.95 radius), each a bilinear hardware compare reaching half a texel further. VSM: the moments
+    // blurred over `radius` texels each way (vsm.glsl.js), read bilinearly.
+    filter_radius_texels: v.type === THREE.BasicShadowMap ? 0 : radius + 0.5,
     slope_bias_texels: 0,
     constant_bias: 0,
     light_views: 'own',
