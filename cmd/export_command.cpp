@@ -7,6 +7,8 @@
 //   scenes/<scene>.json          the scene files as the catalogue has them (+ scenes/meshes/)
 //   <scene>/meshes/<object>.obj  every object in world space (the transform applied), CCW outside
 //   <scene>/meshes/<object>.gltf the same as glTF 2.0 (one embedded buffer)
+//   <scene>/scene.gltf           the whole scene as glTF 2.0: every object, the camera, the lights
+//                                (KHR_lights_punctual), for engines that load a scene in one call
 //   <scene>/matrices.json        per run convention (gl, gl-zo, reversed-z, d3d): the camera's view,
 //                                projection (infinite, and a finite one), view-projection, the world
 //                                mirror, the bias matrix and every light's shadow-map views; per light
@@ -23,6 +25,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <system_error>
 
@@ -32,6 +35,7 @@
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/outputs/image.hpp"
 #include "shadowref/outputs/staged_folder.hpp"
+#include "shadowref/outputs/spare_cores.hpp"
 #include "shadowref/conform/catalogue.hpp"
 #include "shadowref/conform/reference_cache.hpp"
 #include "shadowref/d3dx.hpp"
@@ -114,29 +118,178 @@ std::string base64(const std::string& bytes) {
   return out;
 }
 
-// glTF 2.0: one mesh, float positions and uint32 indices in one embedded base64 buffer.
-void write_gltf(const scene::Object& o, const fs::path& file) {
+// glTF 2.0 meshes appended into one embedded buffer: float positions and uint32 indices (both
+// 4-byte elements, so every buffer view stays aligned without padding).
+struct GltfMeshes {
   std::string buffer;
-  Vec3<float> lo = o.mesh.positions.front(), hi = lo;
-  for (const auto& p : o.mesh.positions) {
-    buffer.append(reinterpret_cast<const char*>(p.data()), 3 * sizeof(float));
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
+  json buffer_views = json::array();
+  json accessors = json::array();
+  json meshes = json::array();
+
+  // Appends o's mesh with `material` (none when negative); returns the mesh index.
+  int add(const scene::Object& o, int material = -1) {
+    const std::size_t position_offset = buffer.size();
+    Vec3<float> lo = o.mesh.positions.front(), hi = lo;
+    for (const auto& p : o.mesh.positions) {
+      buffer.append(reinterpret_cast<const char*>(p.data()), 3 * sizeof(float));
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    const std::size_t index_offset = buffer.size();
+    for (const auto& tri : o.mesh.triangles) buffer.append(reinterpret_cast<const char*>(tri.data()), 3 * sizeof(std::uint32_t));
+    const std::size_t view = buffer_views.size();
+    buffer_views.push_back({{"buffer", 0}, {"byteOffset", position_offset}, {"byteLength", index_offset - position_offset}, {"target", 34962}});
+    buffer_views.push_back({{"buffer", 0}, {"byteOffset", index_offset}, {"byteLength", buffer.size() - index_offset}, {"target", 34963}});
+    const std::size_t accessor = accessors.size();
+    accessors.push_back({{"bufferView", view}, {"componentType", 5126}, {"count", o.mesh.positions.size()}, {"type", "VEC3"},
+                         {"min", {lo.x(), lo.y(), lo.z()}}, {"max", {hi.x(), hi.y(), hi.z()}}});
+    accessors.push_back({{"bufferView", view + 1}, {"componentType", 5125}, {"count", 3 * o.mesh.triangles.size()}, {"type", "SCALAR"}});
+    json primitive = {{"attributes", {{"POSITION", accessor}}}, {"indices", accessor + 1}, {"mode", 4}};
+    if (material >= 0) primitive["material"] = material;
+    meshes.push_back({{"name", o.name}, {"primitives", {primitive}}});
+    return static_cast<int>(meshes.size() - 1);
   }
-  const std::size_t index_offset = buffer.size();
-  for (const auto& tri : o.mesh.triangles) buffer.append(reinterpret_cast<const char*>(tri.data()), 3 * sizeof(std::uint32_t));
+
+  void into(json& g) const {
+    g["buffers"] = {{{"byteLength", buffer.size()}, {"uri", "data:application/octet-stream;base64," + base64(buffer)}}};
+    g["bufferViews"] = buffer_views;
+    g["accessors"] = accessors;
+    g["meshes"] = meshes;
+  }
+};
+
+// glTF 2.0: one object's mesh, in world space like the OBJ.
+void write_gltf(const scene::Object& o, const fs::path& file) {
+  GltfMeshes m;
+  m.add(o);
   json g;
   g["asset"] = {{"version", "2.0"}, {"generator", "shadowref export"}};
   g["scene"] = 0;
   g["scenes"] = {{{"nodes", {0}}}};
   g["nodes"] = {{{"name", o.name}, {"mesh", 0}}};
-  g["meshes"] = {{{"name", o.name}, {"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}, {"mode", 4}}}}}};
-  g["buffers"] = {{{"byteLength", buffer.size()}, {"uri", "data:application/octet-stream;base64," + base64(buffer)}}};
-  g["bufferViews"] = {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", index_offset}, {"target", 34962}},
-                      {{"buffer", 0}, {"byteOffset", index_offset}, {"byteLength", buffer.size() - index_offset}, {"target", 34963}}};
-  g["accessors"] = {{{"bufferView", 0}, {"componentType", 5126}, {"count", o.mesh.positions.size()}, {"type", "VEC3"},
-                     {"min", {lo.x(), lo.y(), lo.z()}}, {"max", {hi.x(), hi.y(), hi.z()}}},
-                    {{"bufferView", 1}, {"componentType", 5125}, {"count", 3 * o.mesh.triangles.size()}, {"type", "SCALAR"}}};
+  m.into(g);
+  write_text(file, outputs::json_text(g) + "\n");
+}
+
+// glTF's node.matrix: the 16 values column by column.
+json column_major(const Mat4<double>& m) {
+  json a = json::array();
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) a.push_back(m(r, c));
+  return a;
+}
+
+// A rigid node transform at `position` whose local -z (where glTF cameras look and glTF lights
+// shine) is `forward` (unit). Its up is scene +y unless `forward` is (nearly) vertical, then -z:
+// the roll of a light does not matter, only where its -z points.
+Mat4<double> node_facing(const Vec3<double>& position, const Vec3<double>& forward) {
+  const Vec3<double> z = -forward.normalized();
+  const Vec3<double> up = std::abs(z.y()) > 0.99 ? Vec3<double>(0, 0, -1) : Vec3<double>(0, 1, 0);
+  const Vec3<double> x = up.cross(z).normalized();
+  const Vec3<double> y = z.cross(x);
+  Mat4<double> m = Mat4<double>::Identity();
+  m.block<3, 1>(0, 0) = x;
+  m.block<3, 1>(0, 1) = y;
+  m.block<3, 1>(0, 2) = z;
+  m.block<3, 1>(0, 3) = position;
+  return m;
+}
+
+json vec3(const Vec3<double>& v) { return {v.x(), v.y(), v.z()}; }
+
+// <scene>/scene.gltf: the whole scene in one glTF 2.0 file, for engines that load a scene in one
+// call. Scene coordinates are glTF's own (right-handed, y up, metres), so nothing is converted:
+//   every object: a node without transform (its mesh is in world space, as the OBJs), its colour as
+//     an unlit-looking material (metallic 0, roughness 1); single-sided, counter-clockwise outside;
+//   the camera: a perspective camera (yfov, aspectRatio = W / H, znear, zfar only when the scene's
+//     camera has one: the pack's projection is infinite otherwise) on a node whose matrix is the
+//     inverse of the gl convention's view; extras carry the gl view and projections exactly;
+//   the lights: KHR_lights_punctual, in the order of matrices.json's lights (their mask order):
+//     point, spot (outerConeAngle = the pack's cone half-angle) and directional; a rect light is a
+//     point light at its centre (what hard techniques approximate it by) with its parallelogram in
+//     extras.
+void write_scene_gltf(const scene::Scene& s, const fs::path& file) {
+  GltfMeshes m;
+  json g;
+  g["asset"] = {{"version", "2.0"}, {"generator", "shadowref export"}};
+  json nodes = json::array();
+  json materials = json::array();
+  for (const scene::Object& o : s.objects) {
+    materials.push_back({{"name", o.name},
+                         {"pbrMetallicRoughness",
+                          {{"baseColorFactor", {o.color.x(), o.color.y(), o.color.z(), 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}}});
+    const int mesh = m.add(o, static_cast<int>(materials.size() - 1));
+    nodes.push_back({{"name", o.name}, {"mesh", mesh}, {"extras", {{"receiver", o.receiver}, {"shape", o.shape}}}});
+  }
+  // The camera, exactly as matrices.json's gl convention has it.
+  const scene::PreparedScene gl = scene::prepare_scene(s, kDefaultConvention);
+  json perspective = {{"yfov", s.camera.fovy_deg * std::numbers::pi / 180.0},
+                      {"aspectRatio", static_cast<double>(s.width) / static_cast<double>(s.height)},
+                      {"znear", s.camera.near}};
+  if (s.camera.far) perspective["zfar"] = *s.camera.far;
+  g["cameras"] = {{{"name", "camera"}, {"type", "perspective"}, {"perspective", perspective}}};
+  nodes.push_back({{"name", "camera"},
+                   {"camera", 0},
+                   {"matrix", column_major(gl.camera.view.inverse())},
+                   {"extras",
+                    {{"convention", "gl"},
+                     {"resolution", {s.width, s.height}},
+                     {"view", rows(gl.camera.view)},
+                     {"projection", rows(gl.camera.projection)},
+                     {"projection_finite", rows(gl.camera_finite_for_clamp.projection)},
+                     {"layout", "canonical rows (column vectors, v' = M v), as matrices.json's gl convention"}}}});
+  json lights = json::array();
+  for (std::size_t i = 0; i < s.lights.size(); ++i) {
+    const scene::Light& l = s.lights[i];
+    json light = {{"name", "light_" + std::to_string(i)}, {"color", {1.0, 1.0, 1.0}}, {"intensity", 1.0}};
+    json extras = {{"index", i}, {"shadowref_type", scene::to_string(l.type)}, {"mask_file", outputs::mask_name(i, s.lights.size())}};
+    Mat4<double> at = Mat4<double>::Identity();
+    switch (l.type) {
+      case scene::LightType::Point:
+        light["type"] = "point";
+        at.block<3, 1>(0, 3) = l.position;
+        break;
+      case scene::LightType::Spot:
+        light["type"] = "spot";
+        light["spot"] = {{"innerConeAngle", 0.0}, {"outerConeAngle", l.cone_deg * std::numbers::pi / 180.0}};
+        extras["note"] = "the cone shapes lighting only; the mask is the visibility of the position";
+        at = node_facing(l.position, l.direction);
+        break;
+      case scene::LightType::Directional:
+        light["type"] = "directional";
+        at = node_facing(Vec3<double>::Zero(), -l.direction);
+        extras["direction_toward_light"] = vec3(l.direction);
+        break;
+      case scene::LightType::Rect:
+        light["type"] = "point";
+        at.block<3, 1>(0, 3) = l.corner + 0.5 * (l.edge_u + l.edge_v);
+        extras["corner"] = vec3(l.corner);
+        extras["edge_u"] = vec3(l.edge_u);
+        extras["edge_v"] = vec3(l.edge_v);
+        extras["size"] = {{"edge_u_length", l.edge_u.norm()},
+                          {"edge_v_length", l.edge_v.norm()},
+                          {"equal_area_square_side", std::sqrt(l.edge_u.cross(l.edge_v).norm())}};
+        extras["note"] = "a rect light: the point light at its centre is what hard techniques are judged with; soft ones use the "
+                         "parallelogram (corner, edge_u, edge_v)";
+        break;
+    }
+    light["extras"] = extras;
+    lights.push_back(light);
+    nodes.push_back({{"name", "light_" + std::to_string(i)},
+                     {"matrix", column_major(at)},
+                     {"extensions", {{"KHR_lights_punctual", {{"light", i}}}}}});
+  }
+  json scene_nodes = json::array();
+  for (std::size_t n = 0; n < nodes.size(); ++n) scene_nodes.push_back(n);
+  g["scene"] = 0;
+  g["scenes"] = {{{"name", s.name}, {"nodes", scene_nodes}}};
+  g["nodes"] = nodes;
+  g["materials"] = materials;
+  if (!lights.empty()) {
+    g["extensionsUsed"] = {"KHR_lights_punctual"};
+    g["extensions"] = {{"KHR_lights_punctual", {{"lights", lights}}}};
+  }
+  m.into(g);
   write_text(file, outputs::json_text(g) + "\n");
 }
 
@@ -300,8 +453,32 @@ std::string readme(const json& manifest) {
       "are in `<scene>/meshes/` (OBJ or glTF, world space, counter-clockwise = outside), seen through the camera of\n"
       "`<scene>/matrices.json` at the scene's resolution, lit by its lights: `homogeneous` (x, y, z, w) is w = 1 a\n"
       "point light at xyz, w = 0 a directional light with xyz pointing toward the light; spot and rect lights are\n"
-      "listed with all their parameters, and the mask is the visibility of the light's homogeneous point.\n"
+      "listed with all their parameters, and the mask is the visibility of the light's homogeneous point: a spot\n"
+      "light's position, and **a rect light's centre** (hard techniques are judged with that point; soft ones, below,\n"
+      "with the whole rect).\n"
       "**Faces turned away from a light are shadowed** (their own, attached shadow: 0 in the mask), not lit.\n\n"
+      "**A spot light's cone is lighting, not shadow**: its mask is the occlusion of the spot's position in every\n"
+      "direction, outside the cone too. An engine whose spot shadow covers only the cone (its shadow frustum is the\n"
+      "cone) gets that mask by rendering the spot's shadow as a point light's at the same position (a cube of views),\n"
+      "or by widening the shadow frustum until it covers every surface the camera sees.\n\n"
+      "**A filtered hard technique** (PCF, bilinear or Poisson compares) writes a pixel lit when at least half of its\n"
+      "filter's weight is lit (a filtered value of 0.5 or more), as our `shadowmap-pcf` does; not the picture of a\n"
+      "light that saturates, whose threshold depends on the light's intensity.\n\n"
+      "## The whole scene in one glTF\n\n"
+      "`<scene>/scene.gltf` opens in any glTF 2.0 loader in one call (three.js `GLTFLoader`, Babylon `SceneLoader`,\n"
+      "Filament `gltfio`, Godot, Blender, tinygltf). glTF's frame is this pack's (right-handed, y up), so nothing is\n"
+      "converted. It holds:\n\n"
+      "- every object as a node without transform (its mesh in world space, as in `meshes/`), in the order of\n"
+      "  `matrices.json`'s `objects`, with the object's colour as material (`doubleSided` false: counter-clockwise =\n"
+      "  outside) and `extras.receiver`; no normals (glTF loaders then use flat ones);\n"
+      "- the camera: a perspective camera with `yfov`, `aspectRatio` = W / H and `znear`, and no `zfar`: an infinite\n"
+      "  far plane, as `conventions.gl.projection`; its node's matrix is the inverse of `conventions.gl.view`, and its\n"
+      "  `extras` carry the exact `view`, `projection` and `projection_finite` (canonical rows) and the `resolution`;\n"
+      "- the lights through `KHR_lights_punctual`, in the masks' order (`extras.index`, `extras.mask_file`): point,\n"
+      "  spot (`outerConeAngle` = the cone half-angle, `innerConeAngle` 0) and directional (shining along its\n"
+      "  node's -z); a **rect light is a point light at its centre** (the point hard techniques are judged with)\n"
+      "  with `extras.shadowref_type` \"rect\", its `corner`, `edge_u`, `edge_v` and `size`. Intensities are 1: the\n"
+      "  mask is shadow only.\n\n"
       "## The matrices\n\n"
       "`matrices.json` has, under `conventions`, the camera and every light's shadow-map views in each depth convention\n"
       "we render and judge in: `gl` (right-handed, -1..1), `gl-zo` (right-handed, 0..1), `reversed-z` (0..1 reversed,\n"
@@ -408,6 +585,23 @@ std::string readme(const json& manifest) {
       "FAIL: see `manifest.json`). The table, `my-verdict/report.json` and `my-verdict/report/index.html` (reference,\n"
       "your mask and the error image side by side) follow. Exit code: 0 every case PASS or XFAIL, 1 quality warnings,\n"
       "2 failures.\n\n";
+  t += "## Which technique name is my engine?\n\n"
+       "`--technique` and `candidate.json`'s `technique` pick the thresholds and the catalogue's expectations:\n\n"
+       "| your engine's shadows | technique |\n| --- | --- |\n"
+       "| casters flattened onto the receiver plane by a shadow matrix | `planar` |\n"
+       "| stencil shadow volumes counted where they pass the depth test (no caps) | `volume-zpass` |\n"
+       "| stencil volumes counted where they fail it, capped, far plane at infinity (Carmack's reverse) | `volume-zfail` |\n"
+       "| the same with a finite far plane and depth clamp | `volume-zfail-clamp` |\n"
+       "| z-pass where the near plane misses the volume, z-fail elsewhere | `volume-robust` |\n"
+       "| volumes extruded by a finite distance | `volume-finite` |\n"
+       "| a shadow map, one depth compare per pixel | `shadowmap` |\n"
+       "| a shadow map with a filtered compare (PCF, bilinear, Poisson; declare `filter_radius_texels`) | `shadowmap-pcf` |\n"
+       "| a shadow map of depth packed into an RGBA8 colour target | `shadowmap-rgba8` |\n"
+       "| cascaded shadow maps, one compare / filtered | `csm` / `csm-pcf` |\n"
+       "| percentage-closer soft shadows, contact hardening | `pcss` |\n"
+       "| variance shadow maps | `vsm` |\n\n"
+       "An engine's \"stencil shadows\" are usually z-fail volumes with caps (`volume-zfail`); judge them as\n"
+       "`volume-robust` only when they switch to z-pass where the camera is outside every volume.\n\n";
   t += error_image_legend();
   t += "## Scenes\n\n| scene | resolution | lights | description |\n| --- | --- | --- | --- |\n";
   for (const json& s : manifest["scenes"])
@@ -449,7 +643,7 @@ void run_export(const ExportArgs& a) {
   fs::create_directories(out / "scenes", ec);
   if (ec) throw BadInput("--out " + a.out + ": " + ec.message());
   conform::ReferenceSettings settings;
-  settings.threads = a.jobs;
+  settings.threads = a.jobs > 0 ? a.jobs : outputs::spare_cores();
   // Export writes only under --out: without --cache, the references are computed into the staging
   // folder and the cache is dropped before the commit (the pack keeps copies in <scene>/reference/).
   const fs::path private_cache = out / ".reference-cache";
@@ -484,8 +678,10 @@ void run_export(const ExportArgs& a) {
       objects.push_back({{"name", o.name}, {"obj", "meshes/" + n + ".obj"}, {"gltf", "meshes/" + n + ".gltf"},
                          {"receiver", o.receiver}, {"color", {o.color.x(), o.color.y(), o.color.z()}}});
     }
+    write_scene_gltf(s, dir / "scene.gltf");
     json m = matrices(s);
     m["objects"] = objects;
+    m["scene_gltf"] = "scene.gltf";
     write_text(dir / "matrices.json", outputs::json_text(m, 2) + "\n");
     const conform::CachedReference ref = conform::ensure_reference(scene::prepare_scene(s), cache, settings);
     fs::remove_all(dir / "reference", ec);
@@ -527,7 +723,7 @@ void register_export_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--cache", args->cache, "reference cache folder, kept between runs (default: none; the references are computed inside the "
                   "pack's staging folder, and nothing is written outside --out). `shadowref conform --out O` keeps "
                   "its cache in O/reference-cache: name it to reuse conform's references");
-  cmd->add_option("--jobs", args->jobs, "reference threads (0: all cores)")->check(CLI::Range(0, 256));
+  cmd->add_option("--jobs", args->jobs, "reference threads (0: the cores the machine can spare, all less the one-minute load average, at least 1)")->check(CLI::Range(0, 256));
   cmd->callback([args, &exit_code] {
     run_export(*args);
     exit_code = kExitPass;

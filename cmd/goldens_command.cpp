@@ -22,6 +22,7 @@
 #include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/image_io.hpp"
 #include "shadowref/outputs/staged_folder.hpp"
+#include "shadowref/outputs/spare_cores.hpp"
 #include "shadowref/conform/catalogue.hpp"
 #include "shadowref/conform/reference_cache.hpp"
 #include "shadowref/scene/load_scene.hpp"
@@ -86,7 +87,7 @@ int run_goldens(const GoldensArgs& a) {
     throw BadInput(e.what());
   }
   conform::ReferenceSettings settings;
-  settings.threads = a.jobs;
+  settings.threads = a.jobs > 0 ? a.jobs : outputs::spare_cores();
   const fs::path scratch = fs::temp_directory_path() / ("shadowref-goldens-" + std::to_string(::getpid()));
   // Removed however the command ends (an error, an interruption), not only at its end.
   const std::unique_ptr<const fs::path, void (*)(const fs::path*)> remove_scratch(&scratch, [](const fs::path* p) {
@@ -179,7 +180,7 @@ void register_goldens_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--scenes", args->scenes, conform::kScenesHelp);
   cmd->add_option("--catalogue", args->catalogue, "scene folder (default: the installed catalogue; from the build tree, the source tree's)");
   cmd->add_option("--cache", args->cache, "take references from this conformance cache (keyed by this executable)");
-  cmd->add_option("--jobs", args->jobs, "reference threads (0: all cores)")->check(CLI::Range(0, 256));
+  cmd->add_option("--jobs", args->jobs, "reference threads (0: the cores the machine can spare, all less the one-minute load average, at least 1)")->check(CLI::Range(0, 256));
   cmd->callback([args, &exit_code] { exit_code = run_goldens(*args); });
 }
 

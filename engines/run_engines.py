@@ -2,11 +2,15 @@
 """engines/run_engines.py — judge the real engines and hold their verdicts to the recorded table.
 
 Exports the pack with the built `shadowref`, renders it with each run of engines/verdicts.json (a
-harness and its variant) under a virtual X display, lets `shadowref conform --candidate-dir` judge
+harness and its variant: the C++ harnesses under a virtual X display, the web ones — three.js and
+Babylon.js, engines/web/ — with Node in headless Chromium), lets `shadowref conform --candidate-dir` judge
 each candidate folder, and compares every scene's verdict with the one recorded. Any difference — a
 verdict that changed, a scene added or lost — fails, with the report to look at.
 
-  run_engines.py --shadowref EXE --irrlicht EXE --osg EXE --work DIR [--verdicts FILE] [--record]
+  run_engines.py --shadowref EXE --irrlicht EXE --osg EXE --work DIR [--verdicts FILE] [--runs GLOB,..] [--record]
+
+--runs renders and judges only the runs whose names match (for working on one harness); the test
+runs them all.
 
 --record rewrites the verdicts of verdicts.json from this run, keeping each *why* and *cause* whose
 verdict did not change and emptying the others (engines/readme_table.py then refuses a non-PASS
@@ -14,6 +18,7 @@ without them until someone has looked at the report and written them).
 """
 
 import argparse
+import fnmatch
 import json
 import os
 import pathlib
@@ -40,8 +45,24 @@ def under_xvfb(cmd, work):
     return ["xvfb-run", "-a", "-f", work / "Xauthority", "-s", XVFB_ARGS] + cmd
 
 
+WEB = HERE / "web"
+WEB_HARNESSES = ("three", "babylon")
+
+
+def web_ready():
+    """None when the web harnesses can run, else what is missing (scripts/setup.sh provides both)."""
+    if shutil.which("node") is None:
+        return "node (Debian package nodejs)"
+    if not (WEB / "node_modules" / ".package-lock.json").exists():
+        return f"{WEB / 'node_modules'} (npm ci in {WEB}, which scripts/setup.sh runs)"
+    return None
+
+
 def render(r, exes, pack, out, work):
-    cmd = under_xvfb([exes[r["harness"]], "--pack", pack, "--out", out, "--variant", r["variant"]], work)
+    if r["harness"] in WEB_HARNESSES:
+        cmd = ["node", WEB / "render.mjs", "--engine", r["harness"], "--pack", pack, "--out", out, "--variant", r["variant"]]
+    else:
+        cmd = under_xvfb([exes[r["harness"]], "--pack", pack, "--out", out, "--variant", r["variant"]], work)
     p = run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if p.returncode != 0:
         sys.exit(f"{r['run']}: the harness failed (exit {p.returncode}):\n{p.stdout}")
@@ -85,7 +106,9 @@ def main():
     ap.add_argument("--work", required=True, type=pathlib.Path)
     ap.add_argument("--verdicts", type=pathlib.Path, default=HERE / "verdicts.json")
     ap.add_argument("--record", action="store_true", help="rewrite the recorded verdicts from this run")
+    ap.add_argument("--runs", default="*", help="comma-separated globs over the run names (default: every run)")
     a = ap.parse_args()
+    patterns = a.runs.split(",")
 
     start = time.monotonic()
     table = json.loads(a.verdicts.read_text())
@@ -98,8 +121,13 @@ def main():
     if p.returncode != 0:
         sys.exit(f"shadowref export failed (exit {p.returncode}):\n{p.stdout}")
 
+    if any(r["harness"] in WEB_HARNESSES for r in table["runs"]) and web_ready():
+        sys.exit(f"the web harnesses need {web_ready()}")
+
     failed = False
     for r in table["runs"]:
+        if not any(fnmatch.fnmatchcase(r["run"], p) for p in patterns):
+            continue
         t0 = time.monotonic()
         candidates, verdict_dir = work / "renders" / r["run"], work / "verdicts" / r["run"]
         render(r, exes, pack, candidates, work)

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Installs every Debian 12 package shadowref needs to build, test and benchmark.
+# Installs every Debian 12 package shadowref needs to build, test and benchmark, then the web
+# harnesses' npm packages (engines/web/package-lock.json, from the npm registry, with `npm ci`).
 # Idempotent: when everything is present it prints nothing and exits 0.
 # Works as root or, for other users, through sudo.
 set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
 packages=(
   build-essential cmake ninja-build pkg-config
@@ -16,6 +18,21 @@ packages=(
   clang libclang-rt-14-dev
   chromium
 )
+# Node and npm for engines/web/ (Debian 12: nodejs 18, npm 9). A machine that already has them from
+# elsewhere (NodeSource's nodejs bundles npm) keeps them: Debian's npm would conflict with it.
+command -v node >/dev/null 2>&1 || packages+=(nodejs)
+command -v npm >/dev/null 2>&1 || packages+=(npm)
+
+# The web harnesses' packages, exactly as the lockfile pins them; skipped when node_modules was
+# installed from this very lockfile (the stamp is its copy). --ignore-scripts: no package runs code
+# at install time (puppeteer-core downloads no browser; the harness uses Debian's chromium).
+web_packages() {
+  local web="$root/engines/web"
+  if cmp -s "$web/package-lock.json" "$web/node_modules/.shadowref-lock.json" 2>/dev/null; then return 0; fi
+  echo "setup: npm ci in engines/web" >&2
+  (cd "$web" && npm ci --ignore-scripts --no-audit --no-fund --loglevel=error >/dev/null)
+  cp "$web/package-lock.json" "$web/node_modules/.shadowref-lock.json"
+}
 
 missing=()
 for p in "${packages[@]}"; do
@@ -23,11 +40,15 @@ for p in "${packages[@]}"; do
     missing+=("$p")
   fi
 done
-[ ${#missing[@]} -eq 0 ] && exit 0
+if [ ${#missing[@]} -eq 0 ]; then
+  web_packages
+  exit 0
+fi
 
 if [ "$(id -u)" -eq 0 ]; then SUDO=(); else SUDO=(sudo); fi
 echo "setup: installing ${#missing[@]} Debian packages: ${missing[*]}" >&2
 export DEBIAN_FRONTEND=noninteractive
 "${SUDO[@]}" apt-get update -qq >/dev/null
 "${SUDO[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+web_packages
 echo "setup: done" >&2

@@ -204,7 +204,9 @@ TEST(ExportCommand, WritesOnlyUnderOutAndItsReadmeStandsAlone) {
   const std::string readme((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   for (const char* needed : {"shadowref conform --catalogue scenes --candidate-dir my-renders", "Right-handed, y up",
                              "Faces turned away from a light are shadowed", "any other value", "is refused",
-                             "\"light_views\": \"pack\"", "\"producer\"", "\"shadow_map_size\"", "conventions.<name>.view"})
+                             "\"light_views\": \"pack\"", "\"producer\"", "\"shadow_map_size\"", "conventions.<name>.view",
+                             "a rect light's centre", "A spot light's cone is lighting, not shadow", "at least half of its",
+                             "Which technique name is my engine", "| `volume-zfail` |", "scene.gltf", "KHR_lights_punctual"})
     EXPECT_NE(readme.find(needed), std::string::npos) << needed;
   fs::remove_all(root);
 }

@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <string>
@@ -121,6 +122,30 @@ TEST_F(ReportHtml, AMissingImageIsCaught) {
   ASSERT_TRUE(d.checked);
   EXPECT_EQ(d.broken, 1);
   EXPECT_NE(d.html.find("img/does-not-exist.png</pre>"), std::string::npos);
+}
+
+// A candidate's declaration is listed with its case; a volume's without the map settings (map size,
+// filter, biases, depth faces), which mean nothing for it, and without their defaults.
+TEST_F(ReportHtml, AVolumeCandidateListsNoMapSettings) {
+  nlohmann::json r = synthetic(dir, 2);
+  const nlohmann::json declared = {{"producer", "an-engine"}, {"version", "1"}, {"convention", "gl"}, {"shadow_map_size", 1024},
+                                   {"slope_bias_texels", 2.0}, {"defaulted", {"version", "slope_bias_texels", "depth_faces"}}};
+  r["cases"][0]["technique"] = "volume-zfail";
+  r["cases"][0]["candidate"] = declared;
+  r["cases"][1]["technique"] = "shadowmap";
+  r["cases"][1]["candidate"] = declared;
+  report::write_html(r, dir / "index.html");
+  std::ifstream in(dir / "index.html");
+  const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t first = html.find("<tr class=\"case\"");
+  const std::size_t second = html.find("<tr class=\"case\"", first + 1);
+  ASSERT_NE(second, std::string::npos);
+  const std::string volume = html.substr(first, second - first), map = html.substr(second);
+  EXPECT_NE(volume.find("candidate: an-engine 1"), std::string::npos);
+  EXPECT_EQ(volume.find("slope bias"), std::string::npos) << volume;
+  EXPECT_NE(volume.find("(defaulted: version)"), std::string::npos) << volume;
+  EXPECT_NE(map.find("slope bias 2"), std::string::npos);
+  EXPECT_NE(map.find("(defaulted: version, slope_bias_texels, depth_faces)"), std::string::npos);
 }
 
 TEST_F(ReportHtml, RealConformRunRendersEveryImage) {

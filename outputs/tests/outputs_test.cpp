@@ -3,12 +3,14 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <thread>
 
 #include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/candidate.hpp"
@@ -16,6 +18,7 @@
 #include "shadowref/outputs/image_io.hpp"
 #include "shadowref/outputs/errors.hpp"
 #include "shadowref/outputs/interruption.hpp"
+#include "shadowref/outputs/spare_cores.hpp"
 #include "shadowref/outputs/staged_folder.hpp"
 #include "shadowref/outputs/techniques.hpp"
 
@@ -230,6 +233,19 @@ TEST(Techniques, NamesAreUniqueAndFindable) {
     EXPECT_EQ(find_technique_name(t.name), &t);
   }
   EXPECT_EQ(find_technique_name("no-such-technique"), nullptr);
+}
+
+// --jobs 0: the cores not busy, rounded, never fewer than one; this machine's answer lies in
+// [1, hardware_concurrency].
+TEST(SpareCores, TheCoresTheLoadLeavesAtLeastOne) {
+  EXPECT_EQ(spare_cores(8, 0.0), 8);
+  EXPECT_EQ(spare_cores(8, 6.3), 2);
+  EXPECT_EQ(spare_cores(8, 6.6), 1);
+  EXPECT_EQ(spare_cores(2, 5.0), 1);
+  EXPECT_EQ(spare_cores(0, 0.0), 1);
+  const int here = spare_cores();
+  EXPECT_GE(here, 1);
+  EXPECT_LE(here, static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
 }
 
 }  // namespace

@@ -26,6 +26,7 @@
 #include "shadowref/outputs/techniques.hpp"
 #include "shadowref/conform/judge.hpp"
 #include "shadowref/outputs/limits.hpp"
+#include "shadowref/outputs/spare_cores.hpp"
 
 namespace shadowref::conform {
 namespace {
@@ -33,10 +34,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-int thread_count(int jobs) {
-  if (jobs > 0) return jobs;
-  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-}
+int thread_count(int jobs) { return jobs > 0 ? jobs : outputs::spare_cores(); }
 
 // The engine team's folder for a case: <dir>/<scene>/<technique>/ when it exists, else <dir>/<scene>/.
 std::filesystem::path candidate_folder(const std::filesystem::path& dir, const std::string& scene,
@@ -58,6 +56,7 @@ struct Run {
   std::vector<scene::PreparedScene> prepared;
   std::vector<std::filesystem::path> reference_dirs;
   std::filesystem::path cache;
+  int threads = 1;  // --jobs, or the cores spare when the run starts (before our own threads load them)
   std::unique_ptr<renderer::Renderer> gl;  // null: an engine team's candidates are judged
   Judge judge;
   void say(const std::string& s) const {
@@ -124,7 +123,7 @@ void prepare(Run& run) {
 void compute_references(Run& run) {
   run.cache = run.o.cache.empty() ? run.o.out / "reference-cache" : run.o.cache;
   ReferenceSettings settings = run.o.reference;
-  settings.threads = run.o.jobs;
+  settings.threads = run.threads;
   const auto start = Clock::now();
   for (const scene::PreparedScene& p : run.prepared) {
     outputs::throw_if_interrupted();
@@ -144,7 +143,7 @@ void compute_references(Run& run) {
 void open_renderer(Run& run) {
   if (run.o.candidate_dir) return;
   // llvmpipe's rasteriser threads; an explicit LP_NUM_THREADS in the environment wins.
-  if (!std::getenv("LP_NUM_THREADS")) ::setenv("LP_NUM_THREADS", std::to_string(thread_count(run.o.jobs)).c_str(), 1);
+  if (!std::getenv("LP_NUM_THREADS")) ::setenv("LP_NUM_THREADS", std::to_string(run.threads).c_str(), 1);
   run.gl = std::make_unique<renderer::Renderer>(run.o.gl, run.o.backend);
   ConformResult& r = run.result;
   r.gl_vendor = run.gl->info().vendor;
@@ -245,6 +244,7 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
   check_sizes(o);
   result.convention = std::string(o.convention->name);
   Run run(o, log, result);
+  run.threads = thread_count(o.jobs);
   prepare(run);
   compute_references(run);
   if (!o.references_only) {

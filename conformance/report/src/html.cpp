@@ -372,17 +372,28 @@ void case_info(std::ostringstream& h, const json& c) {
   if (c.contains("error")) h << "<p class=\"error\">" << escape_html(str(c, "error")) << "</p>";
   if (c.contains("candidate")) {
     const json& d = c["candidate"];
+    // Volumes and planar shadows have no map, filter or bias: their settings would only list
+    // defaults that mean nothing for them.
+    const std::string technique = str(c, "technique");
+    const bool map_settings = !(technique.rfind("volume", 0) == 0 || technique == "planar");
     std::string defaulted;
-    for (const auto& k : d.value("defaulted", json::array())) defaulted += (defaulted.empty() ? "" : ", ") + k.get<std::string>();
+    for (const auto& k : d.value("defaulted", json::array())) {
+      const std::string key = k.get<std::string>();
+      if (map_settings || key == "producer" || key == "version" || key == "convention")
+        defaulted += (defaulted.empty() ? "" : ", ") + key;
+    }
     h << "<div class=\"notes\">candidate: " << escape_html(str(d, "producer")) << " " << escape_html(str(d, "version"))
-      << " · " << escape_html(str(d, "convention")) << " · map " << escape_html(str(d, "shadow_map_size"))
+      << " · " << escape_html(str(d, "convention"));
+    if (map_settings)
+      h << " · map " << escape_html(str(d, "shadow_map_size"))
       << " · filter " << escape_html(str(d, "filter_radius_texels")) << " texel · light taps "
       << escape_html(str(d, "light_taps", "8")) << " (" << escape_html(str(d, "sampling", "grid")) << ") · slope bias "
       << escape_html(str(d, "slope_bias_texels")) << " · constant bias " << escape_html(str(d, "constant_bias"))
       << " · normal offset " << escape_html(str(d, "normal_offset", "0")) << " + "
       << escape_html(str(d, "normal_offset_texels", "0")) << " texel · depth bias " << escape_html(str(d, "depth_bias", "0"))
       << " · depth faces " << escape_html(str(d, "depth_faces", "back"))
-      << (defaulted.empty() ? std::string() : " (defaulted: " + escape_html(defaulted) + ")") << "</div>";
+      << (str(d, "depth", "window") == "distance" ? " · distance maps over " + escape_html(str(d, "depth_range")) : std::string());
+    h << (defaulted.empty() ? std::string() : " (defaulted: " + escape_html(defaulted) + ")") << "</div>";
     if (d.contains("lights") && !d["lights"].empty())
       h << "<div class=\"notes\">per light (overrides of the above, in the pack's light order): <code>"
         << escape_html(d["lights"].dump()) << "</code></div>";

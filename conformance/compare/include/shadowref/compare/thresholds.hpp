@@ -78,7 +78,8 @@ inline constexpr Threshold kShadowMap{
 // PCF: the same model with the declared filter radius widening the footprint.
 inline constexpr Threshold kShadowMapPcf{
     "shadow-map-pcf", true, 0.03, 0.5,
-    "as shadow-map, with the footprint widened by the declared filter radius (3x3 PCF: 1 texel)"};
+    "as shadow-map, with the footprint widened by the filter radius the candidate declares (filter_radius_texels, "
+    "listed with its declaration; our 3x3 PCF box declares 1 texel)"};
 
 // PCSS: its mask as PCF's (the filter's 3x3 floor), and its visibility judged in visibility units
 // where the light has an area (compare.hpp, compare_visibility).

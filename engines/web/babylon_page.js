@@ -1,0 +1,208 @@
+// engines/web/babylon_page.js — the Babylon.js harness, in the page (babylon.html): loads a pack
+// scene with Babylon's own glTF loader (@babylonjs/loaders) and renders one mask per light with
+// Babylon's own ShadowGenerator / CascadedShadowGenerator and the variant's settings;
+// engines/README.md says what is adapted and why.
+import { Engine } from '@babylonjs/core/Engines/engine.js';
+import { Scene } from '@babylonjs/core/scene.js';
+import { Color4 } from '@babylonjs/core/Maths/math.color.js';
+import { Vector3 } from '@babylonjs/core/Maths/math.vector.js';
+import { AppendSceneAsync } from '@babylonjs/core/Loading/sceneLoader.js';
+import { StandardMaterial } from '@babylonjs/core/Materials/standardMaterial.js';
+import { ShaderMaterial } from '@babylonjs/core/Materials/shaderMaterial.js';
+import { Effect } from '@babylonjs/core/Materials/effect.js';
+import { MaterialPluginBase } from '@babylonjs/core/Materials/materialPluginBase.js';
+import { VertexBuffer } from '@babylonjs/core/Buffers/buffer.js';
+import { PointLight } from '@babylonjs/core/Lights/pointLight.js';
+import { ShadowGenerator } from '@babylonjs/core/Lights/Shadows/shadowGenerator.js';
+import { CascadedShadowGenerator } from '@babylonjs/core/Lights/Shadows/cascadedShadowGenerator.js';
+import '@babylonjs/core/Lights/Shadows/shadowGeneratorSceneComponent.js';
+import '@babylonjs/core/Loading/loadingScreen.js';
+import '@babylonjs/loaders/glTF/2.0/glTFLoader.js';
+import '@babylonjs/loaders/glTF/2.0/Extensions/KHR_lights_punctual.js';
+import '@babylonjs/loaders/glTF/glTFFileLoader.js';
+import { turnedAway, combine, base64, packCamera, packLights } from './common.js';
+
+// Babylon's defaults (src/Lights/Shadows/shadowGenerator.ts, ShadowGenerator's constructor and
+// _initializeShadowGenerator): bias 0.00005, normalBias 0, filter none, darkness 0; the map size
+// is the constructor's argument (1024 in the documentation's examples). "Recommended": the
+// documentation's shadows page advises PCF on WebGL2 (usePercentageCloserFiltering, quality high),
+// and cascaded shadow maps for directional lights (CascadedShadowGenerator, 4 cascades).
+const VARIANTS = {
+  none: { filter: 'none', technique: 'shadowmap' },
+  pcf: { filter: 'pcf', technique: 'shadowmap-pcf' },
+  csm: { filter: 'pcf', technique: 'csm-pcf', cascaded: true },
+  // Controls of `none`, one setting each. none-back-faces: forceBackFacesOnly, Babylon's switch to
+  // draw only back faces in the depth pass (its documented cure for acne). none-bias-0.005: the
+  // bias 100 times Babylon's default.
+  'none-back-faces': { filter: 'none', technique: 'shadowmap', forceBackFacesOnly: true },
+  'none-bias-0.005': { filter: 'none', technique: 'shadowmap', bias: 0.005 },
+};
+const MAP_SIZE = 1024;
+
+// The shadow pass's surface: Babylon's StandardMaterial with every light term computed as usual,
+// whose final colour is replaced by the shadow term the light loop left in `shadow`
+// (Shaders/ShadersInclude/lightFragment.fx: one light enabled, so it is that light's).
+class ShadowTerm extends MaterialPluginBase {
+  constructor(material) {
+    super(material, 'ShadowTerm', 1000, {}, true, true);
+  }
+  getClassName() { return 'ShadowTerm'; }
+  getCustomCode(shaderType) {
+    return shaderType === 'fragment' ? { CUSTOM_FRAGMENT_BEFORE_FRAGCOLOR: 'color = vec4(shadow, shadow, shadow, 1.0);' } : null;
+  }
+}
+
+// The face pass: each vertex's colour, nothing else.
+Effect.ShadersStore.shadowrefFacesVertexShader = `precision highp float;
+attribute vec3 position; attribute vec4 color; uniform mat4 worldViewProjection; varying vec4 vColor;
+void main() { vColor = color; gl_Position = worldViewProjection * vec4(position, 1.0); }`;
+Effect.ShadersStore.shadowrefFacesFragmentShader = `precision highp float;
+varying vec4 vColor; void main() { gl_FragColor = vec4(vColor.rgb, 1.0); }`;
+
+const canvas = document.createElement('canvas');
+document.body.appendChild(canvas);
+const engine = new Engine(canvas, false, { preserveDrawingBuffer: true, stencil: true, antialias: false, adaptToDeviceRatio: false });
+
+async function renderFrame(scene) {
+  await scene.whenReadyAsync();
+  scene.render();
+  return await engine.readPixels(0, 0, engine.getRenderWidth(), engine.getRenderHeight());
+}
+
+async function render(url, variantName) {
+  const v = VARIANTS[variantName];
+  if (!v) return { error: `no Babylon variant "${variantName}" (${Object.keys(VARIANTS).join(', ')})` };
+  const json = await (await fetch(url)).json();
+  const cam = packCamera(json);
+  const lights = packLights(json);
+  canvas.width = cam.width;
+  canvas.height = cam.height;
+  engine.setSize(cam.width, cam.height);
+  engine.setHardwareScalingLevel(1);
+
+  const scene = new Scene(engine);
+  // The pack is right-handed like glTF: Babylon then loads it as it is (no __root__ mirror).
+  scene.useRightHandedSystem = true;
+  scene.clearColor = new Color4(0, 0, 0, 0);
+  scene.ambientColor.set(0, 0, 0);
+  await AppendSceneAsync(url, scene);
+  const camera = scene.cameras.find((c) => c.name === 'camera');
+  camera.maxZ = cam.far;  // the pack's finite far plane: the depth buffer's precision spent on the scene
+  scene.activeCamera = camera;
+
+  const meshes = scene.meshes.filter((m) => m.getTotalVertices() > 0);
+  // One vertex per face corner with the face's normal (glTF asks for flat normals when a mesh has
+  // none), and the face pass's colours per corner.
+  for (const m of meshes) m.convertToFlatShadedMesh();
+  const shadowMaterial = new StandardMaterial('shadow-term', scene);
+  new ShadowTerm(shadowMaterial);
+  const faceMaterial = new ShaderMaterial('faces', scene, { vertex: 'shadowrefFaces', fragment: 'shadowrefFaces' },
+    { attributes: ['position', 'color'], uniforms: ['worldViewProjection'] });
+  faceMaterial.backFaceCulling = false;
+  // The loaded glTF materials cull back faces (doubleSided false) and Babylon's depth pass draws what
+  // the caster's material draws: the shadow pass keeps that culling.
+  const loadedCulling = meshes[0].material ? meshes[0].material.backFaceCulling : true;
+  shadowMaterial.backFaceCulling = loadedCulling;
+
+  const loadedLights = lights.map((l) => scene.lights.find((b) => b.name === `light_${l.index}`));
+  const masks = [];
+  const declared = [];
+  for (const l of lights) {
+    let light = loadedLights[l.index];
+    // A spot light is the point light at its position, as in the other harnesses: the mask is
+    // occlusion everywhere, and Babylon's spot shadow covers only its cone.
+    if (l.type === 'spot') light = new PointLight('spot-as-point', new Vector3(...l.homogeneous.slice(0, 3)), scene);
+    // A directional light's shadow map is drawn from its `position` (Babylon's documentation:
+    // "the position of the light is used to compute the shadow map"), which glTF leaves at the
+    // origin, inside the scene: the light is set outside the scene's bounding sphere, looking at its
+    // centre along the glTF direction, with the depth range over the sphere, as three.js's harness fits
+    // its box. Point lights keep Babylon's depth range (the camera's minZ..maxZ).
+    let fit = 'Babylon defaults (the camera minZ..maxZ)';
+    if (l.type === 'directional') {
+      const { min, max } = scene.getWorldExtends((m) => meshes.includes(m));
+      const centre = min.add(max).scale(0.5), radius = max.subtract(min).length() / 2;
+      const toward = new Vector3(...l.homogeneous.slice(0, 3)).normalize();
+      light.parent = null;
+      light.direction = toward.scale(-1);
+      light.position = centre.add(toward.scale(2 * radius));
+      light.shadowMinZ = radius;
+      light.shadowMaxZ = 3 * radius;
+      fit = `position 2 radii from the bounding sphere's centre, shadowMinZ..shadowMaxZ ${radius.toPrecision(6)}..${(3 * radius).toPrecision(6)}`;
+    }
+    for (const other of scene.lights) other.setEnabled(other === light);
+    const cascaded = v.cascaded && l.type === 'directional';
+    const generator = cascaded ? new CascadedShadowGenerator(MAP_SIZE, light) : new ShadowGenerator(MAP_SIZE, light);
+    if (v.filter === 'pcf') {
+      generator.usePercentageCloserFiltering = true;
+      generator.filteringQuality = ShadowGenerator.QUALITY_HIGH;
+    }
+    if (v.bias !== undefined) generator.bias = v.bias;
+    if (v.forceBackFacesOnly) generator.forceBackFacesOnly = true;
+    for (const m of meshes) {
+      generator.addShadowCaster(m, false);
+      m.receiveShadows = true;
+      m.material = shadowMaterial;
+    }
+    const shadowPixels = new Uint8Array(await renderFrame(scene));
+
+    for (const m of meshes) {
+      const positions = new Float32Array(m.getVerticesData(VertexBuffer.PositionKind));
+      const world = m.getWorldMatrix();
+      for (let i = 0; i < positions.length; i += 3) {
+        const p = Vector3.TransformCoordinates(new Vector3(positions[i], positions[i + 1], positions[i + 2]), world);
+        positions.set([p.x, p.y, p.z], i);
+      }
+      const away = turnedAway(positions, cam.position, l.homogeneous);
+      const colours = new Float32Array(away.length * 12);
+      away.forEach((a, f) => { for (let k = 0; k < 3; k++) colours.set([a ? 0 : 1, 1, 0, 1], 12 * f + 4 * k); });
+      m.setVerticesData(VertexBuffer.ColorKind, colours, false, 4);
+      m.material = faceMaterial;
+    }
+    const facePixels = new Uint8Array(await renderFrame(scene));
+    for (const m of meshes) m.removeVerticesData(VertexBuffer.ColorKind);
+    const filterName = { [ShadowGenerator.FILTER_NONE]: 'none', [ShadowGenerator.FILTER_PCF]: 'pcf',
+      [ShadowGenerator.FILTER_POISSONSAMPLING]: 'poisson' }[generator.filter] ?? String(generator.filter);
+    declared.push({ light: l.index, fit, generator: cascaded ? 'CascadedShadowGenerator' : 'ShadowGenerator', filter: filterName,
+      bias: generator.bias, normalBias: generator.normalBias, forceBackFacesOnly: generator.forceBackFacesOnly,
+      ...(cascaded ? { numCascades: generator.numCascades, lambda: generator.lambda } : {}) });
+    generator.dispose();
+    if (light !== loadedLights[l.index]) light.dispose();
+    // Lit when the engine's shadow term is at least ½: one tap gives 0 or 1, a filter lights a pixel
+    // when at least half its weight is lit, as the suite's own PCF does.
+    masks.push(base64(combine(cam.width, cam.height, shadowPixels, facePixels, (p, i) => p[i] >= 128)));
+  }
+  const first = declared[0] ?? { filter: v.filter, bias: 0.00005, normalBias: 0 };
+  // Babylon's PCF (QUALITY_HIGH) is its 6x6-tap kernel over bilinear compares (computeShadowWithPCF5,
+  // Shaders/ShadersInclude/shadowsFragmentFunctions.fx): reach 2.5 texels + the bilinear's half; on a
+  // point light's cube Babylon replaces PCF with Poisson sampling (computeShadowWithPoissonSamplingCube:
+  // four nearest taps about one texel diagonal away, 1.5 with the texel's own half).
+  const reach = { none: 0, pcf: 3, poisson: 1.5 };
+  const candidate = {
+    producer: 'Babylon.js',
+    version: Engine.Version,
+    technique: v.technique,
+    convention: 'gl',
+    shadow_map_size: MAP_SIZE,
+    filter_radius_texels: Math.max(...declared.map((d) => reach[d.filter] ?? 0), 0),
+    slope_bias_texels: 0,
+    constant_bias: 0,
+    light_views: 'own',
+    normal_offset: first.normalBias,
+    depth_bias: Math.abs(first.bias),
+    depth_faces: v.forceBackFacesOnly ? 'back' : loadedCulling ? 'front' : 'both',
+    ...(v.cascaded ? { cascades: 4 } : {}),
+    settings: {
+      'scene.useRightHandedSystem': true,
+      'material.backFaceCulling': loadedCulling,
+      generators: declared,
+      'spot lights': 'the point light at the spot position (the mask is occlusion everywhere)',
+      'camera.maxZ': cam.far,
+    },
+  };
+  scene.dispose();
+  return { width: cam.width, height: cam.height, masks, candidate };
+}
+
+window.harness = {
+  render: (url, variant) => render(url, variant).catch((e) => ({ error: String(e.stack || e) })),
+};

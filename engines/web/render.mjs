@@ -1,0 +1,143 @@
+// engines/web/render.mjs — renders the exported pack with a web engine (three.js or Babylon.js) in
+// headless Chromium, WebGL2 on SwiftShader, and writes a candidate folder for
+// `shadowref conform --candidate-dir`, as engines/README.md describes for every harness:
+//
+//   node render.mjs --engine three|babylon --pack DIR --out DIR --variant V [--scenes a,b]
+//
+// It reads the pack alone: manifest.json for the scene names, <scene>/scene.gltf (through the
+// engine's own glTF loader, in the page). The pages and the engines' modules are served from the
+// local disk by a small static server on 127.0.0.1; the browser is told to fetch nothing else.
+import http from 'node:http';
+import fs from 'node:fs';
+import path from 'node:path';
+import zlib from 'node:zlib';
+import { fileURLToPath } from 'node:url';
+import puppeteer from 'puppeteer-core';
+
+const HERE = path.dirname(fileURLToPath(import.meta.url));
+
+function parseArgs(argv) {
+  const a = { scenes: '' };
+  for (let i = 0; i < argv.length; i += 2) {
+    const key = argv[i].replace(/^--/, '');
+    if (!['engine', 'pack', 'out', 'variant', 'scenes', 'chromium'].includes(key) || i + 1 >= argv.length)
+      throw new Error(`usage: render.mjs --engine three|babylon --pack DIR --out DIR --variant V [--scenes a,b] [--chromium EXE] (at ${argv[i]})`);
+    a[key] = argv[i + 1];
+  }
+  for (const k of ['engine', 'pack', 'out', 'variant']) if (!a[k]) throw new Error(`--${k} is required`);
+  return a;
+}
+
+// PNG: 8-bit greyscale, no interlace, every row filter 0 (none). The CRC is PNG's (ISO 3309).
+const CRC_TABLE = Array.from({ length: 256 }, (_, n) => {
+  let c = n;
+  for (let k = 0; k < 8; k++) c = c & 1 ? 0xedb88320 ^ (c >>> 1) : c >>> 1;
+  return c >>> 0;
+});
+function crc32(buf) {
+  let c = 0xffffffff;
+  for (const b of buf) c = CRC_TABLE[(c ^ b) & 0xff] ^ (c >>> 8);
+  return (c ^ 0xffffffff) >>> 0;
+}
+function chunk(type, data) {
+  const len = Buffer.alloc(4);
+  len.writeUInt32BE(data.length);
+  const body = Buffer.concat([Buffer.from(type, 'ascii'), data]);
+  const crc = Buffer.alloc(4);
+  crc.writeUInt32BE(crc32(body));
+  return Buffer.concat([len, body, crc]);
+}
+export function greyPng(width, height, pixels) {
+  const ihdr = Buffer.alloc(13);
+  ihdr.writeUInt32BE(width, 0);
+  ihdr.writeUInt32BE(height, 4);
+  ihdr[8] = 8;  // bit depth
+  ihdr[9] = 0;  // greyscale
+  const raw = Buffer.alloc((width + 1) * height);
+  for (let y = 0; y < height; y++) pixels.copy(raw, y * (width + 1) + 1, y * width, (y + 1) * width);
+  return Buffer.concat([Buffer.from([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a]), chunk('IHDR', ihdr),
+    chunk('IDAT', zlib.deflateSync(raw)), chunk('IEND', Buffer.alloc(0))]);
+}
+
+const TYPES = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.json': 'application/json',
+  '.gltf': 'model/gltf+json', '.bin': 'application/octet-stream', '.map': 'application/json' };
+
+// Serves /web/ from this folder (the pages and node_modules) and /pack/ from the pack; nothing else.
+function serve(pack) {
+  const roots = { web: HERE, pack: path.resolve(pack) };
+  const server = http.createServer((req, res) => {
+    const url = new URL(req.url, 'http://localhost');
+    const [, root, ...rest] = decodeURIComponent(url.pathname).split('/');
+    const base = roots[root];
+    const file = base && path.resolve(base, rest.join('/'));
+    if (!file || !file.startsWith(base + path.sep) || !fs.existsSync(file) || !fs.statSync(file).isFile()) {
+      res.writeHead(404);
+      res.end();
+      return;
+    }
+    res.writeHead(200, { 'Content-Type': TYPES[path.extname(file)] || 'application/octet-stream' });
+    fs.createReadStream(file).pipe(res);
+  });
+  return new Promise((resolve) => server.listen(0, '127.0.0.1', () => resolve(server)));
+}
+
+async function main() {
+  const a = parseArgs(process.argv.slice(2));
+  const manifest = JSON.parse(fs.readFileSync(path.join(a.pack, 'manifest.json'), 'utf8'));
+  const wanted = a.scenes ? a.scenes.split(',') : null;
+  const scenes = manifest.scenes.map((s) => s.name).filter((n) => !wanted || wanted.includes(n));
+  const server = await serve(a.pack);
+  const origin = `http://127.0.0.1:${server.address().port}`;
+  const browser = await puppeteer.launch({
+    executablePath: a.chromium || '/usr/bin/chromium',
+    headless: true,
+    args: [
+      // WebGL2 on the CPU: ANGLE over SwiftShader's Vulkan, which headless Chromium otherwise
+      // refuses as a fallback it considers unsafe for web content (ours is the local disk's).
+      '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
+      // A test machine runs this as root, where Chromium's sandbox cannot start.
+      '--no-sandbox',
+      // Nothing is fetched from the network: every request but the local server's fails.
+      '--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE 127.0.0.1',
+      '--disable-background-networking', '--no-first-run', '--disable-extensions',
+    ],
+  });
+  let failed = false;
+  try {
+    const page = await browser.newPage();
+    // Chromium asks for /favicon.ico, which the server does not have: not worth a line.
+    page.on('console', (m) => {
+      if ((m.type() === 'error' || m.type() === 'warn') && !m.text().startsWith('Failed to load resource')) process.stderr.write(`page: ${m.text()}\n`);
+    });
+    page.on('pageerror', (e) => process.stderr.write(`page error: ${e.message}\n`));
+    page.on('response', (r) => { if (r.status() >= 400 && !r.url().endsWith('/favicon.ico')) process.stderr.write(`page: ${r.status()} ${r.url()}\n`); });
+    await page.goto(`${origin}/web/${a.engine}.html`, { waitUntil: 'load' });
+    await page.waitForFunction('window.harness !== undefined', { timeout: 60000 });
+    for (const scene of scenes) {
+      const t0 = Date.now();
+      const r = await page.evaluate((url, variant) => window.harness.render(url, variant), `${origin}/pack/${scene}/scene.gltf`, a.variant);
+      if (r.error) {
+        process.stderr.write(`${scene}: ${r.error}\n`);
+        failed = true;
+        continue;
+      }
+      const dir = path.join(a.out, scene);
+      fs.mkdirSync(dir, { recursive: true });
+      r.masks.forEach((b64, i) => {
+        const name = r.masks.length === 1 ? 'mask.png' : `mask_${i}.png`;
+        fs.writeFileSync(path.join(dir, name), greyPng(r.width, r.height, Buffer.from(b64, 'base64')));
+      });
+      fs.writeFileSync(path.join(dir, 'candidate.json'), JSON.stringify(r.candidate, null, 2) + '\n');
+      process.stdout.write(`${scene}: ${r.masks.length} mask(s), ${Date.now() - t0} ms\n`);
+    }
+  } finally {
+    await browser.close();
+    server.close();
+  }
+  process.exit(failed ? 1 : 0);
+}
+
+main().catch((e) => {
+  process.stderr.write(`render.mjs: ${e.stack || e}\n`);
+  process.exit(1);
+});

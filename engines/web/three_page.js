@@ -1,0 +1,212 @@
+// engines/web/three_page.js — the three.js harness, in the page (three.html): loads a pack scene
+// with three.js's own GLTFLoader and renders one mask per light with three.js's own shadow maps
+// (WebGLShadowMap), with the variant's settings; engines/README.md says what is adapted and why.
+import * as THREE from 'three';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { turnedAway, combine, base64, packCamera, packLights } from './common.js';
+
+// three.js's defaults (src/lights/LightShadow.js): mapSize 512, bias 0, normalBias 0, radius 1; the
+// renderer's shadowMap.type is PCFShadowMap. "Recommended" is what three.js's own documentation
+// of LightShadow suggests against artefacts: a larger map ("higher values give better quality
+// shadows") and a bias "in the order of 0.0001" (negative: it moves the receiver toward the light,
+// `shadowCoord.z += shadowBias` in shadowmap_pars_fragment). A control changes one setting of the
+// variant it names.
+const VARIANTS = {
+  basic: { type: THREE.BasicShadowMap, technique: 'shadowmap' },
+  pcf: { type: THREE.PCFShadowMap, technique: 'shadowmap-pcf' },
+  'pcf-recommended': { type: THREE.PCFShadowMap, technique: 'shadowmap-pcf', mapSize: 2048, bias: -0.0001 },
+  // Variance shadow maps, judged as a filtered hard technique (lit where the term is at least ½):
+  // three.js's VSM blurs the moments over `radius` texels, it does not model an area light.
+  vsm: { type: THREE.VSMShadowMap, technique: 'shadowmap-pcf' },
+  // Controls. pcf-near-fitted: pcf with the point lights' near plane fitted to the scene (half the
+  // distance to the nearest triangle) instead of three.js's 0.5. pcf-recommended-no-bias:
+  // pcf-recommended with the bias back at 0.
+  'pcf-near-fitted': { type: THREE.PCFShadowMap, technique: 'shadowmap-pcf', nearFitted: true },
+  'pcf-recommended-no-bias': { type: THREE.PCFShadowMap, technique: 'shadowmap-pcf', mapSize: 2048, bias: 0 },
+};
+
+const TYPE_NAMES = { [THREE.BasicShadowMap]: 'BasicShadowMap', [THREE.PCFShadowMap]: 'PCFShadowMap', [THREE.VSMShadowMap]: 'VSMShadowMap' };
+const SIDE_NAMES = { [THREE.FrontSide]: 'front', [THREE.BackSide]: 'back', [THREE.DoubleSide]: 'both' };
+
+const renderer = new THREE.WebGLRenderer({ antialias: false });
+renderer.setPixelRatio(1);
+renderer.shadowMap.enabled = true;
+
+// The faces three.js's depth pass draws for a loaded glTF material (FrontSide: glTF's doubleSided
+// false): WebGLShadowMap's getDepthMaterial takes material.shadowSide, or else the opposite side
+// for Basic and PCF maps and the same side for VSM.
+function defaultShadowSide(type, side) {
+  if (type === THREE.VSMShadowMap) return side;
+  return { [THREE.FrontSide]: THREE.BackSide, [THREE.BackSide]: THREE.FrontSide, [THREE.DoubleSide]: THREE.DoubleSide }[side];
+}
+
+// The light three.js renders for pack light `l`, fitted to the scene the way three.js's
+// documentation asks of every user (a shadow camera that covers what must be shadowed): the
+// directional light's orthographic box around the scene's bounding sphere, a point light's far
+// plane beyond the scene (its default, 500, ends inside the largest scene). The point light's near
+// plane stays three.js's 0.5 (PointLightShadow) unless the variant fits it too.
+// A spot light is the point light at its position, as the other harnesses have it: the mask is
+// occlusion everywhere, and a three.js spot shadow covers only its cone.
+function engineLight(scene, loaded, l, bounds, meshes, v) {
+  const centre = bounds.getCenter(new THREE.Vector3());
+  const radius = bounds.getBoundingSphere(new THREE.Sphere()).radius;
+  if (l.type === 'directional') {
+    const light = loaded;
+    scene.attach(light);
+    const toward = new THREE.Vector3(...l.homogeneous).normalize();
+    light.position.copy(centre).addScaledVector(toward, 2 * radius);
+    light.target = new THREE.Object3D();
+    light.target.position.copy(centre);
+    scene.add(light.target);
+    const c = light.shadow.camera;
+    Object.assign(c, { left: -radius, right: radius, top: radius, bottom: -radius, near: radius, far: 3 * radius });
+    return { light, fit: `orthographic box of the bounding sphere (radius ${radius.toPrecision(6)})` };
+  }
+  let light = loaded;
+  if (l.type === 'spot') {
+    light = new THREE.PointLight(0xffffff, 1);
+    light.position.set(l.homogeneous[0], l.homogeneous[1], l.homogeneous[2]);
+    scene.add(light);
+    loaded.visible = false;
+  }
+  const at = new THREE.Vector3(l.homogeneous[0], l.homogeneous[1], l.homogeneous[2]);
+  let far = 0;
+  for (const x of [bounds.min.x, bounds.max.x])
+    for (const y of [bounds.min.y, bounds.max.y])
+      for (const z of [bounds.min.z, bounds.max.z]) far = Math.max(far, at.distanceTo(new THREE.Vector3(x, y, z)));
+  light.shadow.camera.far = 1.01 * far;
+  if (v.nearFitted) {
+    let nearest = Infinity;
+    const triangle = new THREE.Triangle(), closest = new THREE.Vector3();
+    for (const m of meshes) {
+      const p = m.geometry.attributes.position;
+      for (let f = 0; f < p.count; f += 3) {
+        triangle.setFromAttributeAndIndices(p, f, f + 1, f + 2);
+        nearest = Math.min(nearest, triangle.closestPointToPoint(at, closest).distanceTo(at));
+      }
+    }
+    light.shadow.camera.near = 0.5 * nearest;
+  }
+  return { light, fit: `cube views' far plane ${light.shadow.camera.far.toPrecision(6)}, near ${light.shadow.camera.near.toPrecision(6)}` };
+}
+
+async function render(url, variantName) {
+  const v = VARIANTS[variantName];
+  if (!v) return { error: `no three.js variant "${variantName}" (${Object.keys(VARIANTS).join(', ')})` };
+  const gltf = await new GLTFLoader().loadAsync(url);
+  const json = gltf.parser.json;
+  const cam = packCamera(json);
+  const lights = packLights(json);
+  const scene = gltf.scene;
+  const camera = gltf.cameras[0];
+  camera.far = cam.far;  // the pack's finite far plane: the depth buffer's precision spent on the scene
+  camera.updateProjectionMatrix();
+  scene.updateMatrixWorld(true);
+
+  const meshes = [];
+  scene.traverse((o) => { if (o.isMesh) meshes.push(o); });
+  const bounds = new THREE.Box3();
+  for (const m of meshes) bounds.expandByObject(m);
+  // One vertex per face corner, with the face's normal: glTF asks a loader for flat normals when a
+  // mesh has none (the pack's do not), and three.js's normalBias offsets along them.
+  const loadedSide = meshes[0].material.side;
+  for (const m of meshes) {
+    m.geometry = m.geometry.toNonIndexed();
+    m.geometry.computeVertexNormals();
+    m.castShadow = true;
+    m.receiveShadow = true;
+  }
+  // The shadow pass's surface: three.js's ShadowMaterial draws alpha = 1 − its shadow term and nothing
+  // else. Two-sided, because the contract's surfaces are seen from both sides; its depth pass draws
+  // what three.js's would for the loaded material (or the variant's sides).
+  const shadowSide = v.shadowSide ?? defaultShadowSide(v.type, loadedSide);
+  const shadowMaterial = new THREE.ShadowMaterial({ color: 0x000000, opacity: 1, transparent: false, side: THREE.DoubleSide });
+  shadowMaterial.blending = THREE.NoBlending;
+  shadowMaterial.shadowSide = shadowSide;
+  const faceMaterial = new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide });
+
+  renderer.shadowMap.type = v.type;
+  renderer.setSize(cam.width, cam.height, false);
+  renderer.setClearColor(0x000000, 0);
+  const target = new THREE.WebGLRenderTarget(cam.width, cam.height, { type: THREE.UnsignedByteType, format: THREE.RGBAFormat });
+  const shadowPixels = new Uint8Array(cam.width * cam.height * 4);
+  const facePixels = new Uint8Array(cam.width * cam.height * 4);
+
+  const loadedLights = [];
+  scene.traverse((o) => { if (o.isLight) loadedLights[o.userData.index] = o; });
+  const fits = [];
+  const masks = [];
+  for (const l of lights) {
+    const { light, fit } = engineLight(scene, loadedLights[l.index], l, bounds, meshes, v);
+    fits.push(fit);
+    if (v.mapSize) light.shadow.mapSize.set(v.mapSize, v.mapSize);
+    if (v.bias !== undefined) light.shadow.bias = v.bias;
+    if (v.normalBias !== undefined) light.shadow.normalBias = v.normalBias;
+    if (v.radius !== undefined) light.shadow.radius = v.radius;
+    light.castShadow = true;
+    light.shadow.camera.updateProjectionMatrix();
+    for (const other of loadedLights) if (other !== light) other.visible = false;
+    light.visible = true;
+
+    for (const m of meshes) m.material = shadowMaterial;
+    renderer.setRenderTarget(target);
+    renderer.clear();
+    renderer.render(scene, camera);
+    renderer.readRenderTargetPixels(target, 0, 0, cam.width, cam.height, shadowPixels);
+
+    for (const m of meshes) {
+      const away = turnedAway(m.geometry.attributes.position.array, cam.position, l.homogeneous);
+      const colours = new Float32Array(away.length * 9);
+      away.forEach((a, f) => { for (let k = 0; k < 3; k++) colours.set([a ? 0 : 1, 1, 0], 9 * f + 3 * k); });
+      m.geometry.setAttribute('color', new THREE.BufferAttribute(colours, 3));
+      m.material = faceMaterial;
+    }
+    light.castShadow = false;
+    renderer.clear();
+    renderer.render(scene, camera);
+    renderer.readRenderTargetPixels(target, 0, 0, cam.width, cam.height, facePixels);
+    renderer.setRenderTarget(null);
+    light.visible = false;
+    // Lit when the engine's shadow term is at least ½ (alpha = 1 − term ≤ ½): one tap gives 0 or 1,
+    // a filter lights a pixel when at least half its weight is lit, as the suite's own PCF does.
+    masks.push(base64(combine(cam.width, cam.height, shadowPixels, facePixels, (p, i) => p[i + 3] <= 127)));
+  }
+  const mapSize = v.mapSize ?? 512;
+  const bias = v.bias ?? 0;
+  const radius = v.radius ?? 1;  // LightShadow's default
+  const candidate = {
+    producer: 'three.js',
+    version: `r${THREE.REVISION}`,
+    technique: v.technique,
+    convention: 'gl',
+    shadow_map_size: mapSize,
+    // Basic: one nearest tap. PCF: five taps on a Vogel disk of `radius` texels (the farthest at
+    // 0.95 radius), each a bilinear hardware compare reaching half a texel further. VSM: the moments
+    // blurred over `radius` texels each way (vsm.glsl.js), read bilinearly.
+    filter_radius_texels: v.type === THREE.BasicShadowMap ? 0 : radius + 0.5,
+    slope_bias_texels: 0,
+    constant_bias: 0,
+    light_views: 'own',
+    normal_offset: v.normalBias ?? 0,
+    depth_bias: Math.abs(bias),
+    depth_faces: SIDE_NAMES[shadowSide],
+    settings: {
+      'renderer.shadowMap.type': TYPE_NAMES[v.type],
+      'shadow.mapSize': mapSize,
+      'shadow.bias': bias,
+      'shadow.normalBias': v.normalBias ?? 0,
+      'shadow.radius': radius,
+      'material.shadowSide': SIDE_NAMES[shadowSide],
+      'shadow cameras': fits,
+      'spot lights': 'the point light at the spot position (the mask is occlusion everywhere)',
+      'camera.far': cam.far,
+    },
+  };
+  for (const m of meshes) m.geometry.dispose();
+  target.dispose();
+  return { width: cam.width, height: cam.height, masks, candidate };
+}
+
+window.harness = {
+  render: (url, variant) => render(url, variant).catch((e) => ({ error: String(e.stack || e) })),
+};
