@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "catalogue_scene.hpp"
 #include "llvmpipe_renderer.hpp"
 #include "shadowref/conform/catalogue.hpp"
 #include "shadowref/conform/judge.hpp"
@@ -161,17 +162,9 @@ std::vector<std::vector<Declaration>> chains() {
 }
 
 // One scene: its prepared form, the reference (from the CTest fixtures' cache), our render's mask.
-struct SceneUnderTest {
+struct SceneUnderTest : test::CatalogueScene {
   explicit SceneUnderTest(const std::string& name)
-      : scene(scene::load_scene(conform::default_catalogue() / (name + ".json"))), prepared(scene::prepare_scene(scene)) {
-    conform::ReferenceSettings settings;
-    settings.key_executable = SHADOWREF_EXE;
-    reference = conform::ensure_reference(prepared, SHADOWREF_TEST_CACHE, settings).dir;
-    control = test::llvmpipe_renderer().render(prepared, "shadowmap").masks.at(0);
-  }
-  scene::Scene scene;
-  scene::PreparedScene prepared;
-  fs::path reference;
+      : CatalogueScene(name), control(test::llvmpipe_renderer().render(prepared, "shadowmap").masks.at(0)) {}
   Image8 control;
   conform::Judge judge;
 
@@ -267,11 +260,10 @@ TEST_P(DeclarationGrid, DeclaringLessNeverExplainsMore) {
 // declares it as candidate.json's constant_bias) leaves a lit line along the slab's contact that no
 // correct map's bias explains: FAIL, beside the unfaulted render (PASS).
 TEST(PeterPanning, AConstantBiasDeclaredHonestlyStillFailsOnItsLeak) {
-  const scene::Scene scene = scene::load_scene(conform::default_catalogue() / "contact_shadow.json");
-  const scene::PreparedScene prepared = scene::prepare_scene(scene);
-  conform::ReferenceSettings settings;
-  settings.key_executable = SHADOWREF_EXE;
-  const fs::path reference = conform::ensure_reference(prepared, SHADOWREF_TEST_CACHE, settings).dir;
+  const test::CatalogueScene contact("contact_shadow");
+  const scene::Scene& scene = contact.scene;
+  const scene::PreparedScene& prepared = contact.prepared;
+  const fs::path& reference = contact.reference;
   conform::Judge judge;
   for (const double metres : {0.0, 0.064, 0.26}) {
     renderer::RenderOptions options;
@@ -296,11 +288,9 @@ TEST(PeterPanning, AConstantBiasDeclaredHonestlyStillFailsOnItsLeak) {
 // light 1 only judge light 0 as without it; light 1's mask made all shadowed FAILs under the largest
 // declaration the entry can make.
 TEST(PerLightDeclarations, AnEntryReachesItsLightAndBuysNothing) {
-  const scene::Scene scene = scene::load_scene(conform::default_catalogue() / "two_lights.json");
-  const scene::PreparedScene prepared = scene::prepare_scene(scene);
-  conform::ReferenceSettings settings;
-  settings.key_executable = SHADOWREF_EXE;
-  const fs::path reference = conform::ensure_reference(prepared, SHADOWREF_TEST_CACHE, settings).dir;
+  const test::CatalogueScene two_lights("two_lights");
+  const scene::PreparedScene& prepared = two_lights.prepared;
+  const fs::path& reference = two_lights.reference;
   const renderer::RenderResult ours = test::llvmpipe_renderer().render(prepared, "shadowmap");
   ASSERT_EQ(ours.masks.size(), 2u);
   conform::Judge judge;

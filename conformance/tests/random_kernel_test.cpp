@@ -12,6 +12,7 @@
 #include <functional>
 #include <string>
 
+#include "catalogue_scene.hpp"
 #include "llvmpipe_renderer.hpp"
 #include "shadowref/conform/catalogue.hpp"
 #include "shadowref/conform/judge.hpp"
@@ -34,11 +35,10 @@ struct Variant {
 // under the renderer's own (honest) declaration.
 conform::CaseJudgement render_and_judge(const std::string& scene_name, const std::string& technique, int taps,
                                         const Variant& variant) {
-  const scene::Scene scene = scene::load_scene(conform::default_catalogue() / (scene_name + ".json"));
-  const scene::PreparedScene prepared = scene::prepare_scene(scene);
-  conform::ReferenceSettings settings;
-  settings.key_executable = SHADOWREF_EXE;
-  const fs::path reference = conform::ensure_reference(prepared, SHADOWREF_TEST_CACHE, settings).dir;
+  const test::CatalogueScene c(scene_name);
+  const scene::Scene& scene = c.scene;
+  const scene::PreparedScene& prepared = c.prepared;
+  const fs::path& reference = c.reference;
   renderer::RenderOptions options;
   options.random_taps = taps;
   if (variant.fault) variant.fault(options.faults);
