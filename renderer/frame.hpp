@@ -24,7 +24,7 @@ struct Program {
         texel = -1, offset_factor = -1, offset_units = -1, layout = -1, layer_from_world = -1, cascade_depth = -1,
         cascade_begin = -1, cascade_end = -1, reversed = -1, lit_greater = -1, depth_map = -1, world_from_layer = -1,
         inv_view_depth = -1, rect_u = -1, rect_v = -1, blocker_at_receiver = -1, moment_map = -1,
-        layer_inv_view_depth = -1, taps_in_own_face = -1, random_taps = -1;
+        layer_inv_view_depth = -1, taps_in_own_face = -1, random_taps = -1, random_pcf_radius = -1;
 };
 
 struct Programs {
@@ -71,9 +71,10 @@ inline constexpr float kShadowMapOffsetFactor = 2.0f;
 // directional_light's pixels, seen in shaded.png and visibility.png, not in the mask); 3 covers it.
 inline constexpr float kPcfOffsetFactor = 3.0f;
 inline constexpr float kShadowMapOffsetUnits = 8.0f;
-// RenderOptions::random_taps's PCF disk: its radius in texels (shaders.cpp, kRandomPcfRadius), what
-// candidate.json then declares as filter_radius_texels.
-inline constexpr double kRandomPcfRadiusTexels = 1.41421356;
+// RenderOptions::random_taps's PCF disk: its radius in texels, the 3 x 3 box's corner taps' reach,
+// which PCF's slope factor (kPcfOffsetFactor) covers; what candidate.json declares as
+// filter_radius_texels.
+inline constexpr double kRandomPcfRadiusTexels = 1.41421356237309515;
 // ShadowMapFaults::large_constant_offset: a constant offset of 2^17 depth steps, about 0.8 % of the
 // 24-bit range (the size of constant bias that hides acne everywhere, grazing light included),
 // which detaches shadows from their contacts.

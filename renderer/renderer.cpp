@@ -166,6 +166,7 @@ Program link(const GlFunctions& gl, std::initializer_list<const char*> fragment,
   p.layer_inv_view_depth = loc("u_layer_inv_view_depth");
   p.taps_in_own_face = loc("u_taps_in_own_face");
   p.random_taps = loc("u_random_taps");
+  p.random_pcf_radius = loc("u_random_pcf_radius");
   gl.UseProgram(p.id);
   if (p.shadow_map >= 0) gl.Uniform1i(p.shadow_map, 0);
   if (p.packed_map >= 0) gl.Uniform1i(p.packed_map, 1);

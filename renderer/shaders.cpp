@@ -121,6 +121,7 @@ uniform vec3 u_rect_v;
 uniform int u_blocker_at_receiver;   // fault switches (renderer/faults.hpp, SoftShadowFaults)
 uniform int u_taps_in_own_face;
 uniform int u_random_taps;           // 0: each filter's fixed grid; N: N taps of a Vogel disk rotated per pixel
+uniform float u_random_pcf_radius;   // PCF's disk radius in texels (frame.hpp, kRandomPcfRadiusTexels)
 // VSM (u_shadow 5): the moments (view depth, its square) of the same layers; (0, 0) where nothing was drawn.
 uniform sampler2DArray u_moment_map; // unit 3
 out vec4 o_colour;
@@ -304,6 +305,11 @@ vec2 disk_to_square(vec2 d) {
   if (w < 5.0) return vec2(-r, -r * (w - 4.0));
   return vec2(r * (w - 6.0), -r);
 }
+// Whether light point l lights the fragment: above its horizon, and no blocker at the filter's tap.
+bool filter_tap_lit(Filter f, vec3 l, int layer) {
+  if (dot(f.n, l - v_world) <= 0.0) return false;
+  return f.blockers == 0 || blocker_at(tap_at(v_world + (l - v_world) * f.t, layer, f.plane, f.world_plane), layer) < 0.0;
+}
 float pcss(float receiver_depth, int layer) {
   Filter f = filter_for(receiver_depth, layer);
   float lit = 0.0;
@@ -311,20 +317,13 @@ float pcss(float receiver_depth, int layer) {
     float rotation = pixel_rotation();
     for (int i = 0; i < u_random_taps; ++i) {
       vec2 ab = 0.5 * disk_to_square(vogel_tap(i, u_random_taps, rotation));
-      vec3 l = u_light.xyz + ab.x * u_rect_u + ab.y * u_rect_v;
-      if (dot(f.n, l - v_world) <= 0.0) continue;
-      if (f.blockers == 0 || blocker_at(tap_at(v_world + (l - v_world) * f.t, layer, f.plane, f.world_plane), layer) < 0.0)
-        lit += 1.0;
+      if (filter_tap_lit(f, u_light.xyz + ab.x * u_rect_u + ab.y * u_rect_v, layer)) lit += 1.0;
     }
     return lit / float(u_random_taps);
   }
   for (int j = 0; j < kFilterTaps; ++j)
-    for (int i = 0; i < kFilterTaps; ++i) {
-      vec3 l = filter_light_point(i, j);
-      if (dot(f.n, l - v_world) <= 0.0) continue;
-      if (f.blockers == 0 || blocker_at(tap_at(v_world + (l - v_world) * f.t, layer, f.plane, f.world_plane), layer) < 0.0)
-        lit += 1.0;
-    }
+    for (int i = 0; i < kFilterTaps; ++i)
+      if (filter_tap_lit(f, filter_light_point(i, j), layer)) lit += 1.0;
   return lit / float(kFilterTaps * kFilterTaps);
 }
 // VSM over PCSS's penumbra (Lauritzen 2007, GPU Gems 3 ch. 8): the same search and filter region,
@@ -410,12 +409,10 @@ float shadow_visibility() {
 #endif
   if (u_shadow == 1) return texture(u_shadow_map, vec4(p.xy, layer, p.z));
   if (u_shadow == 2 && u_random_taps > 0) {
-    // PCF on a randomized kernel: the Vogel disk's taps out to kRandomPcfRadius texels (the 3x3
-    // box's corner taps' reach, which the PCF maps' slope bias covers).
-    const float kRandomPcfRadius = 1.41421356;
+    // PCF on a randomized kernel: the Vogel disk's taps out to u_random_pcf_radius texels.
     float rotation = pixel_rotation(), sum = 0.0;
     for (int i = 0; i < u_random_taps; ++i)
-      sum += texture(u_shadow_map, vec4(p.xy + kRandomPcfRadius * vogel_tap(i, u_random_taps, rotation) * u_texel, layer, p.z));
+      sum += texture(u_shadow_map, vec4(p.xy + u_random_pcf_radius * vogel_tap(i, u_random_taps, rotation) * u_texel, layer, p.z));
     return sum / float(u_random_taps);
   }
   if (u_shadow == 2) {

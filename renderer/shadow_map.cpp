@@ -429,6 +429,7 @@ void bind_map(const Frame& frame, const LightMap& map, Variant variant) {
   gl.Uniform2f(p.texel, texel, texel);
   gl.Uniform1i(p.layout, map.layout);
   gl.Uniform1i(p.random_taps, frame.options.random_taps);
+  gl.Uniform1f(p.random_pcf_radius, static_cast<float>(kRandomPcfRadiusTexels));
   gl.Uniform1i(p.reversed, frame.convention().clip.order == DepthOrder::Reversed ? 1 : 0);
   const DepthCompare lit = lit_compare(frame.convention(), frame.faults().shadow_map.compare);
   gl.Uniform1i(p.lit_greater, lit == DepthCompare::GreaterEqual ? 1 : 0);
