@@ -25,6 +25,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "shadowref/conform/catalogue.hpp"
@@ -74,15 +75,21 @@ conform::ExtraTechnique variant_of(const Row& r) {
 }
 
 std::string numbers(const conform::CaseResult& c) {
-  char buf[160];
+  char buf[256];
   if (!c.comparison) {
     std::snprintf(buf, sizeof buf, "%s (%s)", conform::to_string(c.status), c.error.c_str());
-  } else {
-    const compare::MaskMetrics& m = c.comparison->total;
-    std::snprintf(buf, sizeof buf, "%-5s %7.3f %% wrong, largest region %zu px", conform::to_string(c.status),
-                  m.wrong_percent(), m.largest_region);
+    return buf;
   }
-  return buf;
+  const compare::MaskMetrics& m = c.comparison->total;
+  std::snprintf(buf, sizeof buf, "%-5s %7.3f %% wrong, largest region %zu px", conform::to_string(c.status),
+                m.wrong_percent(), m.largest_region);
+  std::string out = buf;
+  if (const auto& v = c.comparison->visibility_total) {  // a soft row: the lit fraction's evidence
+    std::snprintf(buf, sizeof buf, "; lit fraction mean error %.3f (bound %.3f), %.2f %% unexplained, core %zu px",
+                  v->mean_penumbra_error(), v->mean_error_fail(), 100.0 * v->unexplained_ratio(), v->unexplained_core);
+    out += buf;
+  }
+  return out;
 }
 
 // scene -> case of `technique`
@@ -121,20 +128,35 @@ int run_row(const Row& row) {
   return missed ? 1 : 0;
 }
 
+// A row a size hides, the limit seen in the predicted way: its variant PASSes there beside a green
+// control with no unexplained lit-fraction pixel, the reason why. If it is ever caught, the entry is
+// stale and the run fails until it is removed.
+struct KnownMiss {
+  std::string_view row, size, why;
+};
+constexpr KnownMiss kKnownMisses[] = {
+    {"pcss-cube-taps-stay-in-face", "map-512",
+     "at 512 texels the line of light along the seam, one filter radius wide, lies within the band of the "
+     "filter's footprint (0.5 + its radius in texels, twice as wide in the world as at 1024): 0.00 % of the "
+     "penumbra unexplained, mean error 0.037 (at 1024: 8.7 % unexplained, FAIL)"},
+};
+
+const KnownMiss* known_miss(std::string_view row, std::string_view size) {
+  for (const KnownMiss& k : kKnownMisses)
+    if (k.row == row && k.size == size) return &k;
+  return nullptr;
+}
+
 // Every row at `size`, on its own scenes, next to its control at the same size. A map size applies
-// to the rows whose technique draws a shadow map and that do not pin their own map size; the soft
-// rows (pcss) only from kSoftMinMapSize up: below it their control's penumbrae leave more mean error
-// than the light's and the filter's sampling, the bound the judge knows (the map's own texels are
-// a third sampling it does not model yet: docs/tolerance-model.md).
-constexpr int kSoftMinMapSize = 1024;
+// to the rows whose technique draws a shadow map and that do not pin their own map size, the soft
+// rows (pcss, vsm) included: at 512 texels their penumbrae on soft_penumbra are a few texels wide,
+// and the judge's texel error (compare/visibility.hpp) is what keeps their controls green there.
 int run_at(const Size& size) {
   int missed = 0, runs = 0;
   for (const Row& row : rows()) {
     const outputs::TechniqueName* t = outputs::find_technique_name(row.technique);
     const bool shadow_map = t && t->family != outputs::TechniqueFamily::ExactGeometry;
     if (size.shadow_map_size && (!shadow_map || row.shadow_map_size)) continue;
-    if (size.shadow_map_size && t->family == outputs::TechniqueFamily::SoftShadow && size.shadow_map_size < kSoftMinMapSize)
-      continue;
     const Control control = control_of(row);
     conform::ConformOptions o =
         options_for(std::string(row.convention), size.shadow_map_size ? size.shadow_map_size : row.shadow_map_size,
@@ -153,6 +175,16 @@ int run_at(const Size& size) {
       const conform::CaseResult& v = *variant.at(scene);
       const conform::CaseResult& c = *right.at(scene);
       const bool caught = v.status == Status::Fail && green(c.status);
+      if (const KnownMiss* k = known_miss(row.name, size.name)) {
+        const bool as_predicted = v.status == Status::Pass && green(c.status) && v.comparison &&
+                                  v.comparison->visibility_total && v.comparison->visibility_total->unexplained == 0;
+        missed += !as_predicted;
+        std::printf("%-38s %-28s variant %s, control %s   %s: %s\n", std::string(row.name).c_str(), scene.c_str(),
+                    numbers(v).c_str(), conform::to_string(c.status),
+                    as_predicted ? "a known miss, as predicted" : "<- NOT THE PREDICTED MISS (update kKnownMisses)",
+                    std::string(k->why).c_str());
+        continue;
+      }
       missed += !caught;
       std::printf("%-38s %-28s variant %s, control %s%s\n", std::string(row.name).c_str(), scene.c_str(),
                   numbers(v).c_str(), conform::to_string(c.status),

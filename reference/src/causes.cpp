@@ -270,45 +270,63 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
 
 namespace shadowref::reference {
 
-CauseModel::Band CauseModel::visibility_band(std::size_t light, int x, int y,
-                                             const outputs::CandidateDeclaration& d) const {
-  Band band;
+std::vector<double> CauseModel::fractions_around(std::size_t light, int x, int y, const outputs::CandidateDeclaration& d,
+                                                 const std::vector<std::array<double, 2>>& offsets) const {
+  std::vector<double> out;
   const std::optional<Surface> surface = surface_at(x, y);
-  if (!surface) return band;
+  if (!surface) return out;
   const Vec3<double>& p = surface->p;
   const Vec3<double>& n = surface->n;
-  const double zn = near_ndc_z(*scene_.convention), zf = far_ndc_z(*scene_.convention);
   const scene::Light& source = scene_.scene->lights[light];
-  const auto add = [&](const Vec3<double>& at) {
-    const double v = lit_fraction(*embree_, at, n, source);
-    band.lo = std::min(band.lo, v);
-    band.hi = std::max(band.hi, v);
-  };
-  add(p);
+  out.push_back(lit_fraction(*embree_, p, n, source));
   // The texels around p's in the map of the light's centre (the one view, or the cube face p is in).
+  const double zn = near_ndc_z(*scene_.convention), zf = far_ndc_z(*scene_.convention);
   const Vec4<double>& L = scene_.lights[light];
   const LightFit& fit = fit_for(light, d.shadow_map_size, 0);
   const LightView& view = fit.views[static_cast<std::size_t>(light_view_of(fit, L, p))];
   const Mat4<double> m = view.projection * view.view;
   const Vec4<double> h = m * Vec4<double>(p.x(), p.y(), p.z(), 1.0);
-  if (!(h.w() > 0)) return band;
+  if (!(h.w() > 0)) return out;
   const Vec3<double> q = h.head<3>() / h.w();
   const Mat4<double> inv = m.inverse();
   const double texel_ndc = 2.0 / fit.size;
+  for (const auto& o : offsets) {
+    const double mx = q.x() + o[0] * texel_ndc, my = q.y() + o[1] * texel_ndc;
+    const Vec3<double> a = unproject(inv, mx, my, zn), b = unproject(inv, mx, my, zf);
+    // Where that texel's ray crosses p's tangent plane (the receiver a filter compares against).
+    const double denom = n.dot(b - a);
+    if (std::abs(denom) < 1e-12) continue;
+    const double t = n.dot(p - a) / denom;
+    out.push_back(lit_fraction(*embree_, a + t * (b - a), n, source));
+  }
+  return out;
+}
+
+CauseModel::Band CauseModel::visibility_band(std::size_t light, int x, int y,
+                                             const outputs::CandidateDeclaration& d) const {
   const double radius = (d.light_views_from_pack ? 0.5 : 1.0) + d.filter_radius_texels;
   static constexpr std::array<std::array<double, 2>, 8> kDirs{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, 1},
                                                                {1, -1}, {-1, -1}}};
+  std::vector<std::array<double, 2>> offsets;
   for (const double r : {0.5 * radius, radius})
-    for (const auto& dv : kDirs) {
-      const double mx = q.x() + dv[0] * r * texel_ndc, my = q.y() + dv[1] * r * texel_ndc;
-      const Vec3<double> a = unproject(inv, mx, my, zn), b = unproject(inv, mx, my, zf);
-      // Where that texel's ray crosses p's tangent plane (the receiver a filter compares against).
-      const double denom = n.dot(b - a);
-      if (std::abs(denom) < 1e-12) continue;
-      const double t = n.dot(p - a) / denom;
-      add(a + t * (b - a));
-    }
+    for (const auto& dv : kDirs) offsets.push_back({dv[0] * r, dv[1] * r});
+  Band band;
+  for (const double v : fractions_around(light, x, y, d, offsets)) {
+    band.lo = std::min(band.lo, v);
+    band.hi = std::max(band.hi, v);
+  }
   return band;
+}
+
+double CauseModel::visibility_texel_shift(std::size_t light, int x, int y,
+                                          const outputs::CandidateDeclaration& d) const {
+  const double h = d.light_views_from_pack ? 0.5 : 1.0;
+  const double k = h * 0.5 * std::sqrt(2.0);
+  const std::vector<std::array<double, 2>> offsets{{h, 0}, {-h, 0}, {0, h}, {0, -h}, {k, k}, {-k, k}, {k, -k}, {-k, -k}};
+  const std::vector<double> f = fractions_around(light, x, y, d, offsets);
+  double shift = 0;
+  for (std::size_t i = 1; i < f.size(); ++i) shift = std::max(shift, std::abs(f[i] - f[0]));
+  return shift;
 }
 
 }  // namespace shadowref::reference

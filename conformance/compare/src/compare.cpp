@@ -324,7 +324,8 @@ FolderComparison compare_folders(const std::filesystem::path& reference_dir,
         outputs::read_exr(reference_dir / outputs::per_light_name("visibility", "exr", i, out.masks.size()), ref.width, ref.height);
     const Image8 cand_vis = read_image8(candidate_dir / vis, 1, ref.width, ref.height);
     out.visibility.back() =
-        compare_visibility(fraction, covered, cand_vis, cand, options.visibility[i], options.explain_visibility, i);
+        compare_visibility(fraction, covered, cand_vis, cand, options.visibility[i], options.explain_visibility, i,
+                           options.visibility_texel_shift);
     if (!out.visibility_total) out.visibility_total = VisibilityMetrics{};
     *out.visibility_total += out.visibility.back()->metrics;
   }
@@ -334,7 +335,7 @@ FolderComparison compare_folders(const std::filesystem::path& reference_dir,
 }
 
 void judge_visibility(const VisibilityMetrics& m, Judgement& j) {
-  char buf[256];
+  char buf[320];
   const auto fail = [&](const std::string& reason) {
     j.verdict = Verdict::Fail;
     j.reasons.push_back(reason);
@@ -349,26 +350,35 @@ void judge_visibility(const VisibilityMetrics& m, Judgement& j) {
                   100.0 * m.unexplained_ratio(), 100.0 * kPenumbra.unexplained_fail);
     fail(buf);
   }
+  // What the map's texels alone may leave, said where it was asked for (visibility.hpp).
+  const auto with_texels = [&m](double fail_bound) {
+    char s[96] = "";
+    if (m.sum_penumbra_texel_error > 0)
+      std::snprintf(s, sizeof s, "; with the map's texel error %.3f: %.3f", m.mean_penumbra_texel_error(), fail_bound);
+    return std::string(s);
+  };
   if (m.local_mean_error_bound == 0) {  // a grid: its plain mean judges the width
-    if (m.mean_penumbra_error() > m.mean_error_bound) {
-      std::snprintf(buf, sizeof buf, "visibility: mean error over the penumbra %.3f (bound %.3f, what sampling alone leaves)",
-                    m.mean_penumbra_error(), m.mean_error_bound);
+    if (m.mean_penumbra_error() > m.mean_error_fail()) {
+      std::snprintf(buf, sizeof buf,
+                    "visibility: mean error over the penumbra %.3f (bound %.3f, what sampling alone leaves%s)",
+                    m.mean_penumbra_error(), m.mean_error_bound, with_texels(m.mean_error_fail()).c_str());
       fail(buf);
     }
     return;
   }
   // Random taps: the width on the local means, the rest is the estimator's noise (visibility.hpp).
-  if (m.mean_penumbra_local_error() > m.local_mean_error_bound) {
+  if (m.mean_penumbra_local_error() > m.local_mean_error_fail()) {
     std::snprintf(buf, sizeof buf,
                   "visibility: mean error of the 3x3 local means over the penumbra %.3f (bound %.3f, what random taps "
-                  "leave): a penumbra of the wrong width",
-                  m.mean_penumbra_local_error(), m.local_mean_error_bound);
+                  "leave%s): a penumbra of the wrong width",
+                  m.mean_penumbra_local_error(), m.local_mean_error_bound, with_texels(m.local_mean_error_fail()).c_str());
     fail(buf);
-  } else if (m.mean_penumbra_error() > m.mean_error_bound) {
+  } else if (m.mean_penumbra_error() > m.mean_error_fail()) {
     std::snprintf(buf, sizeof buf,
-                  "visibility: noise: mean error over the penumbra %.3f beyond the declared taps' spread (bound %.3f); "
+                  "visibility: noise: mean error over the penumbra %.3f beyond the declared taps' spread (bound %.3f%s); "
                   "its local means are right (%.3f)",
-                  m.mean_penumbra_error(), m.mean_error_bound, m.mean_penumbra_local_error());
+                  m.mean_penumbra_error(), m.mean_error_bound, with_texels(m.mean_error_fail()).c_str(),
+                  m.mean_penumbra_local_error());
     if (j.verdict != Verdict::Fail) j.verdict = Verdict::QualityWarning;
     j.reasons.push_back(buf);
   }

@@ -49,6 +49,18 @@ double VisibilityMetrics::mean_penumbra_local_error() const {
   return penumbra == 0 ? 0.0 : sum_penumbra_local_error / static_cast<double>(penumbra);
 }
 
+double VisibilityMetrics::mean_penumbra_texel_error() const {
+  return penumbra == 0 ? 0.0 : sum_penumbra_texel_error / static_cast<double>(penumbra);
+}
+
+double VisibilityMetrics::mean_error_fail() const {
+  return penumbra == 0 ? mean_error_bound : sum_penumbra_error_fail / static_cast<double>(penumbra);
+}
+
+double VisibilityMetrics::local_mean_error_fail() const {
+  return penumbra == 0 ? local_mean_error_bound : sum_penumbra_local_error_fail / static_cast<double>(penumbra);
+}
+
 VisibilityMetrics& VisibilityMetrics::operator+=(const VisibilityMetrics& o) {
   judged += o.judged;
   penumbra += o.penumbra;
@@ -60,6 +72,9 @@ VisibilityMetrics& VisibilityMetrics::operator+=(const VisibilityMetrics& o) {
   unexplained_core += o.unexplained_core;
   sum_penumbra_error += o.sum_penumbra_error;
   sum_penumbra_local_error += o.sum_penumbra_local_error;
+  sum_penumbra_texel_error += o.sum_penumbra_texel_error;
+  sum_penumbra_error_fail += o.sum_penumbra_error_fail;
+  sum_penumbra_local_error_fail += o.sum_penumbra_local_error_fail;
   max_error = std::max(max_error, o.max_error);
   mean_error_bound = std::max(mean_error_bound, o.mean_error_bound);
   local_mean_error_bound = std::max(local_mean_error_bound, o.local_mean_error_bound);
@@ -69,7 +84,7 @@ VisibilityMetrics& VisibilityMetrics::operator+=(const VisibilityMetrics& o) {
 VisibilityComparison compare_visibility(const std::vector<float>& reference, const outputs::Image8& covered,
                                         const outputs::Image8& candidate, const outputs::Image8& candidate_mask,
                                         const VisibilityBounds& bounds, const VisibilityExplainer* explain,
-                                        std::size_t light) {
+                                        std::size_t light, const VisibilityTexelShift* texel_shift) {
   const double tolerance = bounds.tolerance;
   const int w = covered.width, h = covered.height;
   const std::size_t n = covered.pixel_count();
@@ -123,6 +138,24 @@ VisibilityComparison compare_visibility(const std::vector<float>& reference, con
         }
       m.sum_penumbra_local_error += std::abs(sum / count);
     }
+  // The texel shift, only where this light's means exceed sampling's bounds (a light within them
+  // needs none, and the sum over lights stays within the largest bound plus the shifts asked).
+  const bool beyond_sampling_means =
+      m.mean_penumbra_error() > m.mean_error_bound ||
+      (m.local_mean_error_bound > 0 && m.mean_penumbra_local_error() > m.local_mean_error_bound);
+  if (beyond_sampling_means && texel_shift && *texel_shift)
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+        if (code[i] == kNotJudged || !(reference[i] > 0 && reference[i] < 1)) continue;
+        // A uniform offset within +-h texels moves the fraction by half its largest change on average.
+        m.sum_penumbra_texel_error += 0.5 * (*texel_shift)(light, x, y);
+      }
+  // Sampling's error and the map's texel offset are independent and zero-mean over a penumbra: they
+  // add as variances (for Gaussian errors E|a + b| = sqrt(E|a|² + E|b|²) exactly).
+  const double p = static_cast<double>(m.penumbra);
+  m.sum_penumbra_error_fail = p * std::hypot(m.mean_error_bound, m.mean_penumbra_texel_error());
+  m.sum_penumbra_local_error_fail = p * std::hypot(m.local_mean_error_bound, m.mean_penumbra_texel_error());
   // Cores: a (2 kCoreRadius + 1)² block of unexplained pixels (compare.hpp).
   std::vector<std::uint8_t> unexplained(n);
   for (std::size_t i = 0; i < n; ++i) unexplained[i] = code[i] == kUnexplained;

@@ -197,6 +197,49 @@ TEST(VisibilityRandom, NoiseALocalMeanRemovesIsAWarningNotAWrongWidth) {
   EXPECT_EQ(grid.verdict, Verdict::Fail);
 }
 
+// The map's texels (visibility.hpp): where a light's mean error exceeds sampling's bound, each
+// penumbra pixel's texel shift is asked, and half its mean joins the bound in quadrature.
+TEST(VisibilityTexels, AreAskedOnlyWhereTheMeanExceedsSampling) {
+  const auto r = ramp();
+  int asked = 0;
+  const VisibilityTexelShift shift = [&asked](std::size_t, int, int) { return ++asked, 0.2; };
+  const VisibilityComparison c = compare_visibility(r, grey(255), fraction(r), grey(255), kGrid, nullptr, 0, &shift);
+  EXPECT_EQ(asked, 0) << "a fraction within sampling needs no texel";
+  EXPECT_EQ(c.metrics.mean_penumbra_texel_error(), 0.0);
+  EXPECT_DOUBLE_EQ(c.metrics.mean_error_fail(), kMeanBound);
+}
+
+TEST(VisibilityTexels, ForgiveAPenumbraAFewTexelsWide) {
+  // Every penumbra pixel 0.1 too light: beyond sampling's mean bound (0.0625), within its pixel
+  // tolerance. A map whose half texel moves the truth by 0.2 here (a penumbra 2.5 texels wide) may
+  // honestly leave 0.1 on average: hypot(0.0625, 0.1) = 0.118 holds it.
+  const auto r = ramp();
+  const Image8 cand = fraction(r, 0.1);
+  int asked = 0;
+  const VisibilityTexelShift coarse = [&asked](std::size_t, int, int) { return ++asked, 0.2; };
+  const VisibilityComparison c = compare_visibility(r, grey(255), cand, grey(255), kGrid, nullptr, 0, &coarse);
+  EXPECT_EQ(asked, static_cast<int>(c.metrics.penumbra)) << "each penumbra pixel asked once";
+  EXPECT_NEAR(c.metrics.mean_penumbra_texel_error(), 0.1, 1e-12);
+  EXPECT_NEAR(c.metrics.mean_error_fail(), std::hypot(kMeanBound, 0.1), 1e-12);
+  Judgement j;
+  judge_visibility(c.metrics, j);
+  EXPECT_EQ(j.verdict, Verdict::Pass) << (j.reasons.empty() ? "" : j.reasons[0]);
+  // Without a map (no texel shift) the same pixels are a wrong penumbra.
+  Judgement without;
+  judge_visibility(compare_visibility(r, grey(255), cand, grey(255), kGrid, nullptr, 0).metrics, without);
+  EXPECT_EQ(without.verdict, Verdict::Fail);
+}
+
+TEST(VisibilityTexels, DoNotForgiveAWrongWidthAFineMapResolves) {
+  // The same error where the map's half texel moves the truth by only 0.02: FAIL, the texel error named.
+  const auto r = ramp();
+  const VisibilityTexelShift fine = [](std::size_t, int, int) { return 0.02; };
+  Judgement j;
+  judge_visibility(compare_visibility(r, grey(255), fraction(r, 0.1), grey(255), kGrid, nullptr, 0, &fine).metrics, j);
+  EXPECT_EQ(j.verdict, Verdict::Fail);
+  EXPECT_TRUE(says(j, "texel error 0.010")) << (j.reasons.empty() ? "" : j.reasons[0]);
+}
+
 class VisibilityFolders : public ::testing::Test {
  protected:
   void SetUp() override {

@@ -21,6 +21,7 @@ namespace {
 struct Explainers {
   compare::Explainer mask;
   compare::VisibilityExplainer visibility;
+  compare::VisibilityTexelShift texel_shift;
 };
 
 compare::CompareOptions options_for(const scene::Scene& s, const compare::Threshold& threshold,
@@ -42,6 +43,10 @@ compare::CompareOptions options_for(const scene::Scene& s, const compare::Thresh
       return std::make_pair(b.lo, b.hi);
     };
     o.explain_visibility = &explainers.visibility;
+    explainers.texel_shift = [model, &declared](std::size_t light, int x, int y) {
+      return model->visibility_texel_shift(light, x, y, declared.for_light(light));
+    };
+    o.visibility_texel_shift = &explainers.texel_shift;
     for (std::size_t i = 0; i < s.lights.size(); ++i) {
       const scene::Light& l = s.lights[i];
       const outputs::CandidateDeclaration& d = declared.for_light(i);

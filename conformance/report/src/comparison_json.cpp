@@ -40,14 +40,17 @@ nlohmann::json to_json(const compare::VisibilityMetrics& m) {
           {"unexplained_percent_of_penumbra", 100.0 * m.unexplained_ratio()},
           {"mean_penumbra_error", m.mean_penumbra_error()},
           {"mean_penumbra_local_error", m.mean_penumbra_local_error()},
+          // Asked only where sampling's bound alone is exceeded (visibility.hpp); else 0.
+          {"mean_penumbra_texel_error", m.mean_penumbra_texel_error()},
           {"max_error", m.max_error},
           {"bounds",
            {{"unexplained_fail_percent_of_penumbra", 100.0 * compare::kPenumbra.unexplained_fail},
             // A grid: FAIL beyond it (a wrong width). Random taps: WARN beyond it (noise), and FAIL
-            // when the local means exceed mean_penumbra_local_error_fail.
-            {"mean_penumbra_error_fail", m.mean_error_bound},
+            // when the local means exceed mean_penumbra_local_error_fail. Each is sampling's bound
+            // plus the mean texel shift.
+            {"mean_penumbra_error_fail", m.mean_error_fail()},
             {"sampling", m.local_mean_error_bound > 0 ? "random" : "grid"},
-            {"mean_penumbra_local_error_fail", m.local_mean_error_bound},
+            {"mean_penumbra_local_error_fail", m.local_mean_error_bound > 0 ? m.local_mean_error_fail() : 0.0},
             {"why", compare::kPenumbra.why}}}};
 }
 

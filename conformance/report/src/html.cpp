@@ -240,6 +240,9 @@ void visibility_table(std::ostringstream& h, const json& v) {
   if (random)
     row("mean error of the 3x3 local means", num(v, "mean_penumbra_local_error", "%.3f") + " (bound " +
                                                  num(b, "mean_penumbra_local_error_fail", "%.3f") + ": the width)");
+  if (v.value("mean_penumbra_texel_error", 0.0) > 0)
+    row("the map's texel error", num(v, "mean_penumbra_texel_error", "%.3f") +
+                                     " over the penumbra, in both bounds in quadrature (a penumbra offset within half a texel)");
   row("unexplained", str(v, "unexplained") + " px (" + num(v, "unexplained_percent_of_penumbra") + " % of " +
                          str(v, "penumbra") + " penumbra px; bound " + num(b, "unexplained_fail_percent_of_penumbra") +
                          " %), core " + str(v, "unexplained_core") + " px");

@@ -31,6 +31,7 @@
 // only for wrong ones).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -101,6 +102,15 @@ class CauseModel {
   };
   Band visibility_band(std::size_t light, int x, int y, const outputs::CandidateDeclaration& declared) const;
 
+  // Soft shadows: the largest change of the true lit fraction of light `light` between p and the
+  // points of p's tangent plane that lie h texels of the declared map away (h = 1/2 on the pack's
+  // grid, 1 on the candidate's own; 8 directions, each h texels long). A map reads its caster at
+  // texel centres, so a correct map moves a penumbra by up to h texels, the same way along a whole
+  // straight edge; no filter averages that away. Where the penumbra is a few texels wide this is
+  // what the map's size alone leaves in the fraction (compare/visibility.hpp, the texel shift).
+  // 0 when the centre sees no surface. Cost: 9 · samples² shadow rays.
+  double visibility_texel_shift(std::size_t light, int x, int y, const outputs::CandidateDeclaration& declared) const;
+
  private:
   // The surface seen through pixel (x, y)'s centre (as the reference finds it): its point and its
   // face normal turned toward the viewer; nullopt when the centre sees none.
@@ -108,6 +118,11 @@ class CauseModel {
     Vec3<double> p, n;
   };
   std::optional<Surface> surface_at(int x, int y) const;
+  // The true lit fraction of light `light` at the pixel's surface point p (first) and at the points
+  // of p's tangent plane that the declared map's texels at `offsets` (in texels of p's light view,
+  // the one view or the cube face p is in) look at. Empty when the centre sees no surface.
+  std::vector<double> fractions_around(std::size_t light, int x, int y, const outputs::CandidateDeclaration& d,
+                                       const std::vector<std::array<double, 2>>& offsets) const;
   // p's place in the light view that decides it (the cube face, the cascade, the one view) at the
   // declared map size, and the depths and widths the probes need.
   struct Lookup {

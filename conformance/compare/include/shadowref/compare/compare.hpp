@@ -121,6 +121,7 @@ struct CompareOptions {
   // not judged. Judged lights need visibility.png (visibility_<i>.png) from the candidate.
   std::vector<VisibilityBounds> visibility;
   const VisibilityExplainer* explain_visibility = nullptr;
+  const VisibilityTexelShift* visibility_texel_shift = nullptr;  // null: the means get no texel shift
 };
 
 // Compares one mask. All three images are 1-channel and of the same size; throws

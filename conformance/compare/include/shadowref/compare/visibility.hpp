@@ -22,6 +22,15 @@
 // mean over a 3 x 3 neighbourhood removes most of it and none of a wrong width, whose error is
 // smooth. Its width is therefore judged on those local means, and what only the pixels show is
 // noise: a WARN beyond the spread its declared taps may leave, never a wrong penumbra.
+// A shadow map reads its casters at texel centres: a correct map moves a penumbra by up to half a
+// texel (a whole one on the candidate's own grid), the same way along a straight edge, and where a
+// penumbra is only a few texels wide (a small map, a caster near its receiver) that offset is an
+// error no sampling bound holds. When a light's mean error exceeds sampling's bound, the judge asks
+// each penumbra pixel's texel shift (reference/causes.hpp, visibility_texel_shift: how much the true
+// fraction changes over that distance); an offset uniform within it errs by half of it on average,
+// and that mean over the penumbra, the texel error, joins sampling's bounds in quadrature (two
+// independent zero-mean errors). A map's size is forgiven where it cannot resolve the penumbra; a
+// wrong width, spread over the whole band, is not.
 // Speed: one pass over the pixels; the explainer only for pixels beyond the tolerance.
 #pragma once
 
@@ -46,6 +55,12 @@ struct VisibilityMetrics {
   std::size_t unexplained_too_light_core = 0;  // the same over the too-light unexplained pixels alone
   double sum_penumbra_error = 0;     // sum of |e| over the penumbra
   double sum_penumbra_local_error = 0;  // sum over the penumbra of |the mean e over the judged 3 x 3 around|
+  double sum_penumbra_texel_error = 0;  // sum over the penumbra of half the texel shift (asked only
+                                        // where a light's mean exceeds sampling's bound; else 0)
+  // Each light's bounds for the means, sampling's and its texel error in quadrature, times its
+  // penumbra: summed over lights, a case passes whenever each of its lights does.
+  double sum_penumbra_error_fail = 0;
+  double sum_penumbra_local_error_fail = 0;
   double max_error = 0;              // largest |e| over the judged pixels
   double mean_error_bound = 0;       // VisibilityBounds::mean_error_bound of the light (the largest over lights)
   double local_mean_error_bound = 0; // VisibilityBounds::local_mean_error_bound (the largest; 0: grid sampling)
@@ -53,6 +68,11 @@ struct VisibilityMetrics {
   double unexplained_ratio() const;     // unexplained / penumbra (0 without a penumbra)
   double mean_penumbra_error() const;   // sum_penumbra_error / penumbra (0 without a penumbra)
   double mean_penumbra_local_error() const;  // sum_penumbra_local_error / penumbra
+  double mean_penumbra_texel_error() const;  // sum_penumbra_texel_error / penumbra
+  // The bounds the verdict holds the means to: per light, sampling's and the texel error in
+  // quadrature, averaged over the lights' penumbrae (sampling's bound without a penumbra).
+  double mean_error_fail() const;
+  double local_mean_error_fail() const;
   VisibilityMetrics& operator+=(const VisibilityMetrics& other);
 };
 
@@ -92,13 +112,17 @@ VisibilityBounds visibility_bounds(int reference_samples, int candidate_taps, ou
 // [lo, hi] of the true fraction over the declared footprint of pixel (x, y) for light `light`
 // (reference::CauseModel::visibility_band); lo > hi: no surface there.
 using VisibilityExplainer = std::function<std::pair<double, double>(std::size_t light, int x, int y)>;
+// The texel shift of pixel (x, y) for light `light` (reference::CauseModel::visibility_texel_shift):
+// the largest change of the true fraction over the declared map's texel uncertainty.
+using VisibilityTexelShift = std::function<double(std::size_t light, int x, int y)>;
 
 // Compares one light's fractions. `reference` is width · height floats (−1: no surface), `covered`,
 // `candidate` (round(255 · fraction)) and `candidate_mask` (its 128 = no surface) are grey images of
-// that size (the caller has checked the sizes). `explain` may be null: nothing is explained.
+// that size (the caller has checked the sizes). `explain` may be null: nothing is explained;
+// `texel_shift` may be null: no map (the means are held to sampling's bounds alone).
 VisibilityComparison compare_visibility(const std::vector<float>& reference, const outputs::Image8& covered,
                                         const outputs::Image8& candidate, const outputs::Image8& candidate_mask,
                                         const VisibilityBounds& bounds, const VisibilityExplainer* explain,
-                                        std::size_t light);
+                                        std::size_t light, const VisibilityTexelShift* texel_shift = nullptr);
 
 }  // namespace shadowref::compare

@@ -12,7 +12,8 @@ namespace shadowref::report {
 //  "false_light", "coverage", "off_values", "regions", "largest_region"}
 nlohmann::json to_json(const compare::MaskMetrics& m);
 // Soft shadows: {"judged", "penumbra", "beyond_sampling", "explained_footprint", "unexplained",
-//  "unexplained_core", "unexplained_percent_of_penumbra", "mean_penumbra_error", "max_error", "bounds"}
+//  "unexplained_core", "unexplained_percent_of_penumbra", "mean_penumbra_error", "mean_penumbra_local_error",
+//  "mean_penumbra_texel_error", "max_error", "bounds"}
 nlohmann::json to_json(const compare::VisibilityMetrics& m);
 // {"name", "pass_fraction", "fail_fraction", "pass_region", "fail_region", "why"}
 nlohmann::json to_json(const compare::Threshold& t);
