@@ -29,6 +29,7 @@ struct ConformArgs {
   std::string convention = "gl";
   int shadow_map_size = 0;
   int random_taps = 0;
+  std::string depth_faces = "back";
   double resolution_scale = 1.0;
   std::string resolution;
   std::string backend = "llvmpipe";
@@ -57,6 +58,7 @@ int run_conform_command(const ConformArgs& a) {
   o.convention = &parse_convention(a.convention);
   o.shadow_map_size = a.shadow_map_size;
   o.random_taps = a.random_taps;
+  o.depth_faces = outputs::depth_faces_from(a.depth_faces).value();
   o.resolution_scale = a.resolution_scale;
   if (!a.resolution.empty()) {
     const Size2 size = parse_size("--resolution", a.resolution, outputs::kMaxResolution);
@@ -187,6 +189,11 @@ void register_conform_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--random-taps", args->random_taps, "0: every filter on its fixed grid; N (a square, 4..64): our PCF and PCSS take N taps of a Vogel disk turned per pixel by noise (declared \"sampling\": \"random\")")
       ->check(random_taps_check())
+      ->capture_default_str();
+  cmd->add_option("--depth-faces", args->depth_faces,
+                  "the faces our hard shadow maps' depth pass draws on closed casters: back (front faces culled), "
+                  "front (back faces culled) or both; declared as \"depth_faces\"")
+      ->check(CLI::IsMember({"back", "front", "both"}))
       ->capture_default_str();
   cmd->add_option("--backend", args->backend, "Mesa driver: llvmpipe, softpipe, or native (a GPU's EGL)")->capture_default_str();
   cmd->add_option("--gl", args->gl, "context: osmesa or egl")->capture_default_str();

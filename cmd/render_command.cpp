@@ -31,6 +31,7 @@ struct RenderArgs {
   int shadow_map_size = 0;
   int frames = 1;
   int random_taps = 0;
+  std::string depth_faces = "back";
 };
 
 std::string technique_help() {
@@ -69,6 +70,7 @@ void run_render(const RenderArgs& a) {
   renderer::RenderOptions options;
   options.frames = a.frames;
   options.random_taps = a.random_taps;
+  options.depth_faces = outputs::depth_faces_from(a.depth_faces).value();
   scene::PrepareOptions prepare;
   prepare.shadow_map_size = a.shadow_map_size;
   const RunConvention& convention = parse_convention(a.convention);
@@ -115,6 +117,11 @@ void register_render_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--random-taps", args->random_taps, "0: every filter on its fixed grid; N (a square, 4..64): PCF and PCSS take N taps of a Vogel disk turned per pixel by noise (declared \"sampling\": \"random\")")
       ->check(random_taps_check())
+      ->capture_default_str();
+  cmd->add_option("--depth-faces", args->depth_faces,
+                  "the faces our hard shadow maps' depth pass draws on closed casters: back (front faces culled), "
+                  "front (back faces culled) or both; declared as \"depth_faces\"")
+      ->check(CLI::IsMember({"back", "front", "both"}))
       ->capture_default_str();
   cmd->add_option("--frames", args->frames, "frames to render and time (render.json keeps the median)")
       ->check(CLI::Range(1, 1000))

@@ -628,6 +628,11 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_
         result.declaration.light_taps = static_cast<int>(std::lround(std::sqrt(options.random_taps)));
         result.declaration.filter_radius_texels = kRandomPcfRadiusTexels;
       }
+      // The faces its depth pass draws on closed casters (shadow_map.cpp): the soft maps' first surfaces
+      // are drawn from both sides; the others as asked.
+      result.declaration.depth_faces = named && named->family == outputs::TechniqueFamily::SoftShadow
+                                           ? outputs::DepthFaces::Both
+                                           : options.depth_faces;
       result.declaration.light_views_from_pack = true;  // the prepared scene's light fits: the pack's
       result.declaration.defaulted.clear();
     }

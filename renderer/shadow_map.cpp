@@ -21,7 +21,8 @@
 //                    read through Chebyshev's bound (shaders.cpp); other lights as shadowmap-pcf.
 // shadowmap-pcf, pcss and vsm also write the lit fraction (visibility.png).
 // Bias: the depth pass culls front faces of closed casters (the map then holds back faces, so a
-// lit surface is never compared against itself) and uses glPolygonOffset(kOffsetFactor,
+// lit surface is never compared against itself; RenderOptions::depth_faces may draw the front faces
+// or both instead, as engines do) and uses glPolygonOffset(kOffsetFactor,
 // kOffsetUnits), PCF's maps kPcfOffsetFactor (frame.hpp: the kernel's reach); open meshes (a
 // ground quad, a leaf) are drawn two-sided, since culling would drop whichever side faces the light. The RGBA8 pass applies the same offset in its shader.
 // The light's views come from the prepared scene (mathlib's light_fit.hpp: one orthographic view
@@ -351,11 +352,13 @@ void draw_depth_pass(const Frame& frame, const LightFit& lc, const std::vector<M
   const GlFunctions& gl = frame.gl;
   const ShadowMapFaults& faults = frame.faults().shadow_map;
   const auto layers = static_cast<GLsizei>(lc.views.size());
-  gl.CullFace(GL_FRONT);
+  // RenderOptions::depth_faces: the faces culled on closed casters (none for `both`).
+  const outputs::DepthFaces faces = frame.options.depth_faces;
+  gl.CullFace(faces == outputs::DepthFaces::Front ? GL_BACK : GL_FRONT);
   // PCSS averages the depths of the first surfaces toward the light (the blockers), so its map keeps
   // front faces; its receiver-plane compare stands in for the culling's protection from self-shadowing.
   // (VSM's moments are those of the same first surfaces.)
-  const bool cull = !soft(variant);
+  const bool cull = !soft(variant) && faces != outputs::DepthFaces::Both;
   for (GLsizei face = 0; face < layers; ++face) {
     const auto k = static_cast<std::size_t>(face);
     const LightView& view = lc.views[k];

@@ -17,6 +17,12 @@
 
 namespace shadowref::outputs {
 
+std::optional<DepthFaces> depth_faces_from(std::string_view name) {
+  for (const DepthFaces f : {DepthFaces::Front, DepthFaces::Back, DepthFaces::Both})
+    if (name == to_string(f)) return f;
+  return std::nullopt;
+}
+
 const char* to_string(DepthFaces f) {
   switch (f) {
     case DepthFaces::Front: return "front";
@@ -115,9 +121,9 @@ void read_keys(const Json& j, CandidateDeclaration& d, std::set<std::string>& gi
   number_key("depth_bias", d.depth_bias, 1.0);
   if (j.contains("depth_faces")) {
     const Json& f = j["depth_faces"];
-    if (!f.is_string() || (f != "front" && f != "back" && f != "both"))
-      throw bad(where + "depth_faces: must be \"front\", \"back\" or \"both\"");
-    d.depth_faces = f == "front" ? DepthFaces::Front : f == "back" ? DepthFaces::Back : DepthFaces::Both;
+    const std::optional<DepthFaces> faces = f.is_string() ? depth_faces_from(f.get<std::string>()) : std::nullopt;
+    if (!faces) throw bad(where + "depth_faces: must be \"front\", \"back\" or \"both\"");
+    d.depth_faces = *faces;
     given.insert("depth_faces");
   }
   if (j.contains("depth")) {

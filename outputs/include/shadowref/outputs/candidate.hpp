@@ -66,7 +66,9 @@
 
 #include <array>
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace shadowref::outputs {
@@ -89,6 +91,7 @@ inline constexpr std::size_t kMaxDeclaredLights = 64;
 // The faces a depth pass draws.
 enum class DepthFaces { Front, Back, Both };
 const char* to_string(DepthFaces f);  // "front", "back", "both"
+std::optional<DepthFaces> depth_faces_from(std::string_view name);  // to_string's inverse; nullopt otherwise
 
 // What a shadow map stores: the light projection's window depth, or the distance from the light.
 enum class StoredDepth { Window, Distance };

@@ -50,6 +50,12 @@ struct RenderOptions {
   // noise, as engines commonly do; PCF's disk reaches sqrt(2) texels. A correct render, declared
   // "sampling": "random" with light_taps sqrt(N). VSM's filter stays a grid.
   int random_taps = 0;
+  // The faces the hard shadow maps' depth pass draws on closed casters: back (front faces culled,
+  // the default: a lit surface is never compared with itself), front (back faces culled: the first
+  // surfaces, as many engines draw them, held off themselves by the slope bias alone) or both. Open
+  // casters are always drawn two-sided; PCSS and VSM always draw the first surfaces. Declared as
+  // "depth_faces". Each is a correct render.
+  outputs::DepthFaces depth_faces = outputs::DepthFaces::Back;
   // Deliberate bugs for the conformance suite's teeth (faults.hpp); all off: production.
   Faults faults;
 };

@@ -43,6 +43,7 @@ struct ConformOptions {
   const RunConvention* convention = &kDefaultConvention;  // the run convention (mathlib/convention.hpp)
   int shadow_map_size = 0;                      // texels per side of our shadow maps; 0: automatic
   int random_taps = 0;                          // our filters' randomized kernel (renderer::RenderOptions)
+  outputs::DepthFaces depth_faces = outputs::DepthFaces::Back;  // our depth passes' faces (renderer::RenderOptions)
   // Every scene rendered at another resolution (an engine's own): scale factor, or [W, H] (0: keep).
   double resolution_scale = 1.0;
   int width = 0, height = 0;
