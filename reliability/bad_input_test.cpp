@@ -585,6 +585,13 @@ std::vector<CandidateCase> candidate_cases() {
        "@/candidate.json: lights[0].slope_bias_texels: must be a number"},
       {"declaration_distance_bias_without_range", "one", text("candidate.json", R"({"depth": "distance", "depth_bias": 0.01})"),
        "@/candidate.json: depth_range: a \"distance\" map's depth_bias is in units of its range"},
+      {"declaration_atlas_tile_and_map_size", "one",
+       text("candidate.json", R"({"shadow_map_size": 512, "atlas_tile": {"size": 683, "guard_band": 8}})"),
+       "@/candidate.json: atlas_tile: give the tile or shadow_map_size, not both"},
+      {"declaration_atlas_tile_all_guard_band", "two", text("candidate.json", R"({"lights": [{"atlas_tile": {"size": 64, "guard_band": 30}}]})"),
+       "@/candidate.json: lights[0].atlas_tile: the size less twice the guard band must be in [16, 16384]"},
+      {"declaration_atlas_tile_not_integers", "one", text("candidate.json", R"({"atlas_tile": {"size": "683"}})"),
+       "@/candidate.json: atlas_tile: must be {\"size\": texels, \"guard_band\": texels per side} (integers)"},
       {"declaration_more_lights_than_scene", "one", text("candidate.json", R"({"lights": [{}, {}]})"),
        "@/candidate.json: lights: 2 entries, but scene 'one' has 1 light(s)"},
   };

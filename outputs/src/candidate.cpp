@@ -91,6 +91,25 @@ void read_keys(const Json& j, CandidateDeclaration& d, std::set<std::string>& gi
     const auto v = j["shadow_map_size"].get<long long>();
     if (const std::string p = shadow_map_size_problem(v); !p.empty()) throw bad(where + "shadow_map_size: " + p);
     d.shadow_map_size = static_cast<int>(v);
+    d.atlas_tile_size = d.atlas_guard_band = 0;  // a light's own size replaces the top level's tile
+    given.insert("shadow_map_size");
+  }
+  if (j.contains("atlas_tile")) {
+    const std::string key = where + "atlas_tile";
+    const Json& a = j["atlas_tile"];
+    if (j.contains("shadow_map_size"))
+      throw bad(key + ": give the tile or shadow_map_size, not both (a tile's map size is its size less its guard bands)");
+    if (!a.is_object() || !a.contains("size") || !a["size"].is_number_integer() ||
+        (a.contains("guard_band") && !a["guard_band"].is_number_integer()) || a.size() != (a.contains("guard_band") ? 2u : 1u))
+      throw bad(key + ": must be {\"size\": texels, \"guard_band\": texels per side} (integers)");
+    const auto size = a["size"].get<long long>(), guard = a.value("guard_band", 0LL);
+    if (guard < 0 || size < 0 || size - 2 * guard < kMinShadowMapSize || size > kMaxShadowMapSize)
+      throw bad(key + ": the size less twice the guard band must be in [" + std::to_string(kMinShadowMapSize) + ", " +
+                std::to_string(kMaxShadowMapSize) + "] (got " + std::to_string(size) + " - 2 x " + std::to_string(guard) + ")");
+    d.atlas_tile_size = static_cast<int>(size);
+    d.atlas_guard_band = static_cast<int>(guard);
+    d.shadow_map_size = static_cast<int>(size - 2 * guard);
+    given.insert("atlas_tile");
     given.insert("shadow_map_size");
   }
   if (where.empty()) {
@@ -199,7 +218,10 @@ std::string declaration_text(const CandidateDeclaration& d) {
   j["version"] = d.version;
   j["technique"] = d.technique;
   j["convention"] = d.convention;
-  j["shadow_map_size"] = d.shadow_map_size;
+  if (d.atlas_tile_size > 0)
+    j["atlas_tile"] = {{"size", d.atlas_tile_size}, {"guard_band", d.atlas_guard_band}};
+  else
+    j["shadow_map_size"] = d.shadow_map_size;
   j["filter_radius_texels"] = d.filter_radius_texels;
   j["slope_bias_texels"] = d.slope_bias_texels;
   j["constant_bias"] = d.constant_bias;

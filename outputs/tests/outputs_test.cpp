@@ -63,6 +63,31 @@ TEST(Declaration, PerLightEntriesOverrideTheTopLevel) {
   fs::remove_all(dir);
 }
 
+TEST(Declaration, AnAtlasTileIsItsSizeLessItsGuardBands) {
+  const fs::path dir = fs::temp_directory_path() / ("shadowref-atlas-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / kCandidateFile) << R"({"atlas_tile": {"size": 683, "guard_band": 8},
+    "lights": [{}, {"shadow_map_size": 1024}, {"atlas_tile": {"size": 512}}]})";
+  const CandidateDeclaration d = read_declaration(dir, "shadowmap");
+  EXPECT_EQ(d.shadow_map_size, 683 - 2 * 8) << "the view spans the tile less its guard bands";
+  EXPECT_EQ(d.atlas_tile_size, 683);
+  EXPECT_EQ(d.for_light(0).shadow_map_size, 667);
+  EXPECT_EQ(d.for_light(1).shadow_map_size, 1024);
+  EXPECT_EQ(d.for_light(1).atlas_tile_size, 0) << "a light's own map size replaces the tile";
+  EXPECT_EQ(d.for_light(2).shadow_map_size, 512) << "no guard band: the whole tile";
+  EXPECT_EQ(std::count(d.defaulted.begin(), d.defaulted.end(), std::string("shadow_map_size")), 0);
+  // Written back as a tile (never beside shadow_map_size, which the reader refuses), read the same.
+  const std::string text = declaration_text(d);
+  EXPECT_EQ(text.find("\"shadow_map_size\": 667"), std::string::npos);
+  std::ofstream(dir / kCandidateFile) << text;
+  const CandidateDeclaration again = read_declaration(dir, "shadowmap");
+  EXPECT_EQ(again.shadow_map_size, 667);
+  EXPECT_EQ(again.for_light(1).shadow_map_size, 1024);
+  EXPECT_EQ(again.for_light(2).shadow_map_size, 512);
+  EXPECT_EQ(declaration_text(again), text);
+  fs::remove_all(dir);
+}
+
 TEST(FileNames, OneLightHasNoIndexSeveralDo) {
   EXPECT_EQ(mask_name(0, 1), "mask.png");
   EXPECT_EQ(mask_name(0, 2), "mask_0.png");

@@ -388,7 +388,12 @@ void case_info(std::ostringstream& h, const json& c) {
     h << "<div class=\"notes\">candidate: " << escape_html(str(d, "producer")) << " " << escape_html(str(d, "version"))
       << " · " << escape_html(str(d, "convention"));
     if (map_settings)
-      h << " · map " << escape_html(str(d, "shadow_map_size"))
+      h << " · map "
+        << (d.contains("atlas_tile") && d["atlas_tile"].is_object()
+                ? std::to_string(d["atlas_tile"].value("size", 0) - 2 * d["atlas_tile"].value("guard_band", 0)) +
+                      " (an atlas tile of " + escape_html(str(d["atlas_tile"], "size")) + " with a guard band of " +
+                      escape_html(str(d["atlas_tile"], "guard_band")) + ")"
+                : escape_html(str(d, "shadow_map_size")))
       << " · filter " << escape_html(str(d, "filter_radius_texels")) << " texel · light taps "
       << escape_html(str(d, "light_taps", "8")) << " (" << escape_html(str(d, "sampling", "grid")) << ") · slope bias "
       << escape_html(str(d, "slope_bias_texels")) << " · constant bias " << escape_html(str(d, "constant_bias"))

@@ -79,11 +79,11 @@ inline constexpr int kMaxLightTaps = 64;
 inline constexpr const char* kCandidateFile = "candidate.json";
 
 // Every key candidate.json may hold, the one list (the reader, `defaulted`, the pack README's table).
-inline constexpr std::array<const char*, 20> kCandidateKeys{
+inline constexpr std::array<const char*, 21> kCandidateKeys{
     "producer",          "version",       "technique",   "convention", "shadow_map_size",
-    "filter_radius_texels", "slope_bias_texels", "constant_bias", "light_views", "cascades",
-    "light_taps",        "sampling",      "normal_offset", "normal_offset_texels", "depth_bias",
-    "depth_faces",       "depth",         "depth_range", "settings",    "lights"};
+    "atlas_tile",        "filter_radius_texels", "slope_bias_texels", "constant_bias", "light_views",
+    "cascades",          "light_taps",    "sampling",    "normal_offset", "normal_offset_texels",
+    "depth_bias",        "depth_faces",   "depth",       "depth_range", "settings",    "lights"};
 
 // The most `lights` entries a declaration may give (a scene's lights are far fewer).
 inline constexpr std::size_t kMaxDeclaredLights = 64;
@@ -107,6 +107,12 @@ struct CandidateDeclaration {
   std::string technique;               // empty: the technique the judge was asked for
   std::string convention = "gl";
   int shadow_map_size = 0;             // 0: automatic (the fit of mathlib/light_fit.hpp)
+  // "atlas_tile": {"size": T, "guard_band": G}: the light's map is a T x T tile of a shadow atlas
+  // whose G texels along each side are a guard band beyond the view (filter taps at the view's edge
+  // stay in the tile). The view spans T - 2G texels, and that is its map size: shadow_map_size is
+  // set to it (giving both keys is refused). 0: not an atlas tile.
+  int atlas_tile_size = 0;
+  int atlas_guard_band = 0;
   double filter_radius_texels = 0.0;   // shadowmap-pcf's default: 1 (3 × 3)
   double slope_bias_texels = 2.0;      // our renderer's glPolygonOffset factor (its PCF maps: 3)
   double constant_bias = 0.0;
