@@ -30,6 +30,7 @@ struct ConformArgs {
   int shadow_map_size = 0;
   int random_taps = 0;
   std::string depth_faces = "back";
+  int guard_band = 0;
   double resolution_scale = 1.0;
   std::string resolution;
   std::string backend = "llvmpipe";
@@ -59,6 +60,10 @@ int run_conform_command(const ConformArgs& a) {
   o.shadow_map_size = a.shadow_map_size;
   o.random_taps = a.random_taps;
   o.depth_faces = outputs::depth_faces_from(a.depth_faces).value();
+  o.guard_band_texels = a.guard_band;
+  if (a.shadow_map_size + 2 * a.guard_band > outputs::kMaxShadowMapSize)
+    throw BadInput("--guard-band " + std::to_string(a.guard_band) + ": a map of " + std::to_string(a.shadow_map_size) +
+                   " texels with the band on both sides exceeds " + std::to_string(outputs::kMaxShadowMapSize) + " texels");
   o.resolution_scale = a.resolution_scale;
   if (!a.resolution.empty()) {
     const Size2 size = parse_size("--resolution", a.resolution, outputs::kMaxResolution);
@@ -194,6 +199,11 @@ void register_conform_command(CLI::App& app, int& exit_code) {
                   "the faces our hard shadow maps' depth pass draws on closed casters: back (front faces culled), "
                   "front (back faces culled) or both; declared as \"depth_faces\"")
       ->check(CLI::IsMember({"back", "front", "both"}))
+      ->capture_default_str();
+  cmd->add_option("--guard-band", args->guard_band,
+                  "texels each light's map gains along every side beyond its view, as a shadow-atlas tile's guard band "
+                  "(the view keeps its texel grid); declared per light as \"atlas_tile\"")
+      ->check(CLI::Range(0, outputs::kMaxGuardBandTexels))
       ->capture_default_str();
   cmd->add_option("--backend", args->backend, "Mesa driver: llvmpipe, softpipe, or native (a GPU's EGL)")->capture_default_str();
   cmd->add_option("--gl", args->gl, "context: osmesa or egl")->capture_default_str();

@@ -14,6 +14,7 @@
 #include "command.hpp"
 #include "shadowref/renderer/renderer.hpp"
 #include "shadowref/convention.hpp"
+#include "shadowref/outputs/limits.hpp"
 #include "shadowref/scene/load_scene.hpp"
 #include "shadowref/scene/prepared_scene.hpp"
 
@@ -32,6 +33,7 @@ struct RenderArgs {
   int frames = 1;
   int random_taps = 0;
   std::string depth_faces = "back";
+  int guard_band = 0;
 };
 
 std::string technique_help() {
@@ -71,6 +73,10 @@ void run_render(const RenderArgs& a) {
   options.frames = a.frames;
   options.random_taps = a.random_taps;
   options.depth_faces = outputs::depth_faces_from(a.depth_faces).value();
+  options.guard_band_texels = a.guard_band;
+  if (a.shadow_map_size + 2 * a.guard_band > outputs::kMaxShadowMapSize)
+    throw BadInput("--guard-band " + std::to_string(a.guard_band) + ": a map of " + std::to_string(a.shadow_map_size) +
+                   " texels with the band on both sides exceeds " + std::to_string(outputs::kMaxShadowMapSize) + " texels");
   scene::PrepareOptions prepare;
   prepare.shadow_map_size = a.shadow_map_size;
   const RunConvention& convention = parse_convention(a.convention);
@@ -122,6 +128,11 @@ void register_render_command(CLI::App& app, int& exit_code) {
                   "the faces our hard shadow maps' depth pass draws on closed casters: back (front faces culled), "
                   "front (back faces culled) or both; declared as \"depth_faces\"")
       ->check(CLI::IsMember({"back", "front", "both"}))
+      ->capture_default_str();
+  cmd->add_option("--guard-band", args->guard_band,
+                  "texels each light's map gains along every side beyond its view, as a shadow-atlas tile's guard band "
+                  "(the view keeps its texel grid); declared per light as \"atlas_tile\"")
+      ->check(CLI::Range(0, outputs::kMaxGuardBandTexels))
       ->capture_default_str();
   cmd->add_option("--frames", args->frames, "frames to render and time (render.json keeps the median)")
       ->check(CLI::Range(1, 1000))

@@ -634,6 +634,16 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_
                                            ? outputs::DepthFaces::Both
                                            : options.depth_faces;
       result.declaration.light_views_from_pack = true;  // the prepared scene's light fits: the pack's
+      // A guard band: each light's map is an atlas tile around the view of its fit (shadow_map.cpp).
+      if (const int g = options.guard_band_texels; g > 0 && named && named->family != outputs::TechniqueFamily::ExactGeometry)
+        for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+          outputs::CandidateDeclaration light = result.declaration;
+          const int size = (named->cascaded ? prepared.cascade_fits[i] : prepared.light_fits[i]).size;
+          light.atlas_tile_size = size + 2 * g;
+          light.atlas_guard_band = g;
+          light.shadow_map_size = size;
+          result.declaration.lights.push_back(light);
+        }
       result.declaration.defaulted.clear();
     }
     result.frame_ms.push_back(ms);

@@ -219,9 +219,13 @@ std::vector<Mat4<double>> light_matrices(const Frame& frame, const LightFit& lc,
     shift(0, 3) = shift(1, 3) = 0.5 / map.size;
     bias = shift * bias;
   }
+  // RenderOptions::guard_band_texels: the view shrunk into the map's middle lc.size texels.
+  const double guard_scale = static_cast<double>(lc.size) / static_cast<double>(map.size);
   std::vector<Mat4<double>> projections;
-  for (const LightView& v : lc.views)
+  for (const LightView& v : lc.views) {
     projections.push_back(faults.fit == FitFault::None ? v.projection : fit_with_fault(conv, v.projection, faults.fit));
+    projections.back() = Vec4<double>(guard_scale, guard_scale, 1, 1).asDiagonal() * projections.back();
+  }
   for (std::size_t k = 0; k < lc.views.size(); ++k) {
     const Mat4<double> m = bias * projections[k] * lc.views[k].view;
     map.face_from_world.push_back(to_float(m));
@@ -399,7 +403,7 @@ LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant varian
   const GlFunctions& gl = frame.gl;
   LightMap map;
   map.gl = &gl;
-  map.size = lc.size;
+  map.size = lc.size + 2 * frame.options.guard_band_texels;
   map.layout = lc.cube ? 1 : lc.cascade_splits.empty() ? 0 : 2;
   select_cascades(frame, lc, map);
   const std::vector<Mat4<double>> projections = light_matrices(frame, lc, map);

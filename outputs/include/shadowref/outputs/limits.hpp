@@ -24,6 +24,10 @@ inline std::string shadow_map_size_problem(long long texels) {
   return "must be 0 (automatic) or in [" + std::to_string(kMinShadowMapSize) + ", " + std::to_string(kMaxShadowMapSize) + "]";
 }
 
+// Our renderer's guard band (--guard-band): at most this many texels along each side of a light's
+// map (engines' atlases keep a few; 64 holds any filter of the catalogue).
+inline constexpr int kMaxGuardBandTexels = 64;
+
 // Our renderer's randomized kernel (--random-taps): N taps, a square of 2 .. 8 per axis, so that
 // candidate.json's light_taps (taps per axis) says it exactly; 0: the filters' fixed grids.
 inline constexpr int kMinRandomTapsPerAxis = 2, kMaxRandomTapsPerAxis = 8;

@@ -56,6 +56,11 @@ struct RenderOptions {
   // casters are always drawn two-sided; PCSS and VSM always draw the first surfaces. Declared as
   // "depth_faces". Each is a correct render.
   outputs::DepthFaces depth_faces = outputs::DepthFaces::Back;
+  // Texels each light's map gains along every side beyond its view, as a shadow atlas's tile has: the
+  // map is (fit size + 2 G) texels, the projection's x and y scaled by size / (size + 2 G) so that the
+  // view keeps its texel grid (the pack's), and the band holds what lies beyond it. Declared per
+  // light as "atlas_tile": {"size": size + 2 G, "guard_band": G}. 0: none.
+  int guard_band_texels = 0;
   // Deliberate bugs for the conformance suite's teeth (faults.hpp); all off: production.
   Faults faults;
 };

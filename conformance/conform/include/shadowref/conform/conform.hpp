@@ -44,6 +44,7 @@ struct ConformOptions {
   int shadow_map_size = 0;                      // texels per side of our shadow maps; 0: automatic
   int random_taps = 0;                          // our filters' randomized kernel (renderer::RenderOptions)
   outputs::DepthFaces depth_faces = outputs::DepthFaces::Back;  // our depth passes' faces (renderer::RenderOptions)
+  int guard_band_texels = 0;                    // our maps' atlas guard band (renderer::RenderOptions)
   // Every scene rendered at another resolution (an engine's own): scale factor, or [W, H] (0: keep).
   double resolution_scale = 1.0;
   int width = 0, height = 0;
