@@ -81,12 +81,13 @@ inline constexpr Threshold kShadowMapPcf{
     "as shadow-map, with the footprint widened by the filter radius the candidate declares (filter_radius_texels, "
     "listed with its declaration; our 3x3 PCF box declares 1 texel)"};
 
-// PCSS: its mask as PCF's (the filter's 3x3 floor), and its visibility judged in visibility units
-// where the light has an area (compare.hpp, compare_visibility).
+// PCSS and VSM: the mask as PCF's (the footprint widened by the declared filter radius), and the
+// visibility judged in visibility units where the light has an area (compare.hpp, compare_visibility).
 inline constexpr Threshold kSoftShadow{
     "soft-shadow", true, 0.03, 0.5,
-    "the mask as shadow-map-pcf (3x3 floor of the filter); the lit fraction, where the light has an area, in "
-    "visibility units (kPenumbra)"};
+    "the mask as shadow-map-pcf (the footprint widened by the declared filter radius); the lit fraction, where "
+    "the light has an area, in visibility units: sampling's mean bound, with the map's texel error where it is "
+    "exceeded (kPenumbra)"};
 
 // Soft shadows in visibility units (visibility.hpp): the bound on the unexplained part of a soft
 // technique's penumbra. (Its other bound, the mean error over the penumbra, follows from the light's
