@@ -31,6 +31,7 @@ struct ConformArgs {
   int random_taps = 0;
   std::string depth_faces = "back";
   int guard_band = 0;
+  double normal_offset_texels = 0;
   double resolution_scale = 1.0;
   std::string resolution;
   std::string backend = "llvmpipe";
@@ -61,6 +62,7 @@ int run_conform_command(const ConformArgs& a) {
   o.random_taps = a.random_taps;
   o.depth_faces = outputs::depth_faces_from(a.depth_faces).value();
   o.guard_band_texels = a.guard_band;
+  o.normal_offset_texels = a.normal_offset_texels;
   if (a.shadow_map_size + 2 * a.guard_band > outputs::kMaxShadowMapSize)
     throw BadInput("--guard-band " + std::to_string(a.guard_band) + ": a map of " + std::to_string(a.shadow_map_size) +
                    " texels with the band on both sides exceeds " + std::to_string(outputs::kMaxShadowMapSize) + " texels");
@@ -204,6 +206,11 @@ void register_conform_command(CLI::App& app, int& exit_code) {
                   "texels each light's map gains along every side beyond its view, as a shadow-atlas tile's guard band "
                   "(the view keeps its texel grid); declared per light as \"atlas_tile\"")
       ->check(CLI::Range(0, outputs::kMaxGuardBandTexels))
+      ->capture_default_str();
+  cmd->add_option("--normal-offset-texels", args->normal_offset_texels,
+                  "our hard maps' normal offset: each lookup moved along the surface normal (toward the light) by this "
+                  "many texels of the map there; declared as \"normal_offset_texels\"")
+      ->check(CLI::Range(0.0, 8.0))
       ->capture_default_str();
   cmd->add_option("--backend", args->backend, "Mesa driver: llvmpipe, softpipe, or native (a GPU's EGL)")->capture_default_str();
   cmd->add_option("--gl", args->gl, "context: osmesa or egl")->capture_default_str();

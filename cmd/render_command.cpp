@@ -34,6 +34,7 @@ struct RenderArgs {
   int random_taps = 0;
   std::string depth_faces = "back";
   int guard_band = 0;
+  double normal_offset_texels = 0;
 };
 
 std::string technique_help() {
@@ -74,6 +75,7 @@ void run_render(const RenderArgs& a) {
   options.random_taps = a.random_taps;
   options.depth_faces = outputs::depth_faces_from(a.depth_faces).value();
   options.guard_band_texels = a.guard_band;
+  options.normal_offset_texels = a.normal_offset_texels;
   if (a.shadow_map_size + 2 * a.guard_band > outputs::kMaxShadowMapSize)
     throw BadInput("--guard-band " + std::to_string(a.guard_band) + ": a map of " + std::to_string(a.shadow_map_size) +
                    " texels with the band on both sides exceeds " + std::to_string(outputs::kMaxShadowMapSize) + " texels");
@@ -133,6 +135,11 @@ void register_render_command(CLI::App& app, int& exit_code) {
                   "texels each light's map gains along every side beyond its view, as a shadow-atlas tile's guard band "
                   "(the view keeps its texel grid); declared per light as \"atlas_tile\"")
       ->check(CLI::Range(0, outputs::kMaxGuardBandTexels))
+      ->capture_default_str();
+  cmd->add_option("--normal-offset-texels", args->normal_offset_texels,
+                  "our hard maps' normal offset: each lookup moved along the surface normal (toward the light) by this "
+                  "many texels of the map there; declared as \"normal_offset_texels\"")
+      ->check(CLI::Range(0.0, 8.0))
       ->capture_default_str();
   cmd->add_option("--frames", args->frames, "frames to render and time (render.json keeps the median)")
       ->check(CLI::Range(1, 1000))

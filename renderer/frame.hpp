@@ -24,7 +24,8 @@ struct Program {
         texel = -1, offset_factor = -1, offset_units = -1, layout = -1, layer_from_world = -1, cascade_depth = -1,
         cascade_begin = -1, cascade_end = -1, reversed = -1, lit_greater = -1, depth_map = -1, world_from_layer = -1,
         inv_view_depth = -1, rect_u = -1, rect_v = -1, blocker_at_receiver = -1, moment_map = -1,
-        layer_inv_view_depth = -1, taps_in_own_face = -1, random_taps = -1, random_pcf_radius = -1;
+        layer_inv_view_depth = -1, taps_in_own_face = -1, random_taps = -1, random_pcf_radius = -1,
+        normal_offset_texels = -1;
 };
 
 struct Programs {

@@ -167,6 +167,7 @@ Program link(const GlFunctions& gl, std::initializer_list<const char*> fragment,
   p.taps_in_own_face = loc("u_taps_in_own_face");
   p.random_taps = loc("u_random_taps");
   p.random_pcf_radius = loc("u_random_pcf_radius");
+  p.normal_offset_texels = loc("u_normal_offset_texels");
   gl.UseProgram(p.id);
   if (p.shadow_map >= 0) gl.Uniform1i(p.shadow_map, 0);
   if (p.packed_map >= 0) gl.Uniform1i(p.packed_map, 1);
@@ -634,6 +635,8 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_
                                            ? outputs::DepthFaces::Both
                                            : options.depth_faces;
       result.declaration.light_views_from_pack = true;  // the prepared scene's light fits: the pack's
+      if (!(named && named->family == outputs::TechniqueFamily::SoftShadow))
+        result.declaration.normal_offset_texels = options.normal_offset_texels;
       // A guard band: each light's map is an atlas tile around the view of its fit (shadow_map.cpp).
       if (const int g = options.guard_band_texels; g > 0 && named && named->family != outputs::TechniqueFamily::ExactGeometry)
         for (std::size_t i = 0; i < scene.lights.size(); ++i) {

@@ -122,6 +122,7 @@ uniform int u_blocker_at_receiver;   // fault switches (renderer/faults.hpp, Sof
 uniform int u_taps_in_own_face;
 uniform int u_random_taps;           // 0: each filter's fixed grid; N: N taps of a Vogel disk rotated per pixel
 uniform float u_random_pcf_radius;   // PCF's disk radius in texels (frame.hpp, kRandomPcfRadiusTexels)
+uniform float u_normal_offset_texels;  // hard maps: the lookup moved along the normal by this many texels
 // VSM (u_shadow 5): the moments (view depth, its square) of the same layers; (0, 0) where nothing was drawn.
 uniform sampler2DArray u_moment_map; // unit 3
 out vec4 o_colour;
@@ -395,6 +396,18 @@ float shadow_visibility() {
     int face = cube_face(v_world - u_light.xyz);
     s = u_layer_from_world[face] * vec4(v_world, 1.0);
     layer = float(face);
+  }
+  // A normal offset (RenderOptions::normal_offset_texels; the hard maps only): the point looked up
+  // moves along the surface normal, turned toward the light, by that many of the map's texels as
+  // wide as they are at the point (one texel along the map's x at the point's own depth).
+  if (u_normal_offset_texels > 0.0 && u_shadow != 4 && u_shadow != 5) {
+    int l = int(layer);
+    vec4 c = u_layer_from_world[l] * vec4(v_world, 1.0);
+    vec4 a = u_world_from_layer[l] * vec4(c.xy / c.w + vec2(u_texel.x, 0.0), c.z / c.w, 1.0);
+    float texel_world = distance(a.xyz / a.w, v_world);
+    vec3 to_light = u_light.w == 0.0 ? u_light.xyz : u_light.xyz - v_world;
+    vec3 n = dot(v_normal, to_light) < 0.0 ? -v_normal : v_normal;
+    s = u_layer_from_world[l] * vec4(v_world + u_normal_offset_texels * texel_world * normalize(n), 1.0);
   }
   // Behind the light's centre of projection: outside the map, which knows of no occluder there
   // (only a spot's or directional light's single map has such points; a cube has none).

@@ -446,7 +446,8 @@ void bind_map(const Frame& frame, const LightMap& map, Variant variant) {
     for (const Mat4<float>& f : all) m.insert(m.end(), f.data(), f.data() + 16);
     gl.UniformMatrix4fv(location, static_cast<GLsizei>(all.size()), GL_FALSE, m.data());
   };
-  if (soft(variant)) {
+  gl.Uniform1f(p.normal_offset_texels, static_cast<float>(frame.options.normal_offset_texels));
+  if (soft(variant) || frame.options.normal_offset_texels > 0) {
     matrices(p.layer_from_world, map.face_from_world);
     matrices(p.world_from_layer, map.world_from_face);
     gl.Uniform2fv(p.inv_view_depth, static_cast<GLsizei>(map.inv_view_depth.size() / 2), map.inv_view_depth.data());

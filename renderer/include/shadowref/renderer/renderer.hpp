@@ -61,6 +61,10 @@ struct RenderOptions {
   // view keeps its texel grid (the pack's), and the band holds what lies beyond it. Declared per
   // light as "atlas_tile": {"size": size + 2 G, "guard_band": G}. 0: none.
   int guard_band_texels = 0;
+  // The hard maps' normal offset (three.js and Babylon `normalBias`, Unity's "normal bias"): each
+  // lookup moves along the surface normal, turned toward the light, by this many texels of the map
+  // at the point. Declared as "normal_offset_texels". 0: none.
+  double normal_offset_texels = 0.0;
   // Deliberate bugs for the conformance suite's teeth (faults.hpp); all off: production.
   Faults faults;
 };

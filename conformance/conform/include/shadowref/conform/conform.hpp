@@ -45,6 +45,7 @@ struct ConformOptions {
   int random_taps = 0;                          // our filters' randomized kernel (renderer::RenderOptions)
   outputs::DepthFaces depth_faces = outputs::DepthFaces::Back;  // our depth passes' faces (renderer::RenderOptions)
   int guard_band_texels = 0;                    // our maps' atlas guard band (renderer::RenderOptions)
+  double normal_offset_texels = 0.0;            // our hard maps' normal offset (renderer::RenderOptions)
   // Every scene rendered at another resolution (an engine's own): scale factor, or [W, H] (0: keep).
   double resolution_scale = 1.0;
   int width = 0, height = 0;
