@@ -20,6 +20,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -328,6 +329,37 @@ json convention_matrices(const scene::PreparedScene& p) {
     lights.push_back(l);
   }
   j["light_views"] = lights;
+  // Views an engine can use as they are (its own shadow maps, declared "light_views": "own"): a point
+  // or rect light as an OpenGL cube map, exactly 90 degrees per face, no guard band, in GL's face
+  // order and orientation; a spot or directional light as its one view; every map a power of two.
+  json engine = json::array();
+  std::vector<const TriangleMesh<float>*> meshes;
+  for (const scene::Object& o : p.scene->objects) meshes.push_back(&o.mesh);
+  for (std::size_t i = 0; i < p.light_fits.size(); ++i) {
+    const LightFit& fit = p.light_fits[i];
+    const scene::LightType type = p.scene->lights[i].type;
+    const bool cube = type == scene::LightType::Point || type == scene::LightType::Rect;
+    json l;
+    l["map_size"] = std::bit_ceil(static_cast<unsigned>(fit.size));
+    json views = json::array();
+    const auto add = [&](const LightView& v) {
+      views.push_back({{"view", both_layouts(v.view)},
+                       {"projection", both_layouts(v.projection)},
+                       {"shadow_from_scene", both_layouts(Mat4<double>(shadow_bias<double>(c) * v.projection * v.view))}});
+    };
+    if (!cube) {
+      l["kind"] = "single view (the pack's: a single view has no guard band)";
+      for (const LightView& v : fit.views) add(v);
+    } else if (c.clip.hand == Handedness::Right) {
+      l["kind"] = "OpenGL cube map (GL_TEXTURE_CUBE_MAP_POSITIVE_X + i: +x, -x, +y, -y, +z, -z; 90 degrees, no guard band)";
+      for (const LightView& v : gl_cube_map_views(c, p.lights[i].head<3>(), meshes)) add(v);
+    } else {
+      l["kind"] = "none: OpenGL's cube-map orientation is defined in a right-handed world; use gl, gl-zo or reversed-z";
+    }
+    l["views"] = views;
+    engine.push_back(l);
+  }
+  j["engine_light_views"] = engine;
   // The cascaded techniques' views (csm, csm-pcf): a directional light's cascades, any other light's
   // views as above.
   json cascades = json::array();
@@ -491,7 +523,16 @@ std::string readme(const json& manifest) {
       "far end), `camera_depth_from_scene` (the row that gives a scene point's camera depth) and one view per cascade;\n"
       "judged with those cascades (declare `\"cascades\"` in candidate.json if yours has another count, and\n"
       "`\"light_views\": \"own\"` if your splits or windows differ). Every matrix is given in canonical (column\n"
-      "vectors, v' = M v) and D3DX (row vectors, v' = v M: the transpose) layout. Pixel centres:\n"
+      "vectors, v' = M v) and D3DX (row vectors, v' = v M: the transpose) layout. The pack's light views are\n"
+      "ours: a cube's faces reach 3 texels beyond 90 degrees (a guard band for filter taps) in our own face\n"
+      "orientation, at sizes fitted to the scene (1331, 1855 ...). For an engine that renders its own maps,\n"
+      "`.engine_light_views[<light>]` gives views it can use as they are: a point or rect light as an OpenGL cube\n"
+      "map (six views, exactly 90 degrees, no guard band, in GL_TEXTURE_CUBE_MAP_POSITIVE_X + i order and\n"
+      "orientation: render face i through view i into that face and sample it with a cube-map lookup), a spot or\n"
+      "directional light as its one view, each with `map_size`, the pack's size rounded up to a power of two (gl,\n"
+      "gl-zo and reversed-z; d3d has no cube there). Judge maps made with them as `\"light_views\": \"own\"` with\n"
+      "that `shadow_map_size`: the judge takes the size you declare and, not knowing your texel grid, lets a lookup\n"
+      "reach a whole texel instead of half of one. Pixel centres:\n"
       "`ndc.x = 2 (x + 0.5) / W - 1`, `ndc.y = 1 - 2 (y + 0.5) / H`, row 0 at the top (remove Direct3D 9's\n"
       "half-pixel offset).\n\n"
       "## What to write\n\n"

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 #include <nlohmann/json.hpp>
 
@@ -82,6 +83,52 @@ TEST(ExportCommand, PackHasEveryConventionAndTheyPutPointsOnTheSamePixel) {
 // forward and increase, the depth row gives a visible ground point a camera depth inside them, and
 // the view of the cascade that depth falls in maps the point inside its map — checked from the
 // numbers in matrices.json alone, in every convention.
+TEST(ExportCommand, EngineLightViewsAreOpenGLCubeMapFacesAtAPowerOfTwo) {
+  const fs::path root = fs::temp_directory_path() / ("shadowref_export_engine_views_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  const test::CommandResult r = test::run_command(
+      {SHADOWREF_EXE, "export", "--scenes", "ground_sphere", "--out", (root / "pack").string(), "--cache", (root / "cache").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(root / "pack" / "ground_sphere" / "matrices.json");
+  const json m = json::parse(in);
+  const json& L = m["lights"][0]["homogeneous"];  // the point light at (2, 6, 1)
+  // The OpenGL specification's cube-map face selection (OpenGL 4.6, table 8.19), written out here:
+  // per face, (sc, tc, ma) of a direction r; s = (sc / |ma| + 1) / 2, t = (tc / |ma| + 1) / 2.
+  using Dir = std::array<double, 3>;
+  const auto table = [](int face, const Dir& r) -> std::array<double, 3> {
+    switch (face) {
+      case 0: return {-r[2], -r[1], r[0]};
+      case 1: return {r[2], -r[1], r[0]};
+      case 2: return {r[0], r[2], r[1]};
+      case 3: return {r[0], -r[2], r[1]};
+      case 4: return {r[0], -r[1], r[2]};
+      default: return {-r[0], -r[1], r[2]};
+    }
+  };
+  const std::array<Dir, 6> axes{{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}}};
+  for (const char* name : {"gl", "gl-zo", "reversed-z"}) {
+    const json& e = m["conventions"][name]["engine_light_views"][0];
+    const auto size = e["map_size"].get<unsigned>();
+    EXPECT_EQ(size & (size - 1), 0u) << name << ": a power of two";
+    EXPECT_GE(size, m["conventions"][name]["light_views"][0]["map_size"].get<unsigned>()) << name;
+    ASSERT_EQ(e["views"].size(), 6u) << name;
+    for (int face = 0; face < 6; ++face)
+      for (const auto& [u, v] : {std::pair{0.0, 0.0}, {0.5, -0.3}, {-0.9, 0.8}, {0.99, 0.99}}) {
+        // A direction in the face: the axis plus the two others at (u, v).
+        const Dir& a = axes[static_cast<std::size_t>(face)];
+        const Dir r = a[0] != 0 ? Dir{a[0], u, v} : a[1] != 0 ? Dir{u, a[1], v} : Dir{u, v, a[2]};
+        const std::array<double, 3> p{L[0].get<double>() + 2 * r[0], L[1].get<double>() + 2 * r[1], L[2].get<double>() + 2 * r[2]};
+        const auto t = apply(e["views"][face]["shadow_from_scene"]["canonical"], p);
+        const auto [sc, tc, ma] = table(face, r);
+        EXPECT_NEAR(t[0] / t[3], 0.5 * (sc / std::abs(ma) + 1), 1e-9) << name << " face " << face;
+        EXPECT_NEAR(t[1] / t[3], 0.5 * (tc / std::abs(ma) + 1), 1e-9) << name << " face " << face;
+      }
+  }
+  // d3d: no cube (GL's orientation is a right-handed world's), said in its kind.
+  EXPECT_EQ(m["conventions"]["d3d"]["engine_light_views"][0]["views"].size(), 0u);
+  fs::remove_all(root);
+}
+
 TEST(ExportCommand, PackCarriesTheCascadesOfADirectionalLight) {
   const fs::path root = fs::temp_directory_path() / ("shadowref_export_csm_" + std::to_string(::getpid()));
   fs::remove_all(root);

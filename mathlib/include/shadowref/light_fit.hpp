@@ -28,10 +28,12 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "shadowref/convention.hpp"
@@ -116,13 +118,9 @@ inline int auto_map_size(const LightFitOptions& o, double tan_half_fov, int max_
   return static_cast<int>(std::clamp(std::ceil(want), double(kAutoMinSize), double(max_size)));
 }
 
-inline LightFit fit_cube(const RunConvention& conv, const Vec3<double>& pos,
-                         std::span<const TriangleMesh<float>* const> meshes, const LightFitOptions& o) {
-  LightFit fit;
-  fit.cube = true;
-  // The size first: the margin is counted in texels.
-  fit.size = o.map_size ? o.map_size : auto_map_size(o, 1.0, kCubeAutoMaxSize);
-  const double tan_half = 1.0 / (1.0 - 2.0 * kCubeMarginTexels / fit.size);
+// A cube's near and far planes around `pos` for faces opened to tan_half (see the top of the file).
+inline std::pair<double, double> cube_depth_range(const Vec3<double>& pos,
+                                                  std::span<const TriangleMesh<float>* const> meshes, double tan_half) {
   double closest = std::numeric_limits<double>::infinity(), farthest = 0;
   for (const TriangleMesh<float>* m : meshes) {
     for (const auto& t : m->triangles) {
@@ -137,6 +135,17 @@ inline LightFit fit_cube(const RunConvention& conv, const Vec3<double>& pos,
   // The light touching a surface: geometry nearer than far · 1e-4 is clipped (a documented limit;
   // it would need more depth precision than 24 bits have).
   near = std::clamp(near, far * 1e-4, far * 0.5);
+  return {near, far};
+}
+
+inline LightFit fit_cube(const RunConvention& conv, const Vec3<double>& pos,
+                         std::span<const TriangleMesh<float>* const> meshes, const LightFitOptions& o) {
+  LightFit fit;
+  fit.cube = true;
+  // The size first: the margin is counted in texels.
+  fit.size = o.map_size ? o.map_size : auto_map_size(o, 1.0, kCubeAutoMaxSize);
+  const double tan_half = 1.0 / (1.0 - 2.0 * kCubeMarginTexels / fit.size);
+  const auto [near, far] = cube_depth_range(pos, meshes, tan_half);
   const Vec3<double> axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   for (const Vec3<double>& axis : axes) {
     LightView v;
@@ -167,6 +176,29 @@ inline LightFit fit_cube(const RunConvention& conv, const Vec3<double>& pos,
 }
 
 }  // namespace detail
+
+// The six views of an OpenGL cube map around a light at `pos`, for engines that render their own
+// cube: exactly 90 degrees (no guard band), in GL_TEXTURE_CUBE_MAP_POSITIVE_X + i order (+x, −x,
+// +y, −y, +z, −z of scene space), each oriented as the OpenGL specification's cube-map face
+// selection table has it (OpenGL 4.6, section 8.13, table 8.19): a direction r from the light in
+// face i lands at NDC (sc / |ma|, tc / |ma|) of that table, so a face drawn through view i is read
+// back by a cube-map lookup at the same texel. Right-handed conventions only (gl, gl-zo,
+// reversed-z: a look-at's right is forward × up); near and far fitted to `meshes` as the pack's
+// cubes are (the top of the file). Cost: a pass over the triangles and the vertices.
+inline std::array<LightView, 6> gl_cube_map_views(const RunConvention& conv, const Vec3<double>& pos,
+                                                  std::span<const TriangleMesh<float>* const> meshes) {
+  const auto [near, far] = detail::cube_depth_range(pos, meshes, 1.0);
+  // (forward, up) per face: right = forward × up is the table's sc axis, up its tc axis.
+  static const Vec3<double> kFaces[6][2] = {{{1, 0, 0}, {0, -1, 0}}, {{-1, 0, 0}, {0, -1, 0}},
+                                            {{0, 1, 0}, {0, 0, 1}},  {{0, -1, 0}, {0, 0, -1}},
+                                            {{0, 0, 1}, {0, -1, 0}}, {{0, 0, -1}, {0, -1, 0}}};
+  std::array<LightView, 6> views;
+  for (int i = 0; i < 6; ++i) {
+    views[i].view = view_from_scene<double>(conv, pos, pos + kFaces[i][0], kFaces[i][1]).value();
+    views[i].projection = perspective<double>(std::numbers::pi / 2.0, 1.0, near, far, conv.clip).value();
+  }
+  return views;
+}
 
 // The shadow-map views of the light L (homogeneous) over `meshes` (world space), in `conv`.
 inline Result<LightFit> fit_light(const RunConvention& conv, const Vec4<double>& L,
