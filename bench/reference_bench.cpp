@@ -2,15 +2,17 @@
 // in the same run, on one thread and on all threads; the BVH build; a whole reference render.
 //
 //   BM_ShadowRays_Ours    the reference's path (what render()'s tiles run): from surface points and
-//                         normals to lit answers — make_shadow_ray per query into an RTCRay
-//                         buffer reused per thread, rtcOccluded1M in chunks, read tfar.
+//                         normals (rounded to float, structure of arrays) to lit answers —
+//                         build_shadow_rays over 4096 queries at a time into a RayStream reused per
+//                         thread (attached ones left inactive in it), rtcOccludedNp, one lit byte per
+//                         query read from tfar.
 //   BM_ShadowRays_Bare    rtcOccluded1M over the very rays Ours traces, already built (only tfar,
 //                         which Embree overwrites on a hit, is restored before each call): the
 //                         ceiling. Goal: Bare time / Ours time >= 0.95. Both sides pinned alike:
 //                         the same API (rtcOccluded1M, 4096-ray chunks), the same context flags
 //                         (COHERENT), the same TBB arena of 1 or 2 threads, the same 16384-query tasks.
-//   BM_ShadowRays_Build   Ours without the tracing: where the gap between the two goes (make_shadow_ray
-//                         per query, in double: a square root and a division per ray).
+//   BM_ShadowRays_Build   Ours without the tracing: where the gap between the two goes (build_shadow_rays,
+//                         in float, vectorised: a square root and a division per ray).
 //   BM_ReferenceRender    a whole reference render; its counter ray_work_over_embree is the tiles'
 //                         whole ray work (primary rays, surfaces, shadow rays with the decided
 //                         test's nudges) over the time inside Embree's calls on those very rays
@@ -33,6 +35,7 @@
 
 #include "bench_support.hpp"
 #include "shadowref/reference/embree_scene.hpp"
+#include "shadowref/reference/ray_stream.hpp"
 #include "shadowref/reference/render.hpp"
 #include "shadowref/reference/shadow_ray.hpp"
 #include "shadowref/scene/camera.hpp"
@@ -65,6 +68,7 @@ struct Case {
   sc::Scene scene;
   std::unique_ptr<ref::EmbreeScene> embree;
   std::vector<Vec3<double>> p, n;   // pixel-centre hits
+  std::vector<float> px, py, pz, nx, ny, nz;  // the same rounded to float, as render() hands them on
   Vec4<double> light;
   double offset = 0;
   std::vector<RTCRay> rays;         // the traced rays (make_shadow_ray's Trace kind), in query order
@@ -107,6 +111,12 @@ Case& get_case(const std::string& name) {
       c.p.push_back(o + static_cast<double>(rh.ray.tfar) * d);
       c.n.push_back(ng.dot(d) > 0 ? Vec3<double>(-ng) : ng);
     }
+  for (std::size_t i = 0; i < c.p.size(); ++i) {
+    c.px.push_back(static_cast<float>(c.p[i].x())), c.py.push_back(static_cast<float>(c.p[i].y()));
+    c.pz.push_back(static_cast<float>(c.p[i].z()));
+    c.nx.push_back(static_cast<float>(c.n[i].x())), c.ny.push_back(static_cast<float>(c.n[i].y()));
+    c.nz.push_back(static_cast<float>(c.n[i].z()));
+  }
   c.light = sc::homogeneous(c.scene.lights.front());
   c.offset = c.embree->epsilon();
   for (std::size_t i = 0; i < c.p.size(); ++i) {
@@ -165,7 +175,11 @@ void BM_ShadowRays_Bare(benchmark::State& state, const std::string& name) {
 void shadow_rays(benchmark::State& state, const std::string& name, bool trace) {
   Case& c = get_case(name);
   tbb::task_arena arena(arena_threads(state));
-  tbb::enumerable_thread_specific<std::vector<RTCRay>> buffers;
+  struct Scratch {
+    ref::RayStream rays;
+    std::vector<std::uint8_t> lit;
+  };
+  tbb::enumerable_thread_specific<Scratch> buffers;
   const std::size_t blocks = (c.p.size() + kBlock - 1) / kBlock;
   for (auto _ : state) {
     arena.execute([&] {
@@ -174,26 +188,28 @@ void shadow_rays(benchmark::State& state, const std::string& name, bool trace) {
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
         ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-        std::vector<RTCRay>& rays = buffers.local();
+        Scratch& s = buffers.local();
+        s.lit.resize(kBlock);
         for (std::size_t b = r.begin(); b < r.end(); ++b) {
-          rays.clear();
           const std::size_t end = std::min(c.p.size(), (b + 1) * kBlock);
-          for (std::size_t i = b * kBlock; i < end; ++i) {
-            rays.emplace_back();  // as render.cpp's add_ray: built in its slot
-            if (ref::make_shadow_ray(c.p[i], c.n[i], c.light, c.offset, rays.back()) != ref::ShadowRayKind::Trace)
-              rays.pop_back();
+          for (std::size_t first = b * kBlock; first < end; first += kChunk) {
+            const std::size_t count = std::min(kChunk, end - first);
+            s.rays.resize(count);
+            const ref::SurfacePoints points{c.px.data() + first, c.py.data() + first, c.pz.data() + first,
+                                            c.nx.data() + first, c.ny.data() + first, c.nz.data() + first};
+            ref::build_shadow_rays(points, count, c.light, c.offset, s.rays, 0);
+            if (!trace) {
+              benchmark::DoNotOptimize(s.rays.tfar);
+              benchmark::ClobberMemory();
+              continue;
+            }
+            const RTCRayNp np = s.rays.rays();
+            rtcOccludedNp(c.embree->handle(), &ctx, &np, static_cast<unsigned>(count));
+            const float* __restrict tfar = s.rays.tfar;
+            std::uint8_t* __restrict lit = s.lit.data() + (first - b * kBlock);
+            for (std::size_t i = 0; i < count; ++i) lit[i] = !(tfar[i] < 0);  // as RayStream::lit
           }
-          if (!trace) {
-            benchmark::DoNotOptimize(rays.data());
-            benchmark::ClobberMemory();
-            continue;
-          }
-          for (std::size_t first = 0; first < rays.size(); first += kChunk)
-            rtcOccluded1M(c.embree->handle(), &ctx, rays.data() + first,
-                          static_cast<unsigned>(std::min(kChunk, rays.size() - first)), sizeof(RTCRay));
-          std::size_t lit = 0;
-          for (const RTCRay& ray : rays) lit += !(ray.tfar < 0);
-          benchmark::DoNotOptimize(lit);
+          benchmark::DoNotOptimize(s.lit.data());
         }
       });
     });
