@@ -57,6 +57,8 @@ struct TileBuffers {
   std::vector<float> px, py, pz, nx, ny, nz;  // the samples' surfaces (pixel_surface.hpp)
   SurfaceArrays arrays() { return {px.data(), py.data(), pz.data(), nx.data(), ny.data(), nz.data()}; }
   std::vector<std::uint8_t> lit;      // 1: lit
+  std::vector<double> direct;         // per light, per sub-pixel sample: the Lambert sum over lit light samples
+  std::vector<std::uint32_t> lit_count;  // per light, per sub-pixel sample: lit light samples
   std::vector<double> lit_sum;        // gather's per-light scratch, reused from pixel to pixel
   std::vector<std::uint8_t> agree;
   std::vector<std::size_t> light_base;    // where each light's answers start in `lit`
@@ -153,7 +155,20 @@ class Renderer {
     }
     buf.stats.seconds_ray_work += seconds_since(rays0);
 
-    // 4. Gather, pixel by pixel.
+    // 4. Shading's sums, light sample by light sample over all sub-pixel samples (shadow_ray.hpp).
+    buf.direct.assign(lights_.size() * sub_samples, 0.0);
+    buf.lit_count.assign(lights_.size() * sub_samples, 0);
+    slot = 0;
+    for (std::size_t li = 0; li < lights_.size(); ++li) {
+      slot += 2 * pixels;
+      for (const auto& L : lights_[li].samples) {
+        accumulate_lit(subs, sub_samples, L, buf.lit.data() + slot, buf.direct.data() + li * sub_samples,
+                       buf.lit_count.data() + li * sub_samples);
+        slot += sub_samples;
+      }
+    }
+
+    // 5. Gather, pixel by pixel.
     std::size_t pixel = 0;
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x, ++pixel) gather(x, y, pixel, pixels, buf);
@@ -208,15 +223,9 @@ class Renderer {
       double radiance = outputs::kAmbient;
       for (std::size_t li = 0; li < lights_.size(); ++li) {
         const LightSetup& l = lights_[li];
-        const std::uint8_t* lit = buf.lit.data() + buf.light_base[li] + 2 * pixels + pixel * subs_ + s;
-        int lit_count = 0;
-        double direct = 0;
-        for (std::size_t j = 0; j < l.samples.size(); ++j) {
-          if (lit[j * sub_samples]) {
-            ++lit_count;
-            direct += std::max(0.0, facing(h.p, h.n, l.samples[j])) * cone(*l.light, h.p);
-          }
-        }
+        const std::size_t k = li * sub_samples + pixel * subs_ + s;
+        const std::uint32_t lit_count = buf.lit_count[k];
+        const double direct = buf.direct[k] * cone(*l.light, h.p);
         const double fraction = static_cast<double>(lit_count) / static_cast<double>(l.samples.size());
         lit_sum[li] += fraction;
         radiance += light_weight * direct / static_cast<double>(l.samples.size());

@@ -65,6 +65,40 @@ struct LightPoint {
   }
 }
 
+[[gnu::always_inline]] inline void accumulate_kernel(const SurfacePoints& sp, std::size_t count, const LightPoint& l,
+                                                    const std::uint8_t* __restrict lit, double* __restrict direct,
+                                                    std::uint32_t* __restrict lit_count) {
+  const float* __restrict px = sp.px;
+  const float* __restrict py = sp.py;
+  const float* __restrict pz = sp.pz;
+  const float* __restrict nx = sp.nx;
+  const float* __restrict ny = sp.ny;
+  const float* __restrict nz = sp.nz;
+  const float lx = l.x, ly = l.y, lz = l.z;
+  const float w = l.directional ? 0.0f : 1.0f;  // L.xyz − w·p: the direction toward the light
+  for (std::size_t i = 0; i < count; ++i) {
+    const float tx = lx - w * px[i], ty = ly - w * py[i], tz = lz - w * pz[i];
+    const float len = std::sqrt((tx * tx + ty * ty) + tz * tz);
+    const float f = ((nx[i] * tx + ny[i] * ty) + nz[i] * tz) / len;
+    const bool on = lit[i] != 0 && f > 0.0f;  // f is NaN at the light itself: adds nothing
+    direct[i] += on ? static_cast<double>(f) : 0.0;
+    lit_count[i] += lit[i] != 0 ? 1u : 0u;
+  }
+}
+
+using AccumulateKernel = void (*)(const SurfacePoints&, std::size_t, const LightPoint&, const std::uint8_t*, double*,
+                                  std::uint32_t*);
+
+void accumulate_baseline(const SurfacePoints& sp, std::size_t n, const LightPoint& l, const std::uint8_t* lit,
+                         double* direct, std::uint32_t* lit_count) {
+  accumulate_kernel(sp, n, l, lit, direct, lit_count);
+}
+
+[[gnu::target("avx2,fma")]] void accumulate_avx2_fma(const SurfacePoints& sp, std::size_t n, const LightPoint& l,
+                                                      const std::uint8_t* lit, double* direct, std::uint32_t* lit_count) {
+  accumulate_kernel(sp, n, l, lit, direct, lit_count);
+}
+
 using Kernel = void (*)(const SurfacePoints&, std::size_t, const LightPoint&, float*, float*, float*, float*, float*,
                         float*, float*, float*);
 
@@ -79,11 +113,7 @@ void shadow_baseline(const SurfacePoints& sp, std::size_t n, const LightPoint& l
   shadow_kernel(sp, n, l, ox, oy, oz, dx, dy, dz, tn, tf);
 }
 
-}  // namespace
-
-void build_shadow_rays(const SurfacePoints& points, std::size_t count, const Vec4<double>& L, double offset,
-                       RayStream& out, std::size_t first, SimdPath path) {
-  const FlushDenormalsGuard ftz;  // the rays are defined with denormals flushed, as Embree traces them
+LightPoint light_point(const Vec4<double>& L, double offset) {
   LightPoint l{};
   l.directional = L[3] == 0;
   const Vec3<double> at = l.directional ? Vec3<double>(L.head<3>().normalized()) : Vec3<double>(L.head<3>());
@@ -92,6 +122,22 @@ void build_shadow_rays(const SurfacePoints& points, std::size_t count, const Vec
   l.z = static_cast<float>(at.z());
   l.offset = static_cast<float>(offset);
   l.twice_offset = static_cast<float>(2 * offset);
+  return l;
+}
+
+}  // namespace
+
+void accumulate_lit(const SurfacePoints& points, std::size_t count, const Vec4<double>& L, const std::uint8_t* lit,
+                    double* direct, std::uint32_t* lit_count, SimdPath path) {
+  const FlushDenormalsGuard ftz;  // as the rays: the same bits whoever calls
+  const AccumulateKernel kernel = path == SimdPath::Avx2Fma ? accumulate_avx2_fma : accumulate_baseline;
+  kernel(points, count, light_point(L, 0.0), lit, direct, lit_count);
+}
+
+void build_shadow_rays(const SurfacePoints& points, std::size_t count, const Vec4<double>& L, double offset,
+                       RayStream& out, std::size_t first, SimdPath path) {
+  const FlushDenormalsGuard ftz;  // the rays are defined with denormals flushed, as Embree traces them
+  const LightPoint l = light_point(L, offset);
   const Kernel kernel = path == SimdPath::Avx2Fma ? shadow_avx2_fma : shadow_baseline;
   kernel(points, count, l, out.org_x + first, out.org_y + first, out.org_z + first, out.dir_x + first,
          out.dir_y + first, out.dir_z + first, out.tnear + first, out.tfar + first);

@@ -137,7 +137,7 @@ TEST_P(RayBits, CameraRaysAreCloseToTheExactRay) {
     camera.build(u.data(), v.data(), u.size(), r, 0);
     const double scale = (inv * Vec4<double>(0, 0, zn, 1)).hnormalized().norm() + 1;
     for (std::size_t i = 0; i < u.size(); ++i) {
-      const double nx = 2.0 * u[i] / s.width - 1, ny = 1 - 2.0 * v[i] / s.height;
+      const double nx = 2.0 * static_cast<double>(u[i]) / s.width - 1, ny = 1 - 2.0 * static_cast<double>(v[i]) / s.height;
       const auto unproject = [&](double z) { return Vec3<double>((inv * Vec4<double>(nx, ny, z, 1)).hnormalized()); };
       const Vec3<double> o = unproject(zn), d = (unproject(0.5 * (zn + zf)) - o).normalized();
       const Vec3<double> ro(r.org_x[i], r.org_y[i], r.org_z[i]), rd(r.dir_x[i], r.dir_y[i], r.dir_z[i]);
@@ -224,7 +224,7 @@ TEST_P(RayBits, ShadowRaysAreTheSameOnEveryPathAndBatch) {
   const bool point = light[3] != 0;
   // Half an offset in front of a point light, facing it: touching.
   if (point)
-    for (int k = 0; k < 3; ++k) p[k][5] = static_cast<float>(light[k] / light[3] - 0.5 * eps * n[k][5]);
+    for (int k = 0; k < 3; ++k) p[k][5] = static_cast<float>(light[k] / light[3] - 0.5 * eps * static_cast<double>(n[k][5]));
   const SurfacePoints points{p[0].data(), p[1].data(), p[2].data(), n[0].data(), n[1].data(), n[2].data()};
   for (const Vec4<double>& L : {light, Vec4<double>(0.3, 1, 0.2, 0)}) {
     RayStream all;

@@ -14,6 +14,7 @@
 #include <embree3/rtcore.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -69,6 +70,15 @@ void build_shadow_rays(const SurfacePoints& points, std::size_t count, const Vec
 // `ray` when Trace (left alone otherwise). build_shadow_rays() on a stream of one: the same bits.
 ShadowRayKind make_shadow_ray(const Vec3<double>& p, const Vec3<double>& n, const Vec4<double>& L, double offset,
                               RTCRay& ray);
+
+// The Lambert share of the lit answers, for shading (render.cpp's shaded image, after the shadow
+// rays): for each of `count` surface points i, where lit[i] is non-zero, lit_count[i] += 1 and
+// direct[i] += max(0, f) with f = facing(p, n, L) computed in float. One light point for all
+// points, so that the loop runs over the points, 8 or 4 at a time; each direct[i] is summed in the
+// caller's order of light points, so that the result never depends on the batch. Cost: about 15
+// float operations, a square root and a division a point.
+void accumulate_lit(const SurfacePoints& points, std::size_t count, const Vec4<double>& L, const std::uint8_t* lit,
+                    double* direct, std::uint32_t* lit_count, SimdPath path = best_simd_path());
 
 // Rule 1 and 2 for one light point with single-ray tracing: true when lit.
 class EmbreeScene;
