@@ -75,8 +75,8 @@ class Renderer {
     subs_ = static_cast<std::size_t>(n_ * n_);
     for (std::size_t s = 0; s < subs_; ++s) {
       const int i = static_cast<int>(s) % n_, j = static_cast<int>(s) / n_;
-      sub_x_.push_back((i + 0.5) / n_);
-      sub_y_.push_back((j + 0.5) / n_);
+      sub_xf_.push_back(static_cast<float>((i + 0.5) / n_));
+      sub_yf_.push_back(static_cast<float>((j + 0.5) / n_));
     }
     eps_ = embree.epsilon();
   }
@@ -101,11 +101,16 @@ class Renderer {
         buf.v[k] = CameraRays::image_point(y, 0.5);
       }
     for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x)
-        for (std::size_t s = 0; s < subs_; ++s, ++k) {
-          buf.u[k] = CameraRays::image_point(x, sub_x_[s]);
-          buf.v[k] = CameraRays::image_point(y, sub_y_[s]);
+      for (int x = x0; x < x1; ++x, k += subs_) {
+        // image_point(x, sx) for each sub-pixel position, the float offsets rounded once.
+        const float fx = static_cast<float>(x), fy = static_cast<float>(y);
+        float* __restrict u = buf.u.data() + k;
+        float* __restrict v = buf.v.data() + k;
+        for (std::size_t s = 0; s < subs_; ++s) {
+          u[s] = fx + sub_xf_[s];
+          v[s] = fy + sub_yf_[s];
         }
+      }
     buf.primary.resize(samples);
     camera_.build(buf.u.data(), buf.v.data(), samples, buf.primary, 0);
     buf.primary.reset_hits();
@@ -267,7 +272,7 @@ class Renderer {
   int n_;
   std::vector<LightSetup> lights_;
   std::size_t subs_ = 0;               // sub-pixel samples per pixel: n_²
-  std::vector<double> sub_x_, sub_y_;  // their positions in the pixel, row by row
+  std::vector<float> sub_xf_, sub_yf_;  // their positions in the pixel, row by row, rounded to float
   double eps_ = 0;
 };
 
