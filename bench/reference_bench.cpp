@@ -11,12 +11,15 @@
 //                         ceiling. Goal: Bare time / Ours time >= 0.95. Both sides pinned alike:
 //                         the same API (rtcOccluded1M, 4096-ray chunks), the same context flags
 //                         (COHERENT), the same TBB arena of 1 or 2 threads, the same 16384-query tasks.
+//   BM_ShadowRays_BareNp  rtcOccludedNp over the same rays as Bare, already built in a structure of
+//                         arrays (tfar restored before each call): the ceiling of the API Ours calls
+//                         (Embree's SoA stream path skips the transposition its AoS one does).
 //   BM_ShadowRays_Build   Ours without the tracing: where the gap between the two goes (build_shadow_rays,
 //                         in float, vectorised: a square root and a division per ray).
 //   BM_ReferenceRender    a whole reference render; its counter ray_work_over_embree is the tiles'
 //                         whole ray work (primary rays, surfaces, shadow rays with the decided
 //                         test's nudges) over the time inside Embree's calls on those very rays
-//                         (reference::Stats). Goal: <= 1.2.
+//                         (reference::Stats). Goal: <= 1.3.
 // The surface points are the pixel-centre hits of the scene's camera at 1024 × 1024, the light its
 // first light's homogeneous point, the offset the scene's epsilon: the pixel-centre rays of render().
 #include <benchmark/benchmark.h>
@@ -73,6 +76,7 @@ struct Case {
   double offset = 0;
   std::vector<RTCRay> rays;         // the traced rays (make_shadow_ray's Trace kind), in query order
   std::vector<float> tfar;          // their tfar before tracing
+  ref::RayStream soa;               // the same rays as a structure of arrays (BareNp)
 };
 
 Case& get_case(const std::string& name) {
@@ -125,6 +129,12 @@ Case& get_case(const std::string& name) {
     c.rays.push_back(ray);
     c.tfar.push_back(ray.tfar);
   }
+  c.soa.resize(c.rays.size());
+  for (std::size_t i = 0; i < c.rays.size(); ++i) {
+    const RTCRay& r = c.rays[i];
+    c.soa.org_x[i] = r.org_x, c.soa.org_y[i] = r.org_y, c.soa.org_z[i] = r.org_z, c.soa.tnear[i] = r.tnear;
+    c.soa.dir_x[i] = r.dir_x, c.soa.dir_y[i] = r.dir_y, c.soa.dir_z[i] = r.dir_z, c.soa.tfar[i] = r.tfar;
+  }
   return c;
 }
 
@@ -163,6 +173,37 @@ void BM_ShadowRays_Bare(benchmark::State& state, const std::string& name) {
             rtcOccluded1M(c.embree->handle(), &ctx, c.rays.data() + first, static_cast<unsigned>(count), sizeof(RTCRay));
           }
           benchmark::DoNotOptimize(c.rays[b * kBlock].tfar);
+        }
+      });
+    });
+  }
+  finish(state, c);
+}
+
+void BM_ShadowRays_BareNp(benchmark::State& state, const std::string& name) {
+  Case& c = get_case(name);
+  tbb::task_arena arena(arena_threads(state));
+  const std::size_t blocks = (c.rays.size() + kBlock - 1) / kBlock;
+  for (auto _ : state) {
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        Ftz ftz;
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        RTCRayNp all = c.soa.rays();
+        for (std::size_t b = r.begin(); b < r.end(); ++b) {
+          const std::size_t end = std::min(c.rays.size(), (b + 1) * kBlock);
+          for (std::size_t first = b * kBlock; first < end; first += kChunk) {
+            const std::size_t count = std::min(kChunk, end - first);
+            for (std::size_t i = first; i < first + count; ++i) c.soa.tfar[i] = c.tfar[i];
+            RTCRayNp np = all;
+            for (float** f : {&np.org_x, &np.org_y, &np.org_z, &np.tnear, &np.dir_x, &np.dir_y, &np.dir_z, &np.time, &np.tfar})
+              *f += first;
+            for (unsigned** u : {&np.mask, &np.id, &np.flags}) *u += first;
+            rtcOccludedNp(c.embree->handle(), &ctx, &np, static_cast<unsigned>(count));
+          }
+          benchmark::DoNotOptimize(c.soa.tfar[b * kBlock]);
         }
       });
     });
@@ -261,6 +302,7 @@ void threads(benchmark::internal::Benchmark* b) {
 #define SHADOW_RAY_CASES(scene)                                           \
   BENCHMARK_CAPTURE(BM_ShadowRays_Ours, scene, #scene)->Apply(threads);   \
   BENCHMARK_CAPTURE(BM_ShadowRays_Bare, scene, #scene)->Apply(threads);   \
+  BENCHMARK_CAPTURE(BM_ShadowRays_BareNp, scene, #scene)->Apply(threads); \
   BENCHMARK_CAPTURE(BM_ShadowRays_Build, scene, #scene)->Apply(threads);  \
   BENCHMARK_CAPTURE(BM_SceneBuild, scene, #scene)->Apply(threads)
 
