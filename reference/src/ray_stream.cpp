@@ -23,6 +23,9 @@ void RayStream::resize(std::size_t n) {
     auto* raw = static_cast<unsigned char*>(std::aligned_alloc(kAlign, kArrays * bytes));
     if (!raw) throw std::bad_alloc();
     std::unique_ptr<unsigned char, Free> block(raw);
+    // Zeroed once, so that no field is ever read uninitialised (Embree leaves a miss's hit fields
+    // alone, and hit_surfaces reads them before masking them out).
+    std::memset(raw, 0, kArrays * bytes);
     // 14 float arrays, then 6 uint arrays, each `bytes` long.
     const auto floats = [&](std::size_t a) { return reinterpret_cast<float*>(raw + a * bytes); };
     const auto uints = [&](std::size_t a) { return reinterpret_cast<std::uint32_t*>(raw + (14 + a) * bytes); };
