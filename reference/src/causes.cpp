@@ -9,6 +9,8 @@
 #include <cmath>
 #include <vector>
 
+#include "flush_denormals.hpp"
+#include "shadowref/reference/camera_rays.hpp"
 #include "shadowref/reference/embree_scene.hpp"
 #include "shadowref/reference/pixel_surface.hpp"
 #include "shadowref/reference/shadow_ray.hpp"
@@ -38,7 +40,7 @@ Vec3<double> unproject(const Mat4<double>& inv, double x, double y, double z) {
 
 CauseModel::CauseModel(const scene::PreparedScene& scene)
     : scene_(scene), embree_(std::make_unique<EmbreeScene>(*scene.scene)),
-      inverse_clip_(scene.camera.clip_from_scene.inverse()) {}
+      camera_(std::make_unique<CameraRays>(scene)) {}
 
 CauseModel::~CauseModel() = default;
 
@@ -63,13 +65,25 @@ const LightFit& CauseModel::fit_for(std::size_t light, int size, int cascades) c
 }
 
 std::optional<CauseModel::Surface> CauseModel::surface_at(int x, int y) const {
-  // The pixel centre's surface, exactly as the reference finds it (pixel_surface.hpp).
-  RTCRayHit rh;
-  pixel_ray(scene_, inverse_clip_, x, y, 0.5, 0.5, rh);
+  // The pixel centre's surface, exactly as the reference finds it (pixel_surface.hpp): the same
+  // ray (camera_rays.hpp), traced through the same Embree call on a stream of one.
+  thread_local RayStream one;
+  one.resize(1);
+  const float u = CameraRays::image_point(x, 0.5), v = CameraRays::image_point(y, 0.5);
+  camera_->build(&u, &v, 1, one, 0);
+  one.reset_hits();
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
-  rtcIntersect1(embree_->handle(), &ctx, &rh);
-  const reference::Surface found = surface_of(*scene_.scene, rh);
+  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  const RTCRayHitNp hits = one.ray_hits();
+  {
+    const FlushDenormalsGuard ftz;
+    rtcIntersectNp(embree_->handle(), &ctx, &hits, 1);
+  }
+  float px, py, pz, nx, ny, nz;
+  const SurfaceArrays arrays{&px, &py, &pz, &nx, &ny, &nz};
+  hit_surfaces(one, 0, 1, arrays);
+  const reference::Surface found = surface_of(*scene_.scene, one, 0, arrays, 0);
   if (!found.hit) return std::nullopt;
   return Surface{found.p, found.n};
 }

@@ -11,7 +11,6 @@
 #include <atomic>
 #include <thread>
 #endif
-#include <xmmintrin.h>
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
@@ -23,8 +22,11 @@
 
 #include "shadowref/outputs/image.hpp"
 #include "shadowref/outputs/shading.hpp"
+#include "flush_denormals.hpp"
+#include "shadowref/reference/camera_rays.hpp"
 #include "shadowref/reference/embree_scene.hpp"
 #include "shadowref/reference/pixel_surface.hpp"
+#include "shadowref/reference/ray_stream.hpp"
 #include "shadowref/reference/shadow_ray.hpp"
 #include "shadowref/scene/camera.hpp"
 #include "shadowref/scene/prepared_scene.hpp"
@@ -35,28 +37,10 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr int kTile = 16;                  // 16 × 16 pixels: coherent streams, enough tiles to balance
-constexpr std::size_t kStreamChunk = 4096; // rays per rtcOccluded1M call: big enough to amortise, small enough for L2
 constexpr int kNudge = 4;                  // the decided test's second start offset, in epsilons
-constexpr std::int32_t kSlotShadowed = -1; // attached shadow: no ray
-constexpr std::int32_t kSlotLit = -2;      // light touching the surface: no ray
 const Vec3<double> kBackground(outputs::kBackground[0], outputs::kBackground[1], outputs::kBackground[2]);
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-// Embree asks for flush-to-zero and denormals-are-zero on the threads that trace (docs/dependencies.md);
-// the mode is per thread and changes other float results there, so it is set for one tile and
-// restored after, leaving TBB's worker threads as we found them.
-class FlushDenormalsGuard {
- public:
-  FlushDenormalsGuard() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | 0x8040u); }  // FTZ (bit 15) | DAZ (bit 6)
-  ~FlushDenormalsGuard() { _mm_setcsr(saved_); }
-  FlushDenormalsGuard(const FlushDenormalsGuard&) = delete;
-  FlushDenormalsGuard& operator=(const FlushDenormalsGuard&) = delete;
-
- private:
-  unsigned saved_;
-};
-
 
 struct LightSetup {
   const scene::Light* light = nullptr;
@@ -64,120 +48,139 @@ struct LightSetup {
   std::vector<Vec4<double>> samples;      // light_samples()
 };
 
+// One thread's scratch, reused from tile to tile. A tile's samples are laid out centres first
+// (one per pixel), then each pixel's sub-pixel grid; its shadow answers (`lit`) light by light:
+// the centres at 1 and kNudge epsilons, then per light sample every sub-pixel sample.
 struct TileBuffers {
-  std::vector<RTCRayHit> primary;
-  std::vector<Surface> surfaces;
-  std::vector<std::int32_t> slots;
-  std::vector<RTCRay> shadow;
+  std::vector<float> u, v;            // the samples' image points
+  RayStream primary, shadow;
+  std::vector<float> px, py, pz, nx, ny, nz;  // the samples' surfaces (pixel_surface.hpp)
+  SurfaceArrays arrays() { return {px.data(), py.data(), pz.data(), nx.data(), ny.data(), nz.data()}; }
+  std::vector<std::uint8_t> lit;      // 1: lit
+  std::vector<double> direct;         // per light, per sub-pixel sample: the Lambert sum over lit light samples
+  std::vector<std::uint32_t> lit_count;  // per light, per sub-pixel sample: lit light samples
   std::vector<double> lit_sum;        // gather's per-light scratch, reused from pixel to pixel
   std::vector<std::uint8_t> agree;
+  std::vector<std::size_t> light_base;    // where each light's answers start in `lit`
+  std::vector<std::uint8_t> centre_lit;   // the pixel centre's answer per light (1 epsilon)
   Stats stats;
 };
 
 class Renderer {
  public:
   Renderer(const scene::PreparedScene& prepared, const Options& options, const EmbreeScene& embree, Images& out)
-      : prepared_(prepared), scene_(*prepared.scene), embree_(embree), out_(out), n_(options.samples_per_axis) {
-    // The prepared scene's camera, in its run convention: the very matrices the renderer draws with.
-    inverse_view_proj_ = prepared.camera.clip_from_scene.inverse();
-    near_ndc_ = near_ndc_z(*prepared.convention);
-    far_ndc_ = far_ndc_z(*prepared.convention);
+      : scene_(*prepared.scene), embree_(embree), out_(out), camera_(prepared), n_(options.samples_per_axis) {
     for (std::size_t i = 0; i < scene_.lights.size(); ++i)
       lights_.push_back({&scene_.lights[i], prepared.lights[i], light_samples(scene_.lights[i])});
-    sub_slots_ = 0;
-    for (const auto& l : lights_) sub_slots_ += l.samples.size();
-    centre_slots_ = 2 * lights_.size();
-    samples_per_pixel_ = 1 + static_cast<std::size_t>(n_ * n_);
+    subs_ = static_cast<std::size_t>(n_ * n_);
+    for (std::size_t s = 0; s < subs_; ++s) {
+      const int i = static_cast<int>(s) % n_, j = static_cast<int>(s) / n_;
+      sub_xf_.push_back(static_cast<float>((i + 0.5) / n_));
+      sub_yf_.push_back(static_cast<float>((j + 0.5) / n_));
+    }
     eps_ = embree.epsilon();
   }
 
   void tile(int x0, int y0, TileBuffers& buf) const {
     const int x1 = std::min(x0 + kTile, scene_.width), y1 = std::min(y0 + kTile, scene_.height);
     const std::size_t pixels = static_cast<std::size_t>((x1 - x0) * (y1 - y0));
-    const std::size_t samples = pixels * samples_per_pixel_;
+    const std::size_t samples = pixels * (1 + subs_);
     FlushDenormalsGuard ftz;
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
 
-    // 1. Primary rays, pixel by pixel, centre first, then the sub-pixel grid row by row.
+    // 1. Primary rays: the pixel centres, then each pixel's sub-pixel grid row by row.
     const auto rays0 = Clock::now();
-    buf.primary.resize(samples);
+    buf.u.resize(samples);
+    buf.v.resize(samples);
     std::size_t k = 0;
     for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x)
-        for (std::size_t s = 0; s < samples_per_pixel_; ++s) primary_ray(x, y, s, buf.primary[k++]);
+      for (int x = x0; x < x1; ++x, ++k) {
+        buf.u[k] = CameraRays::image_point(x, 0.5);
+        buf.v[k] = CameraRays::image_point(y, 0.5);
+      }
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x, k += subs_) {
+        // image_point(x, sx) for each sub-pixel position, the float offsets rounded once.
+        const float fx = static_cast<float>(x), fy = static_cast<float>(y);
+        float* __restrict u = buf.u.data() + k;
+        float* __restrict v = buf.v.data() + k;
+        for (std::size_t s = 0; s < subs_; ++s) {
+          u[s] = fx + sub_xf_[s];
+          v[s] = fy + sub_yf_[s];
+        }
+      }
+    buf.primary.resize(samples);
+    camera_.build(buf.u.data(), buf.v.data(), samples, buf.primary, 0);
+    buf.primary.reset_hits();
     const auto primary0 = Clock::now();
-    rtcIntersect1M(embree_.handle(), &ctx, buf.primary.data(), static_cast<unsigned>(samples), sizeof(RTCRayHit));
+    const RTCRayHitNp hits = buf.primary.ray_hits();
+    rtcIntersectNp(embree_.handle(), &ctx, &hits, static_cast<unsigned>(samples));
     buf.stats.seconds_primary_calls += seconds_since(primary0);
     buf.stats.primary_rays += samples;
 
-    // 2. Surfaces, in double, from the barycentrics (so p lies on the triangle to double precision).
-    buf.surfaces.resize(samples);
-    for (std::size_t i = 0; i < samples; ++i) buf.surfaces[i] = surface(buf.primary[i]);
+    // 2. Surfaces, in float (pixel_surface.hpp): the shadow rays' input, and the gather's.
+    for (auto* a : {&buf.px, &buf.py, &buf.pz, &buf.nx, &buf.ny, &buf.nz}) a->resize(samples);
+    hit_surfaces(buf.primary, 0, samples, buf.arrays());
 
-    // 3. Shadow rays: per sample, per light, its slots (centre: 1 and kNudge epsilons toward the
-    //    light's centre; sub-pixel samples: every light sample).
+    // 3. Shadow rays, light by light, in groups of at most one sub-pixel grid's worth (4096 rays at
+    //    16 × 16 pixels and 4 × 4 samples: small enough for L2): the centres toward the light's centre at
+    //    1 and kNudge epsilons, then every sub-pixel sample toward each light sample.
     const auto phase0 = Clock::now();
-    const std::size_t slots_per_pixel = centre_slots_ + (samples_per_pixel_ - 1) * sub_slots_;
-    buf.slots.assign(pixels * slots_per_pixel, kSlotShadowed);
-    buf.shadow.clear();
+    const std::size_t sub_samples = pixels * subs_;
+    const SurfacePoints centres{buf.px.data(), buf.py.data(), buf.pz.data(), buf.nx.data(), buf.ny.data(), buf.nz.data()};
+    const SurfacePoints subs{buf.px.data() + pixels, buf.py.data() + pixels, buf.pz.data() + pixels,
+                             buf.nx.data() + pixels, buf.ny.data() + pixels, buf.nz.data() + pixels};
+    std::size_t total = 0;
+    for (const auto& l : lights_) total += 2 * pixels + l.samples.size() * sub_samples;
+    buf.lit.resize(total);
     std::size_t slot = 0;
-    for (std::size_t i = 0; i < samples; ++i) {
-      const Surface& s = buf.surfaces[i];
-      const bool centre = i % samples_per_pixel_ == 0;
-      for (const auto& l : lights_) {
-        if (centre) {
-          for (const double offset : {eps_, kNudge * eps_}) buf.slots[slot++] = add_ray(s, l.centre, offset, buf.shadow);
-        } else {
-          for (const auto& L : l.samples) buf.slots[slot++] = add_ray(s, L, eps_, buf.shadow);
-        }
+    const auto trace = [&](std::size_t count) {
+      const auto calls0 = Clock::now();
+      const RTCRayNp rays = buf.shadow.rays();
+      rtcOccludedNp(embree_.handle(), &ctx, &rays, static_cast<unsigned>(count));
+      buf.stats.seconds_shadow_calls += seconds_since(calls0);
+      buf.stats.shadow_rays += count;
+      const float* __restrict tfar = buf.shadow.tfar;
+      std::uint8_t* __restrict lit = buf.lit.data() + slot;
+      for (std::size_t i = 0; i < count; ++i) lit[i] = !(tfar[i] < 0);  // Embree sets tfar to −inf on a hit
+      slot += count;
+    };
+    for (const auto& l : lights_) {
+      buf.shadow.resize(2 * pixels);
+      build_shadow_rays(centres, pixels, l.centre, eps_, buf.shadow, 0);
+      build_shadow_rays(centres, pixels, l.centre, kNudge * eps_, buf.shadow, pixels);
+      trace(2 * pixels);
+      buf.shadow.resize(sub_samples);
+      for (const auto& L : l.samples) {
+        build_shadow_rays(subs, sub_samples, L, eps_, buf.shadow, 0);
+        trace(sub_samples);
       }
     }
-    const auto calls0 = Clock::now();
-    for (std::size_t first = 0; first < buf.shadow.size(); first += kStreamChunk) {
-      const std::size_t count = std::min(kStreamChunk, buf.shadow.size() - first);
-      rtcOccluded1M(embree_.handle(), &ctx, buf.shadow.data() + first, static_cast<unsigned>(count), sizeof(RTCRay));
-    }
-    buf.stats.seconds_shadow_calls += seconds_since(calls0);
     buf.stats.seconds_ray_work += seconds_since(rays0);
-    buf.stats.shadow_rays += buf.shadow.size();
 
-    // 4. Gather, pixel by pixel.
+    // 4. Shading's sums, light sample by light sample over all sub-pixel samples (shadow_ray.hpp).
+    buf.direct.assign(lights_.size() * sub_samples, 0.0);
+    buf.lit_count.assign(lights_.size() * sub_samples, 0);
+    slot = 0;
+    for (std::size_t li = 0; li < lights_.size(); ++li) {
+      slot += 2 * pixels;
+      for (const auto& L : lights_[li].samples) {
+        accumulate_lit(subs, sub_samples, L, buf.lit.data() + slot, buf.direct.data() + li * sub_samples,
+                       buf.lit_count.data() + li * sub_samples);
+        slot += sub_samples;
+      }
+    }
+
+    // 5. Gather, pixel by pixel.
     std::size_t pixel = 0;
     for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x, ++pixel) gather(x, y, pixel, buf);
+      for (int x = x0; x < x1; ++x, ++pixel) gather(x, y, pixel, pixels, buf);
     buf.stats.seconds_shadow_phase += seconds_since(phase0);
   }
 
  private:
-  void primary_ray(int x, int y, std::size_t s, RTCRayHit& rh) const {
-    double sx = 0.5, sy = 0.5;
-    if (s > 0) {
-      const int i = static_cast<int>(s - 1) % n_, j = static_cast<int>(s - 1) / n_;
-      sx = (i + 0.5) / n_;
-      sy = (j + 0.5) / n_;
-    }
-    pixel_ray(prepared_, inverse_view_proj_, x, y, sx, sy, rh);
-  }
-
-  Surface surface(const RTCRayHit& rh) const { return surface_of(scene_, rh); }
-
-  static std::int32_t add_ray(const Surface& s, const Vec4<double>& L, double offset, std::vector<RTCRay>& rays) {
-    if (!s.hit) return kSlotShadowed;  // never read
-    rays.emplace_back();  // the ray is built in its stream slot (shadow_ray.hpp: no copy)
-    const ShadowRayKind kind = make_shadow_ray(s.p, s.n, L, offset, rays.back());
-    if (kind == ShadowRayKind::Trace) return static_cast<std::int32_t>(rays.size() - 1);
-    rays.pop_back();
-    return kind == ShadowRayKind::Attached ? kSlotShadowed : kSlotLit;
-  }
-
-  static bool slot_lit(std::int32_t slot, const std::vector<RTCRay>& rays) {
-    if (slot == kSlotShadowed) return false;
-    if (slot == kSlotLit) return true;
-    return !(rays[static_cast<std::size_t>(slot)].tfar < 0);  // Embree sets tfar to −inf on a hit
-  }
-
   // The spot cone as a hard cut-off (1 inside, 0 outside); 1 for every other light type.
   static double cone(const scene::Light& l, const Vec3<double>& p) {
     if (l.type != scene::LightType::Spot) return 1.0;
@@ -187,13 +190,13 @@ class Renderer {
     return l.direction.dot(d) / len >= std::cos(l.cone_deg * std::numbers::pi / 180.0) ? 1.0 : 0.0;
   }
 
-  void gather(int x, int y, std::size_t pixel, TileBuffers& buf) const {
+  // Pixel `pixel` of a tile of `pixels` (TileBuffers' layout) into the images.
+  void gather(int x, int y, std::size_t pixel, std::size_t pixels, TileBuffers& buf) const {
     const std::size_t W = static_cast<std::size_t>(scene_.width);
     const std::size_t out = static_cast<std::size_t>(y) * W + static_cast<std::size_t>(x);
-    const std::size_t first_sample = pixel * samples_per_pixel_;
-    const std::size_t slots_per_pixel = centre_slots_ + (samples_per_pixel_ - 1) * sub_slots_;
-    const std::int32_t* slots = buf.slots.data() + pixel * slots_per_pixel;
-    const Surface& c = buf.surfaces[first_sample];
+    const std::size_t sub_samples = pixels * subs_;
+    const SurfaceArrays arrays = buf.arrays();
+    const Surface c = surface_of(scene_, buf.primary, pixel, arrays, pixel);
     const double light_weight = outputs::kDirect / static_cast<double>(lights_.size());
 
     Vec3<double> colour = Vec3<double>::Zero();
@@ -201,16 +204,23 @@ class Renderer {
     std::vector<std::uint8_t>& agree = buf.agree;
     lit_sum.assign(lights_.size(), 0.0);
     agree.assign(lights_.size(), 1);
+    // Where each light's answers start in buf.lit, and the centre's answers at 1 epsilon.
+    std::size_t base = 0;
+    buf.light_base.resize(lights_.size());
+    buf.centre_lit.resize(lights_.size());
+    for (std::size_t li = 0; li < lights_.size(); ++li) {
+      buf.light_base[li] = base;
+      buf.centre_lit[li] = c.hit && buf.lit[base + pixel];
+      base += 2 * pixels + lights_[li].samples.size() * sub_samples;
+    }
     int hits = 0;
     bool one_surface = true;  // "fully covered" (render.hpp, decided)
-    // Sub-pixel samples: their slots follow the centre's.
-    const std::int32_t* sub = slots + centre_slots_;
-    for (std::size_t s = 1; s < samples_per_pixel_; ++s) {
-      const Surface& h = buf.surfaces[first_sample + s];
+    for (std::size_t s = 0; s < subs_; ++s) {
+      const std::size_t sample = pixels + pixel * subs_ + s;
+      const Surface h = surface_of(scene_, buf.primary, sample, arrays, sample);
       if (h.hit != c.hit) std::fill(agree.begin(), agree.end(), std::uint8_t{0});
       if (!h.hit) {
         colour += kBackground;
-        sub += sub_slots_;
         continue;
       }
       ++hits;
@@ -218,32 +228,26 @@ class Renderer {
       double radiance = outputs::kAmbient;
       for (std::size_t li = 0; li < lights_.size(); ++li) {
         const LightSetup& l = lights_[li];
-        int lit_count = 0;
-        double direct = 0;
-        for (const auto& L : l.samples) {
-          if (slot_lit(*sub++, buf.shadow)) {
-            ++lit_count;
-            direct += std::max(0.0, facing(h.p, h.n, L)) * cone(*l.light, h.p);
-          }
-        }
+        const std::size_t k = li * sub_samples + pixel * subs_ + s;
+        const std::uint32_t lit_count = buf.lit_count[k];
+        const double direct = buf.direct[k] * cone(*l.light, h.p);
         const double fraction = static_cast<double>(lit_count) / static_cast<double>(l.samples.size());
         lit_sum[li] += fraction;
         radiance += light_weight * direct / static_cast<double>(l.samples.size());
-        const bool centre_lit = c.hit && slot_lit(slots[2 * li], buf.shadow);
-        if (fraction != (centre_lit ? 1.0 : 0.0)) agree[li] = 0;
+        if (fraction != (buf.centre_lit[li] ? 1.0 : 0.0)) agree[li] = 0;
       }
       colour += radiance * h.albedo.cast<double>();
     }
 
-    const double samples = static_cast<double>(samples_per_pixel_ - 1);
+    const double samples = static_cast<double>(subs_);
     bool all_decided = true;
     float vis_sum = 0;
     for (std::size_t li = 0; li < lights_.size(); ++li) {
       LightImages& img = out_.lights[li];
       bool decided = agree[li] != 0 && one_surface;
       if (c.hit) {
-        const bool lit1 = slot_lit(slots[2 * li], buf.shadow);
-        const bool lit4 = slot_lit(slots[2 * li + 1], buf.shadow);
+        const bool lit1 = buf.lit[buf.light_base[li] + pixel] != 0;
+        const bool lit4 = buf.lit[buf.light_base[li] + pixels + pixel] != 0;
         img.mask[out] = lit1 ? outputs::kMaskLit : outputs::kMaskShadowed;
         decided = decided && lit1 == lit4 && std::abs(facing(c.p, c.n, lights_[li].centre)) >= kGrazingCosine;
       } else {
@@ -256,22 +260,19 @@ class Renderer {
     }
     out_.visibility[out] = hits > 0 ? vis_sum / static_cast<float>(lights_.size()) : -1.0f;
     out_.decided[out] = all_decided ? 255 : 0;
-    out_.covered[out] = c.hit && one_surface && hits == static_cast<int>(samples_per_pixel_ - 1) ? 255 : 0;
+    out_.covered[out] = c.hit && one_surface && hits == static_cast<int>(subs_) ? 255 : 0;
     colour /= samples;
     for (int ch = 0; ch < 3; ++ch) out_.shaded[3 * out + static_cast<std::size_t>(ch)] = outputs::encode_srgb8(colour[ch]);
   }
 
-  const scene::PreparedScene& prepared_;
   const scene::Scene& scene_;
   const EmbreeScene& embree_;
   Images& out_;
+  CameraRays camera_;
   int n_;
-  Mat4<double> inverse_view_proj_;
-  double near_ndc_ = -1, far_ndc_ = 1;  // clip-space z of the near and far planes (convention.hpp)
   std::vector<LightSetup> lights_;
-  std::size_t sub_slots_ = 0;
-  std::size_t centre_slots_ = 0;
-  std::size_t samples_per_pixel_ = 1;
+  std::size_t subs_ = 0;               // sub-pixel samples per pixel: n_²
+  std::vector<float> sub_xf_, sub_yf_;  // their positions in the pixel, row by row, rounded to float
   double eps_ = 0;
 };
 

@@ -6,6 +6,10 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <new>
 #include <system_error>
 
 namespace shadowref::compare {
@@ -17,60 +21,10 @@ enum Class : std::uint8_t { kShadowed = 0, kNoSurface = 1, kLit = 2 };
 inline Class classify(std::uint8_t v) { return static_cast<Class>((v >= 64) + (v >= 192)); }
 inline bool exact(std::uint8_t v) { return outputs::is_mask_value(v); }
 
-// The reference's boundary pixels, the scale errors are judged against: those with a 4-neighbour
-// (inside the image) of another class. Branchless over whole rows, so that it vectorises: a
-// neighbour outside the image is replaced by the pixel itself, which never differs.
-std::size_t count_edges(const std::uint8_t* ref, int w, int h) {
-  std::size_t edges = 0;
-  for (int y = 0; y < h; ++y) {
-    const std::uint8_t* row = ref + static_cast<std::size_t>(y) * static_cast<std::size_t>(w);
-    const std::uint8_t* up = y > 0 ? row - w : row;
-    const std::uint8_t* down = y + 1 < h ? row + w : row;
-    for (int x = 0; x < w; ++x) {
-      const Class c = classify(row[x]);
-      const Class l = classify(row[x > 0 ? x - 1 : x]), r = classify(row[x + 1 < w ? x + 1 : x]);
-      edges += (c != l) | (c != r) | (c != classify(up[x])) | (c != classify(down[x]));
-    }
-  }
-  return edges;
-}
-
 // Wrong-pixel codes in the scratch image.
 enum Wrong : std::uint8_t { kRight = 0, kFalseShadow = 1, kFalseLight = 2, kCoverage = 3 };
 
 std::string size_text(const Image8& i) { return std::to_string(i.width) + "x" + std::to_string(i.height); }
-
-// 8-connected regions of non-zero codes: count and largest, by an explicit-stack flood fill that
-// visits wrong pixels only (clears `codes` as it goes).
-void regions(std::vector<std::uint8_t>& codes, int w, int h, MaskMetrics& m) {
-  std::vector<std::size_t> stack;
-  const std::size_t n = codes.size();
-  for (std::size_t start = 0; start < n; ++start) {
-    if (!codes[start]) continue;
-    std::size_t size = 0;
-    codes[start] = 0;
-    stack.push_back(start);
-    while (!stack.empty()) {
-      const std::size_t p = stack.back();
-      stack.pop_back();
-      ++size;
-      const int x = static_cast<int>(p % static_cast<std::size_t>(w));
-      const int y = static_cast<int>(p / static_cast<std::size_t>(w));
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int nx = x + dx, ny = y + dy;
-          if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
-          const std::size_t q = static_cast<std::size_t>(ny) * static_cast<std::size_t>(w) + static_cast<std::size_t>(nx);
-          if (codes[q]) {
-            codes[q] = 0;
-            stack.push_back(q);
-          }
-        }
-    }
-    ++m.regions;
-    m.largest_region = std::max(m.largest_region, size);
-  }
-}
 
 std::string percent(double fraction) {
   char buf[32];
@@ -135,6 +89,87 @@ std::size_t count_cores(const std::vector<std::uint8_t>& flagged, int w, int h, 
   return cores;
 }
 
+namespace {
+
+// A w × h byte image of zeros that costs nothing until written: calloc hands out fresh zero pages
+// for large sizes, so that marking a few thousand wrong pixels of a 2048² mask touches a few pages,
+// where a std::vector zeroed all 4 MiB first.
+struct FreeBytes {
+  void operator()(std::uint8_t* p) const { std::free(p); }
+};
+using ZeroBytes = std::unique_ptr<std::uint8_t[], FreeBytes>;
+ZeroBytes zero_bytes(std::size_t n) {
+  auto* p = static_cast<std::uint8_t*>(std::calloc(std::max<std::size_t>(n, 1), 1));
+  if (!p) throw std::bad_alloc();
+  return ZeroBytes(p);
+}
+
+// count_cores over the listed flagged pixels only (`flagged` marks exactly those): the same count,
+// in time proportional to the list.
+std::size_t count_cores_listed(const std::uint8_t* flagged, const std::vector<std::size_t>& list, int w, int h) {
+  const std::size_t core_area = (2 * kCoreRadius + 1) * (2 * kCoreRadius + 1);
+  if (list.size() < core_area) return 0;
+  const std::size_t stride = static_cast<std::size_t>(w);
+  std::size_t cores = 0;
+  for (const std::size_t i : list) {
+    const int x = static_cast<int>(i % stride), y = static_cast<int>(i / stride);
+    if (x < kCoreRadius || y < kCoreRadius || x + kCoreRadius >= w || y + kCoreRadius >= h) continue;
+    bool core = true;
+    for (int dy = -kCoreRadius; dy <= kCoreRadius && core; ++dy)
+      for (int dx = -kCoreRadius; dx <= kCoreRadius && core; ++dx)
+        core = flagged[static_cast<std::size_t>(y + dy) * stride + static_cast<std::size_t>(x + dx)] != 0;
+    cores += core;
+  }
+  return cores;
+}
+
+// 8-connected regions of the listed wrong pixels (`codes` non-zero exactly there; cleared as the
+// fill goes): count and largest, seeds taken in pixel order as regions() does.
+void regions_listed(std::uint8_t* codes, const std::vector<std::size_t>& list, int w, int h, MaskMetrics& m) {
+  std::vector<std::size_t> stack;
+  for (const std::size_t start : list) {
+    if (!codes[start]) continue;
+    std::size_t size = 0;
+    codes[start] = 0;
+    stack.push_back(start);
+    while (!stack.empty()) {
+      const std::size_t p = stack.back();
+      stack.pop_back();
+      ++size;
+      const int x = static_cast<int>(p % static_cast<std::size_t>(w));
+      const int y = static_cast<int>(p / static_cast<std::size_t>(w));
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int nx = x + dx, ny = y + dy;
+          if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+          const std::size_t q = static_cast<std::size_t>(ny) * static_cast<std::size_t>(w) + static_cast<std::size_t>(nx);
+          if (codes[q]) {
+            codes[q] = 0;
+            stack.push_back(q);
+          }
+        }
+    }
+    ++m.regions;
+    m.largest_region = std::max(m.largest_region, size);
+  }
+}
+
+// The reference's boundary pixels, the scale errors are judged against, are those with a
+// 4-neighbour (inside the image) of another class. Boundary pixels of one row of reference classes (`up` and `down`: the rows above and below, the
+// row itself at the image's edge), as count_edges: a neighbour outside the image is the pixel itself.
+std::size_t row_edges(const std::uint8_t* __restrict up, const std::uint8_t* __restrict row,
+                      const std::uint8_t* __restrict down, int w) {
+  if (w == 1) return (row[0] != up[0]) | (row[0] != down[0]);
+  std::uint32_t edges = (row[0] != row[1]) | (row[0] != up[0]) | (row[0] != down[0]);
+  edges += (row[w - 1] != row[w - 2]) | (row[w - 1] != up[w - 1]) | (row[w - 1] != down[w - 1]);
+  for (int x = 1; x + 1 < w; ++x)
+    edges += static_cast<std::uint32_t>((row[x] != row[x - 1]) | (row[x] != row[x + 1]) | (row[x] != up[x]) |
+                                        (row[x] != down[x]));
+  return edges;
+}
+
+}  // namespace
+
 MaskComparison compare_mask(const Image8& reference, const Image8& decided, const Image8& candidate,
                             const std::string& what, std::size_t light, const CompareOptions& options) {
   for (const Image8* i : {&reference, &decided, &candidate})
@@ -154,86 +189,131 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
   m.height = h;
   m.pixels = n;
   out.error = Image8{w, h, 3, std::vector<std::uint8_t>(3 * n)};
-  std::vector<std::uint8_t> codes(n, kRight);
-  std::vector<std::uint8_t> unexplained(n, 0);
   const std::uint8_t* ref = reference.pixels.data();
   const std::uint8_t* dec = decided.pixels.data();
   const std::uint8_t* cand = candidate.pixels.data();
   std::uint8_t* err = out.error.pixels.data();
-  // The dimmed reference under the error colours: lit, shadowed, no surface.
-  static constexpr std::uint8_t kDim[3][3] = {{55, 55, 55}, {28, 28, 42}, {150, 150, 150}};
-  // Rows and columns are walked as such: a division per pixel cost more than the rest of the loop.
+  // The dimmed reference under the error colours, by class (shadowed, no surface, lit), and the
+  // undecided colour: each as 4 bytes, so that a pixel's colour is one 4-byte store whose last byte
+  // the next pixel overwrites.
+  static constexpr std::uint8_t kColour[4][4] = {{55, 55, 55, 0}, {28, 28, 42, 0}, {150, 150, 150, 0},
+                                                 {kErrorColours.undecided[0], kErrorColours.undecided[1],
+                                                  kErrorColours.undecided[2], 0}};
+  static_assert(kShadowed == 0 && kNoSurface == 1 && kLit == 2);
   const std::size_t stride = static_cast<std::size_t>(w);
-  m.edge_pixels = count_edges(ref, w, h);
-  // The per-pixel counts live in locals: the loop writes through std::uint8_t pointers, which may
-  // alias anything, so counters in `m` were loaded and stored back at every pixel (2.5 times slower).
-  std::size_t off_values = 0, decided_count = 0, decided_surface = 0;
-  for (int y = 0; y < h; ++y)
+  const std::uint8_t invariant = options.no_cast_shadow_invariant ? 1 : 0;
+
+  // 1. One pass over the rows, vectorised: the reference's classes (three rows kept for its edges),
+  //    the decided, invariant and off-value counts, each pixel's colour index, and the wrong pixels
+  //    (a list: they are few, or the verdict is a FAIL anyway).
+  std::vector<std::uint8_t> cls_rows(3 * stride), colour(stride), wrong_row(stride);
+  std::uint8_t* rows[3] = {cls_rows.data(), cls_rows.data() + stride, cls_rows.data() + 2 * stride};
+  const auto classify_row = [&](int y, std::uint8_t* __restrict out_row) {
+    const std::uint8_t* __restrict in = ref + static_cast<std::size_t>(y) * stride;
+    for (int x = 0; x < w; ++x) out_row[x] = classify(in[x]);
+  };
+  classify_row(0, rows[1]);
+  std::vector<std::size_t> wrong;
+  std::size_t edges = 0, off_values = 0, decided_count = 0, decided_surface = 0, invariant_pixels = 0;
+  for (int y = 0; y < h; ++y) {
+    // rows[0] above, rows[1] this row, rows[2] below (the row itself at the image's edges).
+    if (y + 1 < h) classify_row(y + 1, rows[2]);
+    const std::uint8_t* up = y > 0 ? rows[0] : rows[1];
+    const std::uint8_t* down = y + 1 < h ? rows[2] : rows[1];
+    edges += row_edges(up, rows[1], down, w);
+    const std::size_t first = static_cast<std::size_t>(y) * stride;
+    const std::uint8_t* __restrict rc = rows[1];
+    const std::uint8_t* __restrict cv = cand + first;
+    const std::uint8_t* __restrict dv = dec + first;
+    std::uint8_t* __restrict col = colour.data();
+    std::uint8_t* __restrict wr = wrong_row.data();
+    std::uint32_t row_off = 0, row_decided = 0, row_surface = 0, row_invariant = 0, row_wrong = 0;
     for (int x = 0; x < w; ++x) {
-    const std::size_t i = static_cast<std::size_t>(y) * stride + static_cast<std::size_t>(x);
-    const Class r = classify(ref[i]);
-    const Class c = classify(cand[i]);
-    off_values += !exact(cand[i]);
-    const std::uint8_t* colour = kDim[r];
-    const bool judged_by_invariant =
-        dec[i] < 128 && options.no_cast_shadow_invariant && r == kLit && c == kShadowed;
-    if (dec[i] >= 128 || judged_by_invariant) {
-      if (dec[i] >= 128) {
-        ++decided_count;
-        decided_surface += r != kNoSurface;
-      } else {
-        ++m.invariant_pixels;
-      }
-      if (r != c) {
-        std::uint8_t code;
-        if (r == kNoSurface || c == kNoSurface) {
-          code = kCoverage;
-          ++m.coverage;
-          colour = kErrorColours.coverage;
-        } else if (r == kLit) {
-          code = kFalseShadow;
-          ++m.false_shadow;
-          colour = kErrorColours.false_shadow;
-        } else {
-          code = kFalseLight;
-          ++m.false_light;
-          colour = kErrorColours.false_light;
-        }
-        codes[i] = code;
-        ++m.wrong;
-        // A cause for a shadow error (coverage has none).
-        Cause cause = Cause::Unexplained;
-        if (code != kCoverage && options.explain) cause = (*options.explain)(light, x, y, c == kLit);
-        if (cause == Cause::TexelFootprint) {
-          ++m.explained_texel;
-          colour = kErrorColours.texel;
-        } else if (cause == Cause::DepthBias) {
-          ++m.explained_bias;
-          colour = kErrorColours.bias;
-        } else {
-          ++m.unexplained;
-          if (code == kFalseLight) ++m.unexplained_false_light;
-          if (cause == Cause::Acne) {
-            ++m.unexplained_acne;
-            colour = kErrorColours.acne;
-          }
-          unexplained[i] = 1;
-        }
-      }
-    } else {
-      colour = kErrorColours.undecided;
+      const std::uint8_t r = rc[x], c = classify(cv[x]);
+      const std::uint8_t d = dv[x] >> 7;  // >= 128
+      // Judged although undecided: the scene's invariant (no cast shadow) and a false shadow.
+      const std::uint8_t inv = static_cast<std::uint8_t>((d ^ 1) & invariant & (r == kLit) & (c == kShadowed));
+      const std::uint8_t judged = d | inv;
+      row_off += !exact(cv[x]);
+      row_decided += d;
+      row_surface += d & (r != kNoSurface);
+      row_invariant += inv;
+      col[x] = judged ? r : std::uint8_t{3};
+      wr[x] = judged & (r != c);
+      row_wrong += wr[x];
     }
-    err[3 * i + 0] = colour[0];
-    err[3 * i + 1] = colour[1];
-    err[3 * i + 2] = colour[2];
+    off_values += row_off;
+    decided_count += row_decided;
+    decided_surface += row_surface;
+    invariant_pixels += row_invariant;
+    std::uint8_t* e = err + 3 * first;
+    for (int x = 0; x + 1 < w || (x + 1 == w && y + 1 < h); ++x) std::memcpy(e + 3 * x, kColour[col[x]], 4);
+    if (y + 1 == h) std::memcpy(e + 3 * static_cast<std::size_t>(w - 1), kColour[col[w - 1]], 3);  // the image's last pixel
+    if (row_wrong)
+      for (int x = 0; x < w; ++x)
+        if (wr[x]) wrong.push_back(first + static_cast<std::size_t>(x));
+    std::rotate(rows, rows + 1, rows + 3);
   }
+  m.edge_pixels = edges;
   m.off_values = off_values;
   m.decided = decided_count;
   m.decided_surface = decided_surface;
-  m.unexplained_core = count_cores(unexplained, w, h, m.unexplained);
-  // The same over the false light alone (an expected failure's predicted kind, conform.cpp).
-  for (std::size_t i = 0; i < n; ++i) unexplained[i] = unexplained[i] && codes[i] == kFalseLight;
-  m.unexplained_false_light_core = count_cores(unexplained, w, h, m.unexplained_false_light);
+  m.invariant_pixels = invariant_pixels;
+
+  // 2. The wrong pixels alone: their kind, their cause, their colour.
+  ZeroBytes codes = wrong.empty() ? nullptr : zero_bytes(n);
+  ZeroBytes flagged = wrong.empty() ? nullptr : zero_bytes(n);
+  std::vector<std::size_t> unexplained, unexplained_false_light;
+  for (const std::size_t i : wrong) {
+    const Class r = classify(ref[i]), c = classify(cand[i]);
+    const int x = static_cast<int>(i % stride), y = static_cast<int>(i / stride);
+    std::uint8_t code;
+    const unsigned char* paint;
+    if (r == kNoSurface || c == kNoSurface) {
+      code = kCoverage;
+      ++m.coverage;
+      paint = kErrorColours.coverage;
+    } else if (r == kLit) {
+      code = kFalseShadow;
+      ++m.false_shadow;
+      paint = kErrorColours.false_shadow;
+    } else {
+      code = kFalseLight;
+      ++m.false_light;
+      paint = kErrorColours.false_light;
+    }
+    codes[i] = code;
+    ++m.wrong;
+    // A cause for a shadow error (coverage has none).
+    Cause cause = Cause::Unexplained;
+    if (code != kCoverage && options.explain) cause = (*options.explain)(light, x, y, c == kLit);
+    if (cause == Cause::TexelFootprint) {
+      ++m.explained_texel;
+      paint = kErrorColours.texel;
+    } else if (cause == Cause::DepthBias) {
+      ++m.explained_bias;
+      paint = kErrorColours.bias;
+    } else {
+      ++m.unexplained;
+      if (code == kFalseLight) {
+        ++m.unexplained_false_light;
+        unexplained_false_light.push_back(i);
+      }
+      if (cause == Cause::Acne) {
+        ++m.unexplained_acne;
+        paint = kErrorColours.acne;
+      }
+      flagged[i] = 1;
+      unexplained.push_back(i);
+    }
+    std::memcpy(err + 3 * i, paint, 3);
+  }
+  if (!wrong.empty()) {
+    m.unexplained_core = count_cores_listed(flagged.get(), unexplained, w, h);
+    // The same over the false light alone (an expected failure's predicted kind, conform.cpp).
+    for (const std::size_t i : unexplained) flagged[i] = codes[i] == kFalseLight;
+    m.unexplained_false_light_core = count_cores_listed(flagged.get(), unexplained_false_light, w, h);
+  }
   if (m.off_values) {
     // The contract allows three values and nothing is rounded: a mask written as 10 / 250 is a
     // broken writer, not a near miss (docs/output-contract.md).
@@ -244,7 +324,7 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
                        "and 128 (no surface), e.g. " + std::to_string(cand[first]) + " at (" +
                        std::to_string(first % static_cast<std::size_t>(w)) + ", " + std::to_string(first / static_cast<std::size_t>(w)) + ")");
   }
-  if (m.wrong) regions(codes, w, h, m);
+  if (m.wrong) regions_listed(codes.get(), wrong, w, h, m);
   return out;
 }
 

@@ -77,6 +77,7 @@ inline constexpr int kMaxFilterTapsPerAxis = 13;
 inline constexpr double kProbeStep = 0.25;
 
 class EmbreeScene;
+class CameraRays;
 
 class CauseModel {
  public:
@@ -154,7 +155,7 @@ class CauseModel {
   const LightFit& fit_for(std::size_t light, int size, int cascades) const;
   const scene::PreparedScene& scene_;
   std::unique_ptr<EmbreeScene> embree_;
-  Mat4<double> inverse_clip_;
+  std::unique_ptr<CameraRays> camera_;
   mutable std::map<std::tuple<std::size_t, int, int>, LightFit> fits_;
 };
 

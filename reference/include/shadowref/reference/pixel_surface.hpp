@@ -6,20 +6,28 @@
 // The ray leaves the near plane (what a rasteriser clips at) through the pixel point's NDC
 // (scene::pixel_to_ndc), unprojected through inverse(P · V) of the prepared camera in its run
 // convention, toward the point halfway to the far plane in clip depth (finite even with an infinite
-// far), and ends at the far plane when the camera has one. The surface is the first hit: its point
-// (from the barycentrics, in double), its face normal turned toward the viewer (two-sided; a
-// zero-area triangle's normal is the reversed ray), its object and albedo.
+// far), and ends at the far plane when the camera has one: camera_rays.hpp defines it, in float,
+// bit for bit. The surface is the first hit, in float, in this order (hit_surfaces below):
+//   p = org + tfar·dir                                  per component, tfar Embree's hit distance
+//   n = Ng / sqrt((Ng.x·Ng.x + Ng.y·Ng.y) + Ng.z·Ng.z)  Embree's geometric normal, made unit;
+//       −dir where |Ng| is 0 (a zero-area triangle)
+//   n = −n where (n.x·dir.x + n.y·dir.y) + n.z·dir.z > 0  (two-sided: the side the camera sees)
+// and its object (Embree's geomID) and albedo. p and n go on, as they are, into the shadow rays
+// (shadow_ray.hpp) and, widened to double, into the decided rule below. Like the rays, built 8 or
+// 4 at a time with the same bits on every variant (pixel_surface.cpp: -ffp-contract=off). Embree's
+// own outputs (tfar, Ng) are what its kernel for this CPU computes.
 #pragma once
 
 #include <embree3/rtcore.h>
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 
-#include "shadowref/convention.hpp"
-#include "shadowref/scene/camera.hpp"
-#include "shadowref/scene/prepared_scene.hpp"
+#include "shadowref/reference/ray_stream.hpp"
+#include "shadowref/reference/simd_path.hpp"
+#include "shadowref/scene/scene.hpp"
 
 namespace shadowref::reference {
 
@@ -47,7 +55,7 @@ inline bool same_smooth_surface(const Surface& centre, const Surface& sample, do
 }
 
 // `rh` set to the ray from `o` along the unit `d` up to `tfar`, in float as Embree takes it, with
-// no hit yet (geomID invalid): how every ray the reference and its cause model trace starts.
+// no hit yet (geomID invalid): how the cause model's light-view probes start.
 inline void start_ray(const Vec3<double>& o, const Vec3<double>& d, double tfar, RTCRayHit& rh) {
   rh = RTCRayHit{};
   rh.ray.org_x = static_cast<float>(o.x());
@@ -63,47 +71,30 @@ inline void start_ray(const Vec3<double>& o, const Vec3<double>& d, double tfar,
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }
 
-// The pixel point's camera ray for `scene` (pixel (x, y), row 0 at the top, at (sx, sy) inside it),
-// written into `rh` as Embree wants it (geomID invalid: no hit yet); and the surface `rh` hit after
-// tracing (hit false on a miss). Inline: the reference's tiles build and read millions of these,
-// and a call across translation units cost 6 % of BM_ReferenceRender.
-// Written straight into the stream slot `rh`, never returned by value: the 80-byte RTCRayHit
-// assembled field by field (4- and 8-byte stores) and then copied 16 bytes at a time stalled on
-// store forwarding (reference_bench, BM_ReferenceRender).
-inline void pixel_ray(const scene::PreparedScene& scene, const Mat4<double>& inverse_clip, int x, int y, double sx, double sy,
-               RTCRayHit& rh) {
-  const scene::Scene& s = *scene.scene;
-  const double near_ndc = near_ndc_z(*scene.convention), far_ndc = far_ndc_z(*scene.convention);
-  const Vec2<double> ndc = scene::pixel_to_ndc<double>(x, y, sx, sy, s.width, s.height);
-  const auto unproject = [&](double z) {
-    const Vec4<double> h = inverse_clip * Vec4<double>(ndc.x(), ndc.y(), z, 1.0);
-    return Vec3<double>(h.head<3>() / h[3]);
-  };
-  const Vec3<double> o = unproject(near_ndc);
-  const Vec3<double> d = (unproject(0.5 * (near_ndc + far_ndc)) - o).normalized();
-  const double tfar = s.camera.far ? (unproject(far_ndc) - o).norm() : std::numeric_limits<double>::infinity();
-  start_ray(o, d, tfar, rh);
-}
+// The surfaces of traced camera rays in structure-of-arrays float: what the shadow rays take
+// (shadow_ray.hpp's SurfacePoints reads the same arrays). A miss has zero point and normal.
+struct SurfaceArrays {
+  float *px, *py, *pz;
+  float *nx, *ny, *nz;
+};
+// The surfaces of rays [first, first + count) of `rays` (traced with rtcIntersectNp), written to
+// `out` at 0 .. count − 1. Cost: about 25 float operations, a square root and a division a ray.
+void hit_surfaces(const RayStream& rays, std::size_t first, std::size_t count, const SurfaceArrays& out,
+                  SimdPath path = best_simd_path());
 
-inline Surface surface_of(const scene::Scene& scene, const RTCRayHit& rh) {
+// Sample `i` of hit_surfaces()' output for ray `ray` of `rays`, widened to double, with its object
+// and albedo: what the decided rule and the shading read.
+inline Surface surface_of(const scene::Scene& scene, const RayStream& rays, std::size_t ray, const SurfaceArrays& a,
+                          std::size_t i) {
   Surface s;
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return s;
-  const auto& obj = scene.objects[rh.hit.geomID];
-  const auto& tri = obj.mesh.triangles[rh.hit.primID];
-  const Vec3<double> v0 = obj.mesh.positions[tri[0]].cast<double>();
-  const Vec3<double> v1 = obj.mesh.positions[tri[1]].cast<double>();
-  const Vec3<double> v2 = obj.mesh.positions[tri[2]].cast<double>();
-  const double u = rh.hit.u, v = rh.hit.v;
+  const unsigned geom = rays.geom_id[ray];
+  if (geom == RTC_INVALID_GEOMETRY_ID) return s;
   s.hit = true;
-  s.p = v0 + u * (v1 - v0) + v * (v2 - v0);
-  const Vec3<double> dir(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
-  Vec3<double> n = (v1 - v0).cross(v2 - v0);
-  n = n.norm() > 0 ? Vec3<double>(n.normalized()) : Vec3<double>(-dir.normalized());
-  s.n = n.dot(dir) > 0 ? Vec3<double>(-n) : n;  // two-sided: the side the camera sees
-  s.albedo = obj.color;
-  s.object = rh.hit.geomID;
+  s.p = Vec3<double>(a.px[i], a.py[i], a.pz[i]);
+  s.n = Vec3<double>(a.nx[i], a.ny[i], a.nz[i]);
+  s.albedo = scene.objects[geom].color;
+  s.object = geom;
   return s;
 }
-
 
 }  // namespace shadowref::reference

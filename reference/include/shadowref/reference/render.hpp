@@ -1,10 +1,12 @@
 // shadowref/reference/render.hpp — the ray-traced ground truth of a scene (docs/output-contract.md).
 //
 // For each pixel: one primary ray through the pixel centre and samples_per_axis² through the
-// centres of a regular sub-pixel grid, each traced with rtcIntersect1M from the near plane (and
-// to the far plane when the camera has one), unprojected through inverse(P · V) with P and V
-// from the prepared scene — the matrices the OpenGL renderer uses, in the same run convention. At each hit, the visibility rule
-// of shadow_ray.hpp for every light, traced with rtcOccluded1M streams.
+// centres of a regular sub-pixel grid, each from the near plane (and to the far plane when the
+// camera has one), unprojected through inverse(P · V) with P and V from the prepared scene — the
+// matrices the OpenGL renderer uses, in the same run convention (camera_rays.hpp: defined in
+// float, bit for bit). At each hit (pixel_surface.hpp), the visibility rule of shadow_ray.hpp for
+// every light. A tile's rays are built 8 or 4 at a time into structure-of-arrays streams and
+// traced with rtcIntersectNp / rtcOccludedNp.
 //
 //   mask      the pixel-centre answer toward the light's homogeneous point (scene::homogeneous:
 //             the centre of a rect light): 255 lit, 0 shadowed, 128 no surface.
@@ -22,8 +24,9 @@
 //             The last rule is the VK-GL-CTS rasterization verifier's "partially covered" class:
 //             where an edge crosses a pixel, a rasteriser may honestly resolve the centre to
 //             either side, and a shadow map's texel may hold either surface's depth.
-//   shaded    flat-shaded Lambert (face normals), ambient 0.1, the spot cone as a hard cut-off,
-//             averaged over the sub-pixel samples, sRGB-encoded, RGB8.
+//   shaded    flat-shaded Lambert (face normals; the cosine in float, shadow_ray.hpp's
+//             accumulate_lit), ambient 0.1, the spot cone as a hard cut-off, averaged over the
+//             sub-pixel samples, sRGB-encoded, RGB8.
 // With several lights, each light gets its own mask, visibility and decided image; the
 // aggregate visibility is the mean over lights and the aggregate decided the AND.
 //
@@ -79,7 +82,8 @@ struct Stats {
   double seconds_primary_calls = 0;    // summed over threads: inside rtcIntersect1M only
   // Summed over threads: the whole ray work of the tiles — building and tracing the primary rays,
   // the surfaces from their hits, building and tracing the shadow rays (the decided test's nudged
-  // rays included); not the gathering of the answers into pixels. Over seconds_primary_calls +
+  // rays included) and reading their answers; not the shading sums nor the gathering of the
+  // answers into pixels. Over seconds_primary_calls +
   // seconds_shadow_calls it is the cost of the reference's rays against bare Embree on the very
   // same rays (reference_bench reports it).
   double seconds_ray_work = 0;

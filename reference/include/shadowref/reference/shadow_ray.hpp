@@ -8,15 +8,19 @@
 //      segment stops `offset` short of a point light so that geometry touching the light does
 //      not count.
 // Every mask, visibility and decided value of the reference follows this rule; the renderer
-// traces the rays in streams, lit() traces single ones, both through make_shadow_ray.
+// traces the rays in streams, lit() traces single ones, both built by build_shadow_rays.
 #pragma once
 
 #include <embree3/rtcore.h>
 
+#include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
 #include "shadowref/conventions.hpp"
+#include "shadowref/reference/ray_stream.hpp"
+#include "shadowref/reference/simd_path.hpp"
 #include "shadowref/scene/scene.hpp"
 
 namespace shadowref::reference {
@@ -37,45 +41,44 @@ enum class ShadowRayKind {
   Touching,  // a point light within 2 offsets of the start: lit (nothing fits in between), no ray
   Trace,     // `ray` decides
 };
-// The shadow ray of rule 2 from p toward L, written into `ray` when the answer is Trace (`ray` is
-// left alone otherwise). `offset` > 0 is the start offset along n (the reference uses 1 and 4
-// epsilons); the ray is in float, as Embree wants it. Cost: one square root and one division per
-// component (a point light) or the normalisation of L (a directional light). Inline, and writing
-// straight into the caller's stream slot, because the reference builds one per sample and light
-// sample: returning the 48-byte ray by value made every copy into the stream a store-forwarding
-// stall (the fields are written 4 and 8 bytes at a time, then read 16 at a time): perf put half
-// of reference_bench's BM_ShadowRays_Ours samples on that one copy.
-inline ShadowRayKind make_shadow_ray(const Vec3<double>& p, const Vec3<double>& n, const Vec4<double>& L, double offset,
-                                     RTCRay& ray) {
-  const bool directional = L[3] == 0;
-  // Rule 1 needs only the sign of n · (direction to L): facing() > 0 exactly when this is > 0,
-  // the division by the (positive) distance cannot change a sign, and a distance of 0 gives 0.
-  const Vec3<double> to_light = directional ? Vec3<double>(L.head<3>()) : Vec3<double>(L.head<3>() - p);
-  if (!(n.dot(to_light) > 0)) return ShadowRayKind::Attached;
-  const Vec3<double> o = p + offset * n;
-  Vec3<double> d;
-  double tfar = std::numeric_limits<double>::infinity();
-  if (directional) {
-    d = L.head<3>().normalized();
-  } else {
-    d = L.head<3>() - o;
-    const double len = d.norm();
-    if (len <= 2 * offset) return ShadowRayKind::Touching;
-    d /= len;
-    tfar = len - offset;
-  }
-  ray.org_x = static_cast<float>(o.x());
-  ray.org_y = static_cast<float>(o.y());
-  ray.org_z = static_cast<float>(o.z());
-  ray.dir_x = static_cast<float>(d.x());
-  ray.dir_y = static_cast<float>(d.y());
-  ray.dir_z = static_cast<float>(d.z());
-  ray.tnear = 0.0f;
-  ray.tfar = static_cast<float>(tfar);
-  ray.mask = 0xFFFFFFFFu;
-  ray.flags = 0;
-  return ShadowRayKind::Trace;
-}
+
+// The shadow rays of rule 2, defined in float so that they are built 8 (AVX2) or 4 (SSE) at a
+// time, with the same bits whatever the batch, thread or variant (simd_path.hpp; shadow_ray.cpp is
+// compiled with -ffp-contract=off and runs with denormals flushed, as camera_rays.hpp).
+// For a surface point p and unit normal n (the surface's double values rounded to float), the
+// light point L rounded to float (a direction: L.xyz normalised in double first) and the offset
+// rounded to float, in this order:
+//   t      = L.xyz − p (a point light) or L.xyz (a direction)
+//   rule 1: (n.x·t.x + n.y·t.y) + n.z·t.z > 0, else Attached (no ray)
+//   org    = p + offset·n                          per component
+//   a point light: g = L.xyz − org, len = sqrt((g.x·g.x + g.y·g.y) + g.z·g.z); Touching when
+//          len <= 2·offset (no ray); dir = g / len, tfar = len − offset
+//   a direction:   dir = L.xyz, tfar = +inf
+//   tnear  = 0
+// A ray that is not traced is left inactive in the stream (RayStream::set_inactive: tnear > tfar,
+// so Embree skips it) and reads as its answer: Attached shadowed, Touching lit.
+struct SurfacePoints {
+  const float *px, *py, *pz;  // points
+  const float *nx, *ny, *nz;  // unit normals toward the viewer (0: no surface, which reads Attached)
+};
+// The rays from `count` surface points toward L, written into `out` at first + i (`out` must hold
+// first + count rays). Cost: about 25 float operations, a division and a square root a ray.
+void build_shadow_rays(const SurfacePoints& points, std::size_t count, const Vec4<double>& L, double offset,
+                       RayStream& out, std::size_t first, SimdPath path = best_simd_path());
+
+// One ray of the above from double inputs (rounded to float inside): its kind, and the ray in
+// `ray` when Trace (left alone otherwise). build_shadow_rays() on a stream of one: the same bits.
+ShadowRayKind make_shadow_ray(const Vec3<double>& p, const Vec3<double>& n, const Vec4<double>& L, double offset,
+                              RTCRay& ray);
+
+// The Lambert share of the lit answers, for shading (render.cpp's shaded image, after the shadow
+// rays): for each of `count` surface points i, where lit[i] is non-zero, lit_count[i] += 1 and
+// direct[i] += max(0, f) with f = facing(p, n, L) computed in float. One light point for all
+// points, so that the loop runs over the points, 8 or 4 at a time; each direct[i] is summed in the
+// caller's order of light points, so that the result never depends on the batch. Cost: about 15
+// float operations, a square root and a division a point.
+void accumulate_lit(const SurfacePoints& points, std::size_t count, const Vec4<double>& L, const std::uint8_t* lit,
+                    double* direct, std::uint32_t* lit_count, SimdPath path = best_simd_path());
 
 // Rule 1 and 2 for one light point with single-ray tracing: true when lit.
 class EmbreeScene;

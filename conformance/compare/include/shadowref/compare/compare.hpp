@@ -15,7 +15,10 @@
 // `largest_region` is the largest 8-connected set of wrong pixels: resolution error is thin and
 // scattered along shadow boundaries, a real bug is a blob (thresholds.hpp caps it).
 //
-// Speed: one linear pass over the pixels, then a flood fill over the wrong pixels only.
+// Speed: one pass over the rows (vectorised: classes, edges, counts, the error image's colours),
+// then the wrong pixels alone, from a list (kind, cause, cores, regions): what no wrong pixel
+// needs is never done. Cost on a 2048² pair with a few thousand wrong pixels: about 7 ms on one
+// core (bench/README.md), against OpenImageIO compare's 48.
 #pragma once
 
 #include <cstddef>
