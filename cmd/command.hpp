@@ -14,6 +14,9 @@ class Validator;
 namespace shadowref {
 struct RunConvention;
 }
+namespace shadowref::renderer {
+struct RenderOptions;
+}
 
 namespace shadowref::cli {
 
@@ -55,6 +58,19 @@ const RunConvention& parse_convention(const std::string& name);
 CLI::Validator shadow_map_size_check();
 // --random-taps: 0, or a square of renderer::kMinRandomTapsPerAxis .. kMaxRandomTapsPerAxis.
 CLI::Validator random_taps_check();
+
+// Our renderer's correct variants on the command line (render_variant_options.cpp), the same in
+// `render` and `conform`: --random-taps, --depth-faces, --guard-band, --normal-offset-texels.
+struct RenderVariantArgs {
+  int random_taps = 0;
+  std::string depth_faces = "back";
+  int guard_band = 0;
+  double normal_offset_texels = 0;
+};
+void add_render_variant_options(CLI::App& cmd, RenderVariantArgs& args);
+// Sets `options`' variant fields from `args`; BadInput when the guard band would make a map of
+// `shadow_map_size` texels larger than the limit.
+void apply_render_variants(const RenderVariantArgs& args, int shadow_map_size, renderer::RenderOptions& options);
 
 // Adds one subcommand to `app`. Its callback stores the exit code in `exit_code`.
 using RegisterCommand = void (*)(CLI::App& app, int& exit_code);

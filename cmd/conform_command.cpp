@@ -28,10 +28,7 @@ struct ConformArgs {
   std::string technique;
   std::string convention = "gl";
   int shadow_map_size = 0;
-  int random_taps = 0;
-  std::string depth_faces = "back";
-  int guard_band = 0;
-  double normal_offset_texels = 0;
+  RenderVariantArgs variants;
   double resolution_scale = 1.0;
   std::string resolution;
   std::string backend = "llvmpipe";
@@ -59,13 +56,7 @@ int run_conform_command(const ConformArgs& a) {
   if (!a.technique.empty()) o.techniques.push_back(a.technique);
   o.convention = &parse_convention(a.convention);
   o.shadow_map_size = a.shadow_map_size;
-  o.random_taps = a.random_taps;
-  o.depth_faces = outputs::depth_faces_from(a.depth_faces).value();
-  o.guard_band_texels = a.guard_band;
-  o.normal_offset_texels = a.normal_offset_texels;
-  if (a.shadow_map_size + 2 * a.guard_band > outputs::kMaxShadowMapSize)
-    throw BadInput("--guard-band " + std::to_string(a.guard_band) + ": a map of " + std::to_string(a.shadow_map_size) +
-                   " texels with the band on both sides exceeds " + std::to_string(outputs::kMaxShadowMapSize) + " texels");
+  apply_render_variants(a.variants, a.shadow_map_size, o.variants);
   o.resolution_scale = a.resolution_scale;
   if (!a.resolution.empty()) {
     const Size2 size = parse_size("--resolution", a.resolution, outputs::kMaxResolution);
@@ -194,24 +185,7 @@ void register_conform_command(CLI::App& app, int& exit_code) {
                   "texels per side of our shadow maps; 0: automatic (3 texels per camera pixel at the view centres)")
       ->check(shadow_map_size_check())
       ->capture_default_str();
-  cmd->add_option("--random-taps", args->random_taps, "0: every filter on its fixed grid; N (a square, 4..64): our PCF and PCSS take N taps of a Vogel disk turned per pixel by noise (declared \"sampling\": \"random\")")
-      ->check(random_taps_check())
-      ->capture_default_str();
-  cmd->add_option("--depth-faces", args->depth_faces,
-                  "the faces our hard shadow maps' depth pass draws on closed casters: back (front faces culled), "
-                  "front (back faces culled) or both; declared as \"depth_faces\"")
-      ->check(CLI::IsMember({"back", "front", "both"}))
-      ->capture_default_str();
-  cmd->add_option("--guard-band", args->guard_band,
-                  "texels each light's map gains along every side beyond its view, as a shadow-atlas tile's guard band "
-                  "(the view keeps its texel grid); declared per light as \"atlas_tile\"")
-      ->check(CLI::Range(0, outputs::kMaxGuardBandTexels))
-      ->capture_default_str();
-  cmd->add_option("--normal-offset-texels", args->normal_offset_texels,
-                  "our hard maps' normal offset: each lookup moved along the surface normal (toward the light) by this "
-                  "many texels of the map there; declared as \"normal_offset_texels\"")
-      ->check(CLI::Range(0.0, 8.0))
-      ->capture_default_str();
+  add_render_variant_options(*cmd, args->variants);
   cmd->add_option("--backend", args->backend, "Mesa driver: llvmpipe, softpipe, or native (a GPU's EGL)")->capture_default_str();
   cmd->add_option("--gl", args->gl, "context: osmesa or egl")->capture_default_str();
   cmd->add_option("--out", args->out, "output folder: renders/, report.json, report/index.html")->capture_default_str();

@@ -31,10 +31,7 @@ struct RenderArgs {
   std::string gl = "osmesa";
   int shadow_map_size = 0;
   int frames = 1;
-  int random_taps = 0;
-  std::string depth_faces = "back";
-  int guard_band = 0;
-  double normal_offset_texels = 0;
+  RenderVariantArgs variants;
 };
 
 std::string technique_help() {
@@ -72,13 +69,7 @@ void run_render(const RenderArgs& a) {
   }
   renderer::RenderOptions options;
   options.frames = a.frames;
-  options.random_taps = a.random_taps;
-  options.depth_faces = outputs::depth_faces_from(a.depth_faces).value();
-  options.guard_band_texels = a.guard_band;
-  options.normal_offset_texels = a.normal_offset_texels;
-  if (a.shadow_map_size + 2 * a.guard_band > outputs::kMaxShadowMapSize)
-    throw BadInput("--guard-band " + std::to_string(a.guard_band) + ": a map of " + std::to_string(a.shadow_map_size) +
-                   " texels with the band on both sides exceeds " + std::to_string(outputs::kMaxShadowMapSize) + " texels");
+  apply_render_variants(a.variants, a.shadow_map_size, options);
   scene::PrepareOptions prepare;
   prepare.shadow_map_size = a.shadow_map_size;
   const RunConvention& convention = parse_convention(a.convention);
@@ -123,24 +114,7 @@ void register_render_command(CLI::App& app, int& exit_code) {
                   "shadow-map texels per side; 0: automatic (3 texels per camera pixel at the centre, 1024..8192)")
       ->check(shadow_map_size_check())
       ->capture_default_str();
-  cmd->add_option("--random-taps", args->random_taps, "0: every filter on its fixed grid; N (a square, 4..64): PCF and PCSS take N taps of a Vogel disk turned per pixel by noise (declared \"sampling\": \"random\")")
-      ->check(random_taps_check())
-      ->capture_default_str();
-  cmd->add_option("--depth-faces", args->depth_faces,
-                  "the faces our hard shadow maps' depth pass draws on closed casters: back (front faces culled), "
-                  "front (back faces culled) or both; declared as \"depth_faces\"")
-      ->check(CLI::IsMember({"back", "front", "both"}))
-      ->capture_default_str();
-  cmd->add_option("--guard-band", args->guard_band,
-                  "texels each light's map gains along every side beyond its view, as a shadow-atlas tile's guard band "
-                  "(the view keeps its texel grid); declared per light as \"atlas_tile\"")
-      ->check(CLI::Range(0, outputs::kMaxGuardBandTexels))
-      ->capture_default_str();
-  cmd->add_option("--normal-offset-texels", args->normal_offset_texels,
-                  "our hard maps' normal offset: each lookup moved along the surface normal (toward the light) by this "
-                  "many texels of the map there; declared as \"normal_offset_texels\"")
-      ->check(CLI::Range(0.0, 8.0))
-      ->capture_default_str();
+  add_render_variant_options(*cmd, args->variants);
   cmd->add_option("--frames", args->frames, "frames to render and time (render.json keeps the median)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();

@@ -36,14 +36,19 @@ double det3(const json& rows) {
          m(0, 2) * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0));
 }
 
-TEST(ExportCommand, PackHasEveryConventionAndTheyPutPointsOnTheSamePixel) {
-  const fs::path root = fs::temp_directory_path() / ("shadowref_export_test_" + std::to_string(::getpid()));
+// Exports `scene` under `root` (removed first) and returns its matrices.json.
+json exported_matrices(const char* scene, const fs::path& root) {
   fs::remove_all(root);
   const test::CommandResult r = test::run_command(
-      {SHADOWREF_EXE, "export", "--scenes", "ground_sphere", "--out", (root / "pack").string(), "--cache", (root / "cache").string()});
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  std::ifstream in(root / "pack" / "ground_sphere" / "matrices.json");
-  const json m = json::parse(in);
+      {SHADOWREF_EXE, "export", "--scenes", scene, "--out", (root / "pack").string(), "--cache", (root / "cache").string()});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(root / "pack" / scene / "matrices.json");
+  return json::parse(in);
+}
+
+TEST(ExportCommand, PackHasEveryConventionAndTheyPutPointsOnTheSamePixel) {
+  const fs::path root = fs::temp_directory_path() / ("shadowref_export_test_" + std::to_string(::getpid()));
+  const json m = exported_matrices("ground_sphere", root);
   ASSERT_TRUE(m.contains("world"));
   const json& conv = m["conventions"];
   for (const char* name : {"gl", "gl-zo", "reversed-z", "d3d"}) ASSERT_TRUE(conv.contains(name)) << name;
@@ -85,12 +90,7 @@ TEST(ExportCommand, PackHasEveryConventionAndTheyPutPointsOnTheSamePixel) {
 // numbers in matrices.json alone, in every convention.
 TEST(ExportCommand, EngineLightViewsAreOpenGLCubeMapFacesAtAPowerOfTwo) {
   const fs::path root = fs::temp_directory_path() / ("shadowref_export_engine_views_" + std::to_string(::getpid()));
-  fs::remove_all(root);
-  const test::CommandResult r = test::run_command(
-      {SHADOWREF_EXE, "export", "--scenes", "ground_sphere", "--out", (root / "pack").string(), "--cache", (root / "cache").string()});
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  std::ifstream in(root / "pack" / "ground_sphere" / "matrices.json");
-  const json m = json::parse(in);
+  const json m = exported_matrices("ground_sphere", root);
   const json& L = m["lights"][0]["homogeneous"];  // the point light at (2, 6, 1)
   // The OpenGL specification's cube-map face selection (OpenGL 4.6, table 8.19), written out here:
   // per face, (sc, tc, ma) of a direction r; s = (sc / |ma| + 1) / 2, t = (tc / |ma| + 1) / 2.

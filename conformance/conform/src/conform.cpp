@@ -175,12 +175,8 @@ CaseResult run_case(Run& run, std::size_t si, const std::string& technique) {
   try {
     if (run.gl) {
       c.candidate_dir = std::filesystem::absolute(o.out / "renders" / s.name / technique);
-      renderer::RenderOptions render_options;
+      renderer::RenderOptions render_options = o.variants;
       if (extra) render_options.faults = extra->faults;
-      render_options.random_taps = o.random_taps;
-      render_options.depth_faces = o.depth_faces;
-      render_options.guard_band_texels = o.guard_band_texels;
-      render_options.normal_offset_texels = o.normal_offset_texels;
       auto t = Clock::now();
       const renderer::RenderResult r = run.gl->render(run.prepared[si], extra ? extra->renders : technique, render_options);
       phases.render += since(t);

@@ -22,6 +22,7 @@
 
 #include "shadowref/renderer/faults.hpp"
 #include "shadowref/renderer/gl_context.hpp"
+#include "shadowref/renderer/renderer.hpp"
 
 namespace shadowref::conform {
 
@@ -42,10 +43,9 @@ struct ConformOptions {
   std::vector<std::string> techniques;          // renderer technique names; empty: all
   const RunConvention* convention = &kDefaultConvention;  // the run convention (mathlib/convention.hpp)
   int shadow_map_size = 0;                      // texels per side of our shadow maps; 0: automatic
-  int random_taps = 0;                          // our filters' randomized kernel (renderer::RenderOptions)
-  outputs::DepthFaces depth_faces = outputs::DepthFaces::Back;  // our depth passes' faces (renderer::RenderOptions)
-  int guard_band_texels = 0;                    // our maps' atlas guard band (renderer::RenderOptions)
-  double normal_offset_texels = 0.0;            // our hard maps' normal offset (renderer::RenderOptions)
+  // Our renders' correct variants (renderer::RenderOptions: random taps, depth faces, guard band,
+  // normal offset); its faults are the teeth's to set, per extra technique.
+  renderer::RenderOptions variants;
   // Every scene rendered at another resolution (an engine's own): scale factor, or [W, H] (0: keep).
   double resolution_scale = 1.0;
   int width = 0, height = 0;

@@ -1,0 +1,47 @@
+// render_variant_options.cpp — our renderer's correct variants on the command line, one definition
+// for `shadowref render` and `shadowref conform`: a randomized kernel, the depth pass's faces, a
+// shadow-atlas guard band and a normal offset, each declared in candidate.json by the renderer.
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+#include "command.hpp"
+#include "shadowref/outputs/limits.hpp"
+#include "shadowref/renderer/renderer.hpp"
+
+namespace shadowref::cli {
+
+void add_render_variant_options(CLI::App& cmd, RenderVariantArgs& args) {
+  cmd.add_option("--random-taps", args.random_taps,
+                 "0: every filter on its fixed grid; N (a square, 4..64): our PCF and PCSS take N taps of a Vogel disk "
+                 "turned per pixel by noise (declared \"sampling\": \"random\")")
+      ->check(random_taps_check())
+      ->capture_default_str();
+  cmd.add_option("--depth-faces", args.depth_faces,
+                 "the faces our hard shadow maps' depth pass draws on closed casters: back (front faces culled), "
+                 "front (back faces culled) or both; declared as \"depth_faces\"")
+      ->check(CLI::IsMember({"back", "front", "both"}))
+      ->capture_default_str();
+  cmd.add_option("--guard-band", args.guard_band,
+                 "texels each light's map gains along every side beyond its view, as a shadow-atlas tile's guard band "
+                 "(the view keeps its texel grid); declared per light as \"atlas_tile\"")
+      ->check(CLI::Range(0, outputs::kMaxGuardBandTexels))
+      ->capture_default_str();
+  cmd.add_option("--normal-offset-texels", args.normal_offset_texels,
+                 "our hard maps' normal offset: each lookup moved along the surface normal (toward the light) by this "
+                 "many texels of the map there; declared as \"normal_offset_texels\"")
+      ->check(CLI::Range(0.0, 8.0))
+      ->capture_default_str();
+}
+
+void apply_render_variants(const RenderVariantArgs& a, int shadow_map_size, renderer::RenderOptions& options) {
+  if (shadow_map_size + 2 * a.guard_band > outputs::kMaxShadowMapSize)
+    throw BadInput("--guard-band " + std::to_string(a.guard_band) + ": a map of " + std::to_string(shadow_map_size) +
+                   " texels with the band on both sides exceeds " + std::to_string(outputs::kMaxShadowMapSize) + " texels");
+  options.random_taps = a.random_taps;
+  options.depth_faces = outputs::depth_faces_from(a.depth_faces).value();  // CLI::IsMember checked it
+  options.guard_band_texels = a.guard_band;
+  options.normal_offset_texels = a.normal_offset_texels;
+}
+
+}  // namespace shadowref::cli
