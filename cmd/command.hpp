@@ -66,6 +66,7 @@ struct RenderVariantArgs {
   std::string depth_faces = "back";
   int guard_band = 0;
   double normal_offset_texels = 0;
+  std::string cube_depth = "window";
 };
 void add_render_variant_options(CLI::App& cmd, RenderVariantArgs& args);
 // Sets `options`' variant fields from `args`; BadInput when the guard band would make a map of

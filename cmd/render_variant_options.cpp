@@ -1,6 +1,7 @@
 // render_variant_options.cpp — our renderer's correct variants on the command line, one definition
 // for `shadowref render` and `shadowref conform`: a randomized kernel, the depth pass's faces, a
-// shadow-atlas guard band and a normal offset, each declared in candidate.json by the renderer.
+// shadow-atlas guard band, a normal offset and distance cubes, each declared in candidate.json by
+// the renderer.
 #include <CLI/CLI.hpp>
 
 #include <string>
@@ -32,6 +33,12 @@ void add_render_variant_options(CLI::App& cmd, RenderVariantArgs& args) {
                  "many texels of the map there; declared as \"normal_offset_texels\"")
       ->check(CLI::Range(0.0, 8.0))
       ->capture_default_str();
+  cmd.add_option("--cube-depth", args.cube_depth,
+                 "what point lights' cubes hold under the depth-texture maps: window (the light projection's depth) "
+                 "or distance (from the light over a range, written with gl_FragDepth, as engines' distance cubes); "
+                 "declared per light as \"depth\", \"depth_range\" and \"depth_bias\"")
+      ->check(CLI::IsMember({"window", "distance"}))
+      ->capture_default_str();
 }
 
 void apply_render_variants(const RenderVariantArgs& a, int shadow_map_size, renderer::RenderOptions& options) {
@@ -42,6 +49,7 @@ void apply_render_variants(const RenderVariantArgs& a, int shadow_map_size, rend
   options.depth_faces = outputs::depth_faces_from(a.depth_faces).value();  // CLI::IsMember checked it
   options.guard_band_texels = a.guard_band;
   options.normal_offset_texels = a.normal_offset_texels;
+  options.cube_depth = a.cube_depth == "distance" ? outputs::StoredDepth::Distance : outputs::StoredDepth::Window;
 }
 
 }  // namespace shadowref::cli

@@ -25,7 +25,7 @@ struct Program {
         cascade_begin = -1, cascade_end = -1, reversed = -1, lit_greater = -1, depth_map = -1, world_from_layer = -1,
         inv_view_depth = -1, rect_u = -1, rect_v = -1, blocker_at_receiver = -1, moment_map = -1,
         layer_inv_view_depth = -1, taps_in_own_face = -1, random_taps = -1, random_pcf_radius = -1,
-        normal_offset_texels = -1;
+        normal_offset_texels = -1, light_position = -1, distance_range = -1;
 };
 
 struct Programs {
@@ -34,6 +34,7 @@ struct Programs {
   Program surface_soft;   // the same with PCSS compiled in (shaders::kPcssDefine): pcss and vsm only
   Program packed_depth;   // kSceneVertex + kPackedDepthFragment
   Program moments;        // kSceneVertex + kMomentsFragment: vsm's light pass
+  Program distance;       // kSceneVertex + kDistanceFragment: a distance cube's light pass
 };
 
 // Homogeneous vertices (vec4) and optional 32-bit triangle indices on the GPU.
@@ -83,6 +84,13 @@ inline constexpr float kPeterPanUnits = 131072.0f;
 // One glPolygonOffset unit as window depth (0..1): one step of the 24-bit depth; what candidate.json
 // declares as depth_bias per unit.
 inline constexpr double kWindowDepthPerUnit = 1.0 / 16777216.0;
+
+// RenderOptions::cube_depth: whether light i's map under `technique` holds distances (a cube of a
+// depth-texture map, when distances are asked for), and the range they are stored over: the largest
+// distance from the light to a corner of the scene's box, with 1 % to spare, so that every caster's
+// distance lies below 1 (the clear value: nothing there).
+bool cube_holds_distance(const RenderOptions& options, std::string_view technique, const scene::Light& light, bool cube);
+double cube_distance_range(const scene::PreparedScene& prepared, std::size_t light);
 
 // How the camera's far plane is set up for a technique (x and y rows never change).
 using scene::CameraDepth;

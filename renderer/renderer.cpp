@@ -168,6 +168,8 @@ Program link(const GlFunctions& gl, std::initializer_list<const char*> fragment,
   p.random_taps = loc("u_random_taps");
   p.random_pcf_radius = loc("u_random_pcf_radius");
   p.normal_offset_texels = loc("u_normal_offset_texels");
+  p.light_position = loc("u_light_position");
+  p.distance_range = loc("u_distance_range");
   gl.UseProgram(p.id);
   if (p.shadow_map >= 0) gl.Uniform1i(p.shadow_map, 0);
   if (p.packed_map >= 0) gl.Uniform1i(p.packed_map, 1);
@@ -484,6 +486,7 @@ struct Renderer::Impl {
     programs.surface_soft =
         link(gl, {shaders::kVersion, shaders::kPcssDefine, shaders::kDepthPacking, shaders::kSurfaceFragmentBody}, "surface (pcss)");
     programs.moments = link(gl, {shaders::kMomentsFragment}, "moments");
+    programs.distance = link(gl, {shaders::kDistanceFragment}, "distance");
     programs.packed_depth =
         link(gl, {shaders::kVersion, shaders::kDepthPacking, shaders::kPackedDepthFragmentBody}, "packed depth");
   }
@@ -494,6 +497,7 @@ struct Renderer::Impl {
     gl.DeleteProgram(programs.surface_soft.id);
     gl.DeleteProgram(programs.packed_depth.id);
     gl.DeleteProgram(programs.moments.id);
+    gl.DeleteProgram(programs.distance.id);
   }
 };
 
@@ -637,14 +641,30 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_
       result.declaration.light_views_from_pack = true;  // the prepared scene's light fits: the pack's
       if (!(named && named->family == outputs::TechniqueFamily::SoftShadow))
         result.declaration.normal_offset_texels = options.normal_offset_texels;
-      // A guard band: each light's map is an atlas tile around the view of its fit (shadow_map.cpp).
-      if (const int g = options.guard_band_texels; g > 0 && named && named->family != outputs::TechniqueFamily::ExactGeometry)
+      // Per light: a guard band makes each map an atlas tile around the view of its fit, and a
+      // distance cube stores distances over its range, with the offset's constant in those units
+      // (shadow_map.cpp).
+      const int g = options.guard_band_texels;
+      const bool maps = named && named->family != outputs::TechniqueFamily::ExactGeometry;
+      const auto distance = [&](std::size_t i) {
+        return maps && cube_holds_distance(options, t->name, scene.lights[i], prepared.light_fits[i].cube);
+      };
+      bool any_distance = false;
+      for (std::size_t i = 0; i < scene.lights.size(); ++i) any_distance = any_distance || distance(i);
+      if (maps && (g > 0 || any_distance))
         for (std::size_t i = 0; i < scene.lights.size(); ++i) {
           outputs::CandidateDeclaration light = result.declaration;
-          const int size = (named->cascaded ? prepared.cascade_fits[i] : prepared.light_fits[i]).size;
-          light.atlas_tile_size = size + 2 * g;
-          light.atlas_guard_band = g;
-          light.shadow_map_size = size;
+          if (g > 0) {
+            const int size = (named->cascaded ? prepared.cascade_fits[i] : prepared.light_fits[i]).size;
+            light.atlas_tile_size = size + 2 * g;
+            light.atlas_guard_band = g;
+            light.shadow_map_size = size;
+          }
+          if (distance(i)) {
+            light.depth = outputs::StoredDepth::Distance;
+            light.depth_range = cube_distance_range(prepared, i);
+            light.depth_bias = double{kShadowMapOffsetUnits} / 16777215.0;  // kDistanceFragment's constant step
+          }
           result.declaration.lights.push_back(light);
         }
       result.declaration.defaulted.clear();

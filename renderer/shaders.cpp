@@ -51,6 +51,25 @@ void main() {
 }
 )glsl";
 
+// A distance cube's light pass (RenderOptions::cube_depth), as engines write point-light cubes
+// (three.js MeshDistanceMaterial: (distance - near) / (far - near)): the distance from the light's
+// centre over the range, written as the fragment's depth, so that the depth test keeps the nearest
+// surface along each texel's ray (distance and the face's axis depth grow together along a ray). A
+// polygon offset moves only the rasterised depth, not a written one, so its model is applied by hand
+// as in the packed-depth pass: factor * m + units * 2^-24, m the distance's largest change per texel.
+const char* const kDistanceFragment = R"glsl(#version 330 core
+in vec3 v_world;
+uniform vec3 u_light_position;
+uniform float u_distance_range;
+uniform float u_offset_factor;
+uniform float u_offset_units;
+void main() {
+  float d = distance(v_world, u_light_position) / u_distance_range;
+  float m = max(abs(dFdx(d)), abs(dFdy(d)));
+  gl_FragDepth = clamp(d + u_offset_factor * m + u_offset_units / 16777215.0, 0.0, 1.0);
+}
+)glsl";
+
 // The depth packing shared by the two shaders below (mirror of depth_packing.hpp); glShaderSource
 // joins it between the version line and each body.
 const char* const kDepthPacking = R"glsl(
@@ -123,6 +142,7 @@ uniform int u_taps_in_own_face;
 uniform int u_random_taps;           // 0: each filter's fixed grid; N: N taps of a Vogel disk rotated per pixel
 uniform float u_random_pcf_radius;   // PCF's disk radius in texels (frame.hpp, kRandomPcfRadiusTexels)
 uniform float u_normal_offset_texels;  // hard maps: the lookup moved along the normal by this many texels
+uniform float u_distance_range;      // > 0: a cube holding distance / this range (kDistanceFragment), 0: window depth
 // VSM (u_shadow 5): the moments (view depth, its square) of the same layers; (0, 0) where nothing was drawn.
 uniform sampler2DArray u_moment_map; // unit 3
 out vec4 o_colour;
@@ -400,6 +420,7 @@ float shadow_visibility() {
   // A normal offset (RenderOptions::normal_offset_texels; the hard maps only): the point looked up
   // moves along the surface normal, turned toward the light, by that many of the map's texels as
   // wide as they are at the point (one texel along the map's x at the point's own depth).
+  vec3 at = v_world;  // the point looked up
   if (u_normal_offset_texels > 0.0 && u_shadow != 4 && u_shadow != 5) {
     int l = int(layer);
     vec4 c = u_layer_from_world[l] * vec4(v_world, 1.0);
@@ -407,7 +428,8 @@ float shadow_visibility() {
     float texel_world = distance(a.xyz / a.w, v_world);
     vec3 to_light = u_light.w == 0.0 ? u_light.xyz : u_light.xyz - v_world;
     vec3 n = dot(v_normal, to_light) < 0.0 ? -v_normal : v_normal;
-    s = u_layer_from_world[l] * vec4(v_world + u_normal_offset_texels * texel_world * normalize(n), 1.0);
+    at = v_world + u_normal_offset_texels * texel_world * normalize(n);
+    s = u_layer_from_world[l] * vec4(at, 1.0);
   }
   // Behind the light's centre of projection: outside the map, which knows of no occluder there
   // (only a spot's or directional light's single map has such points; a cube has none).
@@ -416,6 +438,9 @@ float shadow_visibility() {
   if (any(lessThan(p.xy, vec2(0.0))) || any(greaterThan(p.xy, vec2(1.0)))) return 1.0;
   // Beyond the light's far plane: compare as at the far plane, where nothing occludes.
   p.z = u_reversed == 1 ? max(p.z, 0.0) : min(p.z, 1.0);
+  // A distance cube: the looked-up point's own distance over the range, compared (GL_LEQUAL, in
+  // every convention) with the nearest distance stored along the texel's ray.
+  if (u_layout == 1 && u_distance_range > 0.0) p.z = min(distance(at, u_light.xyz) / u_distance_range, 1.0);
 #ifdef SHADOWREF_PCSS
   if (u_shadow == 4) return pcss(s.w, int(layer));
   if (u_shadow == 5) return vsm(s.w, int(layer));

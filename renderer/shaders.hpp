@@ -22,6 +22,9 @@ extern const char* const kPcssDefine;
 extern const char* const kSurfaceFragmentBody;
 // vsm's light pass: the fragment's depth along the light's view axis and its square (RG32F).
 extern const char* const kMomentsFragment;
+// A distance cube's light pass (RenderOptions::cube_depth): gl_FragDepth = the distance from the
+// light over its range, plus glPolygonOffset's model done by hand.
+extern const char* const kDistanceFragment;
 // The depth of the light's view, packed into RGBA8.
 extern const char* const kPackedDepthFragmentBody;
 

@@ -30,6 +30,9 @@
 // one map layer each; a cube's six faces are layers of a 2D array texture, the face picked per
 // fragment by the largest component of (p − light), like a cube-map lookup. Empty faces are cleared,
 // not drawn, and each face draws only the objects that may reach it.
+// Distance cubes (RenderOptions::cube_depth): a cube's layers may hold the distance from the light
+// over a range instead (kDistanceFragment writes it as the fragment's depth, with the offset's model
+// by hand), compared with the looked-up point's own distance, in every convention alike.
 // Conventions (mathlib's convention.hpp): the light's projection is in the run convention, like the
 // camera's; the map is 24-bit (32-bit float under reversed-Z), cleared to the far depth, drawn with
 // the "nearer" depth test and polygon offset of the convention's sign, compared with the
@@ -76,6 +79,17 @@ enum class Variant { Depth, Pcf, Rgba8, Pcss, Vsm };
 
 // The soft variants: PCSS's blocker search and penumbra, a filter over the light's rect.
 bool soft(Variant v) { return v == Variant::Pcss || v == Variant::Vsm; }
+
+// PCSS and VSM need a light with an area: a point, spot or directional light is drawn with PCF.
+Variant variant_for_light(const scene::Light& light, Variant variant) {
+  return soft(variant) && light.type != scene::LightType::Rect ? Variant::Pcf : variant;
+}
+
+// RenderOptions::cube_depth: the depth-texture maps' cubes hold distances when asked to (RGBA8 packs
+// window depth; PCSS's and VSM's shaders read view depth).
+bool holds_distance(const RenderOptions& options, Variant v, bool cube) {
+  return options.cube_depth == outputs::StoredDepth::Distance && cube && (v == Variant::Depth || v == Variant::Pcf);
+}
 
 // Texture unit 2: the PCSS map read raw (frame.hpp's surface program binds u_depth_map there);
 // unit 3: VSM's moments (u_moment_map).
@@ -125,6 +139,8 @@ struct LightMap {
   GLuint moments = 0;             // vsm: the RG32F moments, the same layers
   int size = 0;
   int layout = 0;                 // the shader's u_layout: 0 one view, 1 a cube, 2 cascades
+  float distance_range = 0;       // > 0: a cube holding distance over this range (RenderOptions::cube_depth)
+  Vec3<float> light_position = Vec3<float>::Zero();  // the cube's centre, for its distances
   Mat4<float> shadow_from_world;  // B · P_light · V_light (the single view)
   std::vector<Mat4<float>> face_from_world;  // the same per cube face or cascade
   // Cascades: the camera-depth row, and the depths each cascade is picked for (shader u_cascade_*).
@@ -135,7 +151,8 @@ struct LightMap {
   std::vector<float> inv_view_depth;  // (a, b) per layer
   LightMap() = default;
   LightMap(LightMap&& o) noexcept
-      : gl(o.gl), texture(o.texture), moments(o.moments), size(o.size), layout(o.layout), shadow_from_world(o.shadow_from_world),
+      : gl(o.gl), texture(o.texture), moments(o.moments), size(o.size), layout(o.layout), distance_range(o.distance_range),
+        light_position(o.light_position), shadow_from_world(o.shadow_from_world),
         face_from_world(std::move(o.face_from_world)), cascade_depth(o.cascade_depth),
         cascade_begin(o.cascade_begin), cascade_end(o.cascade_end), world_from_face(std::move(o.world_from_face)),
         inv_view_depth(std::move(o.inv_view_depth)) {
@@ -254,8 +271,9 @@ GLuint allocate_targets(const Frame& frame, LightMap& map, GLsizei layers, Varia
   const RunConvention& conv = frame.convention();
   const int size = map.size;
   map.texture = nearest_array_texture(gl, GL_CLAMP_TO_BORDER);
-  // The far depth (1, or 0 under reversed-Z) / its packed form: nothing occludes outside the map.
-  const auto far = static_cast<float>(far_depth(conv));
+  // The far depth (1, or 0 under reversed-Z) / its packed form: nothing occludes outside the map. A
+  // distance cube's far is 1 in every convention.
+  const auto far = map.distance_range > 0 ? 1.0f : static_cast<float>(far_depth(conv));
   const float far_border[4] = {far, far, far, 1.0f};
   gl.TexParameterfv(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_BORDER_COLOR, far_border);
 
@@ -279,8 +297,8 @@ GLuint allocate_targets(const Frame& frame, LightMap& map, GLsizei layers, Varia
                     GL_UNSIGNED_INT, nullptr);
     // PCSS reads the stored depths themselves (its blocker search averages them).
     gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_MODE, soft(variant) ? GL_NONE : GL_COMPARE_REF_TO_TEXTURE);
-    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_FUNC,
-                     static_cast<GLint>(gl_compare(lit_compare(conv, frame.faults().shadow_map.compare))));
+    const DepthCompare lit = map.distance_range > 0 ? DepthCompare::LessEqual : lit_compare(conv, frame.faults().shadow_map.compare);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_FUNC, static_cast<GLint>(gl_compare(lit)));
     gl.DrawBuffer(GL_NONE);
   }
   if (variant == Variant::Vsm) {
@@ -297,12 +315,31 @@ GLuint allocate_targets(const Frame& frame, LightMap& map, GLsizei layers, Varia
 
 // The depth pass's state: viewport, clear values, depth test, the program and its polygon offset
 // (the convention's sign, the variant's factor; the teeth's offset faults). Returns the program.
-const Program& set_depth_pass_state(const Frame& frame, const LightFit& lc, int size, Variant variant) {
+const Program& set_depth_pass_state(const Frame& frame, const LightFit& lc, const LightMap& map, Variant variant) {
   const GlFunctions& gl = frame.gl;
   const RunConvention& conv = frame.convention();
   const ShadowMapFaults& faults = frame.faults().shadow_map;
   const auto far = static_cast<float>(far_depth(conv));
-  gl.Viewport(0, 0, size, size);
+  gl.Viewport(0, 0, map.size, map.size);
+  if (map.distance_range > 0) {
+    // A distance cube: the nearest distance kept, 1 where nothing is, in every convention; the
+    // offset's model in the shader (a written depth takes no polygon offset).
+    gl.DepthMask(GL_TRUE);
+    gl.ClearDepth(1.0);
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_LESS);
+    gl.Disable(GL_STENCIL_TEST);
+    gl.Disable(GL_BLEND);
+    gl.Disable(GL_POLYGON_OFFSET_FILL);
+    gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    const Program& p = frame.programs.distance;
+    gl.UseProgram(p.id);
+    gl.Uniform3f(p.light_position, map.light_position.x(), map.light_position.y(), map.light_position.z());
+    gl.Uniform1f(p.distance_range, map.distance_range);
+    gl.Uniform1f(p.offset_factor, variant == Variant::Pcf ? kPcfOffsetFactor : kOffsetFactor);
+    gl.Uniform1f(p.offset_units, kOffsetUnits);
+    return p;
+  }
   gl.DepthMask(GL_TRUE);
   const float clear = faults.clear_to_one ? 1.0f : far;  // FAULT: 1 whatever the convention
   gl.ClearDepth(clear);
@@ -399,17 +436,22 @@ void draw_depth_pass(const Frame& frame, const LightFit& lc, const std::vector<M
   }
 }
 
-LightMap render_light_map(const Frame& frame, const LightFit& lc, Variant variant) {
+LightMap render_light_map(const Frame& frame, std::size_t light, const LightFit& lc, Variant variant) {
   const GlFunctions& gl = frame.gl;
   LightMap map;
   map.gl = &gl;
   map.size = lc.size + 2 * frame.options.guard_band_texels;
+  if (holds_distance(frame.options, variant, lc.cube)) {
+    map.distance_range = static_cast<float>(cube_distance_range(frame.prepared, light));
+    const Vec4<double> l = frame.light(light);
+    map.light_position = (l.head<3>() / l.w()).cast<float>();
+  }
   map.layout = lc.cube ? 1 : lc.cascade_splits.empty() ? 0 : 2;
   select_cascades(frame, lc, map);
   const std::vector<Mat4<double>> projections = light_matrices(frame, lc, map);
   GLuint fbo = 0;
   const GLuint depth_rb = allocate_targets(frame, map, static_cast<GLsizei>(lc.views.size()), variant, fbo);
-  const Program& p = set_depth_pass_state(frame, lc, map.size, variant);
+  const Program& p = set_depth_pass_state(frame, lc, map, variant);
   draw_depth_pass(frame, lc, projections, map, variant, p);
   gl.Disable(GL_CULL_FACE);
   gl.CullFace(GL_BACK);
@@ -447,6 +489,7 @@ void bind_map(const Frame& frame, const LightMap& map, Variant variant) {
     gl.UniformMatrix4fv(location, static_cast<GLsizei>(all.size()), GL_FALSE, m.data());
   };
   gl.Uniform1f(p.normal_offset_texels, static_cast<float>(frame.options.normal_offset_texels));
+  gl.Uniform1f(p.distance_range, map.distance_range);
   if (soft(variant) || frame.options.normal_offset_texels > 0) {
     matrices(p.layer_from_world, map.face_from_world);
     matrices(p.world_from_layer, map.world_from_face);
@@ -497,10 +540,6 @@ int shader_mode(Variant v) {
   return 1;
 }
 
-// PCSS and VSM need a light with an area: a point, spot or directional light is drawn with PCF.
-Variant variant_for_light(const scene::Light& light, Variant variant) {
-  return soft(variant) && light.type != scene::LightType::Rect ? Variant::Pcf : variant;
-}
 
 void render_variant(Frame& frame, Variant variant, bool cascaded) {
   const GlFunctions& gl = frame.gl;
@@ -513,7 +552,7 @@ void render_variant(Frame& frame, Variant variant, bool cascaded) {
     LightFit refit;
     variants.push_back(variant_for_light(frame.scene.lights[i], variant));
     maps.push_back(
-        render_light_map(frame, cascaded ? cascade_fit(frame, i, refit) : frame.prepared.light_fits[i], variants[i]));
+        render_light_map(frame, i, cascaded ? cascade_fit(frame, i, refit) : frame.prepared.light_fits[i], variants[i]));
   }
 
   // Per light, one camera pass per image: the 0/1 mask (mode 2; the clear colour is "no surface")
@@ -553,6 +592,28 @@ void render_variant(Frame& frame, Variant variant, bool cascaded) {
 }
 
 }  // namespace
+
+bool cube_holds_distance(const RenderOptions& options, std::string_view technique, const scene::Light& light, bool cube) {
+  const Variant v = technique == "shadowmap" || technique == "csm"           ? Variant::Depth
+                    : technique == "shadowmap-pcf" || technique == "csm-pcf" ? Variant::Pcf
+                    : technique == "pcss"                                    ? Variant::Pcss
+                    : technique == "vsm"                                     ? Variant::Vsm
+                                                                             : Variant::Rgba8;  // and the non-maps: none
+  return holds_distance(options, variant_for_light(light, v), cube);
+}
+
+double cube_distance_range(const scene::PreparedScene& prepared, std::size_t light) {
+  const Vec4<double>& l = prepared.lights[light];
+  const Vec3<double> c = l.head<3>() / l.w();
+  double range = 0;
+  for (int k = 0; k < 8; ++k) {
+    const Vec3<double> corner((k & 1 ? prepared.bounds[1] : prepared.bounds[0]).x(),
+                              (k & 2 ? prepared.bounds[1] : prepared.bounds[0]).y(),
+                              (k & 4 ? prepared.bounds[1] : prepared.bounds[0]).z());
+    range = std::max(range, (corner - c).norm());
+  }
+  return 1.01 * range;
+}
 
 void render_shadowmap(Frame& frame) { render_variant(frame, Variant::Depth, false); }
 void render_shadowmap_pcf(Frame& frame) { render_variant(frame, Variant::Pcf, false); }

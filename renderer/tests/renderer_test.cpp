@@ -5,6 +5,7 @@
 // resolution, so the pixel → surface mapping stays shared) to keep the suite fast.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
@@ -224,6 +225,45 @@ TEST(Renderer, EveryTechniqueRendersEveryCatalogueScene) {
       EXPECT_EQ(r.visibility.size(), filtered ? s.lights.size() : 0u);
     }
   }
+}
+
+// Distance cubes (RenderOptions::cube_depth) are declared per light, where they are drawn: a point
+// or spot light's cube under the depth-texture maps, with a range beyond every point of the scene
+// from the light and the shader's constant step as its bias; a sun's one view, shadowmap-rgba8's
+// packed cubes and pcss's rect light keep window depth (no per-light entry says otherwise).
+TEST(Renderer, DistanceCubesAreDeclaredPerLightWhereTheyAreDrawn) {
+  RenderOptions o;
+  o.cube_depth = outputs::StoredDepth::Distance;
+  const scene::Scene two = load("two_lights", 32);
+  for (const char* technique : {"shadowmap", "shadowmap-pcf", "csm", "pcss"}) {
+    const RenderResult r = renderer().render(two, technique, o);
+    ASSERT_EQ(r.declaration.lights.size(), 2u) << technique;
+    for (std::size_t i = 0; i < 2; ++i) {
+      const outputs::CandidateDeclaration& d = r.declaration.lights[i];
+      EXPECT_EQ(d.depth, outputs::StoredDepth::Distance) << technique << " light " << i;
+      const Vec3<double> at = two.lights[i].position;
+      double farthest = 0;
+      for (const scene::Object& obj : two.objects)
+        for (const Vec3<float>& v : obj.mesh.positions) farthest = std::max(farthest, (v.cast<double>() - at).norm());
+      EXPECT_GT(d.depth_range, farthest) << technique << ": every caster's distance below 1";
+      EXPECT_GT(d.depth_bias, 0.0);
+      EXPECT_LT(d.depth_bias * d.depth_range, 1e-4) << "a constant step, not a bias that detaches shadows";
+    }
+  }
+  for (const char* technique : {"shadowmap-rgba8", "planar"}) {
+    const RenderResult r = renderer().render(two, technique, o);
+    EXPECT_TRUE(r.declaration.lights.empty()) << technique;
+    EXPECT_EQ(r.declaration.depth, outputs::StoredDepth::Window) << technique;
+  }
+  // A spot light's map is a cube too (the mask is occlusion everywhere, its cone or not); a sun's
+  // one view keeps window depth.
+  const RenderResult spot = renderer().render(load("spot_light", 32), "shadowmap", o);
+  ASSERT_EQ(spot.declaration.lights.size(), 1u);
+  EXPECT_EQ(spot.declaration.lights[0].depth, outputs::StoredDepth::Distance);
+  const RenderResult sun = renderer().render(load("directional_light", 32), "shadowmap", o);
+  EXPECT_TRUE(sun.declaration.lights.empty()) << "a directional light's one view keeps window depth";
+  const RenderResult rect = renderer().render(load("soft_penumbra", 32), "pcss", o);
+  EXPECT_TRUE(rect.declaration.lights.empty()) << "pcss's rect light keeps window depth";
 }
 
 TEST(Renderer, UnknownTechniqueIsRefused) {

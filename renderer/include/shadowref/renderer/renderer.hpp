@@ -65,6 +65,15 @@ struct RenderOptions {
   // lookup moves along the surface normal, turned toward the light, by this many texels of the map
   // at the point. Declared as "normal_offset_texels". 0: none.
   double normal_offset_texels = 0.0;
+  // What a point or spot light's cube holds under the depth-texture maps (shadowmap, shadowmap-pcf, csm's and
+  // csm-pcf's cubes, and pcss's and vsm's point lights, drawn with PCF; shadowmap-rgba8 packs window
+  // depth whatever this says): Window, the light
+  // projection's window depth (the default), or Distance, the distance from the light over a range
+  // (cube_distance_range), written with gl_FragDepth as engines' distance cubes are (three.js
+  // MeshDistanceMaterial, Babylon's useDistance). The shader adds glPolygonOffset's model by hand: a
+  // slope term from the distance's derivatives and a constant step. Declared per light as "depth":
+  // "distance" with its "depth_range" and "depth_bias". Directional lights' views keep window depth.
+  outputs::StoredDepth cube_depth = outputs::StoredDepth::Window;
   // Deliberate bugs for the conformance suite's teeth (faults.hpp); all off: production.
   Faults faults;
 };
