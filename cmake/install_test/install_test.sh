@@ -7,7 +7,8 @@
 #   install_test.sh properties   BUILD WORK   an engine tree calling shadowref_add_math_properties()
 #   install_test.sh standalone   BUILD WORK   the installed binary, copied out of the source tree, with
 #                                             the source tree hidden: export a pack, render our own
-#                                             z-fail masks, judge them from the pack alone
+#                                             z-fail masks, judge them from the pack alone; then walk
+#                                             the pack README as an engine team would (readme_walk)
 # CTest runs them (cmake/Install.cmake, label `install`); `prefix` is the fixture the others need.
 # Each mode exits non-zero with a line saying what went wrong.
 set -euo pipefail
@@ -102,14 +103,69 @@ standalone)
     "$3" render --scene scenes/ground_sphere.json --technique volume-zfail --out mine/ground_sphere >/dev/null
     "$3" conform --catalogue scenes --scenes ground_sphere --candidate-dir mine --technique volume-zfail --out verdict
   }
+  # The pack README followed alone, as an engine team does with the installed binary on its PATH:
+  # export two scenes (one light, two lights), write masks where and as "What to write" says (our
+  # renderer standing in for the engine: its mask*.png and candidate.json, nothing else), run the
+  # README's "How to get the verdict" commands as written, and find what the README says follows:
+  # exit 0, my-verdict/report.json with every case PASS, my-verdict/report/index.html. Every pack
+  # path the README names (`<scene>/...`, `manifest.json`) must exist in the pack.
+  readme_walk() {
+    set -euo pipefail
+    export PATH="$2/prefix/bin:$PATH"
+    mkdir "$2/team" && cd "$2/team"
+    shadowref export --out pack --scenes ground_sphere,two_lights >/dev/null
+    cd pack
+    [ -f README.md ] || { echo "the pack has no README.md" >&2; return 1; }
+    # "What to write": one folder per scene, mask.png or mask_<i>.png, candidate.json beside them.
+    for scene in ground_sphere two_lights; do
+      shadowref render --scene "scenes/$scene.json" --technique shadowmap --out "$2/engine/$scene" >/dev/null
+      mkdir -p "my-renders/$scene"
+      cp "$2/engine/$scene"/mask*.png "$2/engine/$scene/candidate.json" "my-renders/$scene/"
+    done
+    [ -f my-renders/two_lights/mask_1.png ] || { echo "two lights did not give mask_<i>.png as the README says" >&2; return 1; }
+    # The README's own commands, line by line, in this folder.
+    awk '/^## How to get the verdict/{f=1} f&&/^```sh/{c=1;next} c&&/^```/{exit} c{print}' README.md >"$2/commands.sh"
+    [ "$(grep -c '^shadowref conform' "$2/commands.sh")" -ge 2 ] || { echo "no conform commands under 'How to get the verdict'" >&2; return 1; }
+    while IFS= read -r line; do
+      [ -n "$line" ] || continue
+      echo "README: $line"
+      rm -rf my-verdict
+      eval "$line" >"$2/readme-run.log" 2>&1 || { cat "$2/readme-run.log" >&2; echo "README command failed: $line" >&2; return 1; }
+      [ -f my-verdict/report.json ] && [ -f my-verdict/report/index.html ] ||
+        { echo "README command did not write my-verdict/report.json and report/index.html: $line" >&2; return 1; }
+      if grep -q '"status": "\(FAIL\|WARN\|ERROR\)"' my-verdict/report.json; then echo "a case is not PASS: $line" >&2; return 1; fi
+      grep -q '"status": "PASS"' my-verdict/report.json || { echo "no PASS in my-verdict/report.json: $line" >&2; return 1; }
+    done <"$2/commands.sh"
+    # Every pack path the README names, for some exported scene (a soft one among them).
+    cd "$2/team"
+    shadowref export --out soft-pack --scenes soft_penumbra >/dev/null
+    mv soft-pack/soft_penumbra pack/
+    cd pack
+    { grep -o '`<scene>/[^` ]*`' README.md; grep -o '`reference/[^` ]*`' README.md | sed 's|`|`<scene>/|'; } |
+      tr -d '`' | sort -u | while IFS= read -r named; do
+      found=no
+      for scene in ground_sphere two_lights soft_penumbra; do
+        pattern=${named//<scene>/$scene}
+        pattern=${pattern//<i>/*}
+        pattern=${pattern//<light>/*}
+        # shellcheck disable=SC2086
+        if compgen -G "${pattern%/}" >/dev/null; then found=yes; break; fi
+      done
+      [ "$found" = yes ] || { echo "the README names $named, which no exported scene has" >&2; return 1; }
+      echo "README path: $named"
+    done
+    [ -f manifest.json ] || { echo "the README names manifest.json, which the pack lacks" >&2; return 1; }
+  }
+
   if [ "$(id -u)" = 0 ]; then hide=(unshare --mount --propagation private); else hide=(unshare --mount --map-root-user); fi
   mkdir "$outside/probe"
   if "${hide[@]}" mount -t tmpfs none "$outside/probe" 2>/dev/null; then
-    "${hide[@]}" bash -c "$(declare -f judge); judge '$source_dir' '$outside' '$exe' hide" ||
+    "${hide[@]}" bash -c "$(declare -f judge readme_walk); judge '$source_dir' '$outside' '$exe' hide && readme_walk '$source_dir' '$outside'" ||
       fail "export and conform with the installed binary, the source tree hidden, failed"
   else
     echo "install test: no tmpfs in a mount namespace (${hide[*]}): the source tree is not hidden in this run"
-    (judge "$source_dir" "$outside" "$exe" show) || fail "export and conform with the installed binary failed"
+    (judge "$source_dir" "$outside" "$exe" show && readme_walk "$source_dir" "$outside") ||
+      fail "export and conform with the installed binary failed"
   fi
   grep -q '"status": "PASS"' "$outside/work/pack/verdict/report.json" || fail "the verdict is not a PASS"
   ;;
