@@ -14,3 +14,12 @@ function(shadowref_hang_guard var quiet_seconds)
   endif()
   set(${var} ${t} PARENT_SCOPE)
 endfunction()
+
+# The heavy tests start first under `ctest -j` (COST: their quiet time in seconds; CTest replaces it
+# with its own measured cost once a build tree has run them), so that a fresh checkout's first run
+# does not end with one core working through a long test alone.
+#
+#   shadowref_run_early(<quiet seconds> <test>...)
+function(shadowref_run_early quiet_seconds)
+  set_tests_properties(${ARGN} PROPERTIES COST ${quiet_seconds})
+endfunction()

@@ -55,4 +55,5 @@ if(SHADOWREF_BUILD_TESTS)
   # The consumers build in folders of their own; the properties consumer is the slow one (one
   # RapidCheck translation unit), so it must not run beside another build on a 2-core machine.
   set_tests_properties(install.cmake install.pkgconfig install.properties PROPERTIES RESOURCE_LOCK shadowref_install_builds)
+  shadowref_run_early(61 install.properties)
 endif()
