@@ -61,6 +61,8 @@ def web_ready():
 def render(r, exes, pack, out, work):
     if r["harness"] in WEB_HARNESSES:
         cmd = ["node", WEB / "render.mjs", "--engine", r["harness"], "--pack", pack, "--out", out, "--variant", r["variant"]]
+        if r.get("scenes"):  # a run of the scenes its engine can light so (engines/README.md says why)
+            cmd += ["--scenes", ",".join(r["scenes"])]
     else:
         cmd = under_xvfb([exes[r["harness"]], "--pack", pack, "--out", out, "--variant", r["variant"]], work)
     p = run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
@@ -71,6 +73,8 @@ def render(r, exes, pack, out, work):
 def judge(r, shadowref, pack, candidates, out, cache):
     cmd = [shadowref, "conform", "--catalogue", pack / "scenes", "--candidate-dir", candidates,
            "--technique", r["technique"], "--out", out, "--cache", cache, "--quiet"]
+    if r.get("scenes"):
+        cmd += ["--scenes", ",".join(r["scenes"])]
     p = run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if p.returncode not in (0, 1, 2):  # 0 pass, 1 warnings, 2 failures: all verdicts; others are errors
         sys.exit(f"{r['run']}: shadowref conform failed (exit {p.returncode}):\n{p.stdout}")

@@ -13,6 +13,7 @@ import { Effect } from '@babylonjs/core/Materials/effect.js';
 import { MaterialPluginBase } from '@babylonjs/core/Materials/materialPluginBase.js';
 import { VertexBuffer } from '@babylonjs/core/Buffers/buffer.js';
 import { PointLight } from '@babylonjs/core/Lights/pointLight.js';
+import { SpotLight } from '@babylonjs/core/Lights/spotLight.js';
 import { ShadowGenerator } from '@babylonjs/core/Lights/Shadows/shadowGenerator.js';
 import { CascadedShadowGenerator } from '@babylonjs/core/Lights/Shadows/cascadedShadowGenerator.js';
 import '@babylonjs/core/Lights/Shadows/shadowGeneratorSceneComponent.js';
@@ -20,7 +21,7 @@ import '@babylonjs/core/Loading/loadingScreen.js';
 import '@babylonjs/loaders/glTF/2.0/glTFLoader.js';
 import '@babylonjs/loaders/glTF/2.0/Extensions/KHR_lights_punctual.js';
 import '@babylonjs/loaders/glTF/glTFFileLoader.js';
-import { turnedAway, combine, base64, packCamera, packLights } from './common.js';
+import { turnedAway, combine, fraction, base64, packCamera, packLights } from './common.js';
 
 // Babylon's defaults (src/Lights/Shadows/shadowGenerator.ts, ShadowGenerator's constructor and
 // _initializeShadowGenerator): bias 0.00005, normalBias 0, filter none, darkness 0; the map size
@@ -36,7 +37,53 @@ const VARIANTS = {
   // bias 100 times Babylon's default.
   'none-back-faces': { filter: 'none', technique: 'shadowmap', forceBackFacesOnly: true },
   'none-bias-0.005': { filter: 'none', technique: 'shadowmap', bias: 0.005 },
+  // Contact-hardening shadows (useContactHardeningShadow: Babylon's PCSS), judged as pcss where
+  // Babylon can draw them for the scene's light: its PCSS needs a single-view light (on a cube it
+  // falls back to Poisson PCF: ShadowGenerator's filter setter), so a rect light is the spot light at
+  // its centre, aimed at the scene's box and wide enough for it; the runs take the rect-light scenes
+  // whose box one such cone covers (light_bleeding 130 degrees, soft_penumbra 166; cornell_box and
+  // soft_cube_seam would need more than 170, with their light at the ceiling or beside the wall).
+  // pcss: Babylon's light size (contactHardeningLightSizeUVRatio 0.1) and bias; pcss-light-size, its
+  // control: the light size set to the rect's (lightSizeFromRect below).
+  pcss: { filter: 'pcss', technique: 'pcss', rectAsSpot: true },
+  'pcss-light-size': { filter: 'pcss', technique: 'pcss', rectAsSpot: true, lightSizeFromRect: true },
 };
+
+// A rect light as Babylon's spot light at its centre: aimed at the centre of the meshes' box, its
+// cone (the shadow frustum's angle) reaching every corner of the box with 5 degrees to spare, at
+// most 170 degrees; the shadow depth range from a hundredth of the distance to the box's centre to
+// its farthest corner.
+function spotForRect(scene, meshes, l) {
+  const { min, max } = scene.getWorldExtends((m) => meshes.includes(m));
+  const at = new Vector3(...l.homogeneous.slice(0, 3));
+  const centre = min.add(max).scale(0.5);
+  const axis = centre.subtract(at).normalize();
+  let half = 0, far = 0;
+  for (let k = 0; k < 8; k++) {
+    const corner = new Vector3(k & 1 ? max.x : min.x, k & 2 ? max.y : min.y, k & 4 ? max.z : min.z);
+    const d = corner.subtract(at);
+    far = Math.max(far, d.length());
+    if (d.length() > 0) half = Math.max(half, Math.acos(Math.min(1, Vector3.Dot(d.normalize(), axis))));
+  }
+  const angle = Math.min(2 * half + (10 * Math.PI) / 180, (170 * Math.PI) / 180);
+  const light = new SpotLight('rect-as-spot', at, axis, angle, 1, scene);
+  light.shadowMinZ = 0.01 * centre.subtract(at).length();
+  light.shadowMaxZ = 1.01 * far;
+  return { light, angle, distance: centre.subtract(at).length() };
+}
+
+// The control's light size: Babylon's PCSS searches a disk of `ratio` (in map uv) and filters a
+// radius of ratio x (receiver - blocker depth, over the depth range); a light of half-width a
+// casts, seen in the map of a perspective view of angle phi, a penumbra of radius
+// a (d_r - d_b) / (2 tan(phi / 2) d_b d_r). The two agree, for the depth range's span, where
+// d_b d_r = D^2, D the distance to the scene's centre: ratio = a (maxZ - minZ) / (2 tan(phi / 2) D^2).
+function lightSizeFromRect(l, spot) {
+  const u = l.rect.edgeU, v = l.rect.edgeV;
+  const cross = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+  const half = Math.sqrt(Math.hypot(...cross)) / 2;  // half the side of the rect's equal-area square
+  const span = spot.light.shadowMaxZ - spot.light.shadowMinZ;
+  return (half * span) / (2 * Math.tan(spot.angle / 2) * spot.distance * spot.distance);
+}
 const MAP_SIZE = 1024;
 
 // The shadow pass's surface: Babylon's StandardMaterial with every light term computed as usual,
@@ -106,18 +153,22 @@ async function render(url, variantName) {
 
   const loadedLights = lights.map((l) => scene.lights.find((b) => b.name === `light_${l.index}`));
   const masks = [];
+  const visibility = [];
   const declared = [];
   for (const l of lights) {
     let light = loadedLights[l.index];
     // A spot light is the point light at its position, as in the other harnesses: the mask is
     // occlusion everywhere, and Babylon's spot shadow covers only its cone.
     if (l.type === 'spot') light = new PointLight('spot-as-point', new Vector3(...l.homogeneous.slice(0, 3)), scene);
+    const spot = v.rectAsSpot && l.rect ? spotForRect(scene, meshes, l) : null;
+    if (spot) light = spot.light;
     // A directional light's shadow map is drawn from its `position` (Babylon's documentation:
     // "the position of the light is used to compute the shadow map"), which glTF leaves at the
     // origin, inside the scene: the light is set outside the scene's bounding sphere, looking at its
     // centre along the glTF direction, with the depth range over the sphere, as three.js's harness fits
     // its box. Point lights keep Babylon's depth range (the camera's minZ..maxZ).
-    let fit = 'Babylon defaults (the camera minZ..maxZ)';
+    let fit = spot ? `shadowMinZ..shadowMaxZ ${spot.light.shadowMinZ.toPrecision(6)}..${spot.light.shadowMaxZ.toPrecision(6)}`
+                   : 'Babylon defaults (the camera minZ..maxZ)';
     if (l.type === 'directional') {
       const { min, max } = scene.getWorldExtends((m) => meshes.includes(m));
       const centre = min.add(max).scale(0.5), radius = max.subtract(min).length() / 2;
@@ -135,6 +186,11 @@ async function render(url, variantName) {
     if (v.filter === 'pcf') {
       generator.usePercentageCloserFiltering = true;
       generator.filteringQuality = ShadowGenerator.QUALITY_HIGH;
+    }
+    if (v.filter === 'pcss') {
+      generator.useContactHardeningShadow = true;
+      generator.filteringQuality = ShadowGenerator.QUALITY_HIGH;
+      if (v.lightSizeFromRect && spot) generator.contactHardeningLightSizeUVRatio = lightSizeFromRect(l, spot);
     }
     if (v.bias !== undefined) generator.bias = v.bias;
     if (v.forceBackFacesOnly) generator.forceBackFacesOnly = true;
@@ -161,22 +217,26 @@ async function render(url, variantName) {
     const facePixels = new Uint8Array(await renderFrame(scene));
     for (const m of meshes) m.removeVerticesData(VertexBuffer.ColorKind);
     const filterName = { [ShadowGenerator.FILTER_NONE]: 'none', [ShadowGenerator.FILTER_PCF]: 'pcf',
-      [ShadowGenerator.FILTER_POISSONSAMPLING]: 'poisson' }[generator.filter] ?? String(generator.filter);
+      [ShadowGenerator.FILTER_POISSONSAMPLING]: 'poisson', [ShadowGenerator.FILTER_PCSS]: 'pcss' }[generator.filter] ??
+      String(generator.filter);
     declared.push({ light: l.index, fit, generator: cascaded ? 'CascadedShadowGenerator' : 'ShadowGenerator', filter: filterName,
       bias: generator.bias, normalBias: generator.normalBias, forceBackFacesOnly: generator.forceBackFacesOnly,
-      ...(cascaded ? { numCascades: generator.numCascades, lambda: generator.lambda } : {}) });
+      ...(cascaded ? { numCascades: generator.numCascades, lambda: generator.lambda } : {}),
+      ...(generator.filter === ShadowGenerator.FILTER_PCSS ? { contactHardeningLightSizeUVRatio: generator.contactHardeningLightSizeUVRatio } : {}),
+      ...(spot ? { light: `SpotLight at the rect's centre, angle ${spot.angle.toFixed(4)} rad` } : {}) });
     generator.dispose();
     if (light !== loadedLights[l.index]) light.dispose();
     // Lit when the engine's shadow term is at least ½: one tap gives 0 or 1, a filter lights a pixel
     // when at least half its weight is lit, as the suite's own PCF does.
     masks.push(base64(combine(cam.width, cam.height, shadowPixels, facePixels, (p, i) => p[i] >= 128)));
+    if (v.filter === 'pcss' && l.rect) visibility.push({ light: l.index, png: base64(fraction(cam.width, cam.height, shadowPixels, facePixels)) });
   }
   const first = declared[0] ?? { filter: v.filter, bias: 0.00005, normalBias: 0 };
   // Babylon's PCF (QUALITY_HIGH) is its 6x6-tap kernel over bilinear compares (computeShadowWithPCF5,
   // Shaders/ShadersInclude/shadowsFragmentFunctions.fx): reach 2.5 texels + the bilinear's half; on a
   // point light's cube Babylon replaces PCF with Poisson sampling (computeShadowWithPoissonSamplingCube:
   // four nearest taps about one texel diagonal away, 1.5 with the texel's own half).
-  const reach = { none: 0, pcf: 3, poisson: 1.5 };
+  const reach = { none: 0, pcf: 3, poisson: 1.5, pcss: 0 };
   const candidate = {
     producer: 'Babylon.js',
     version: Engine.Version,
@@ -184,6 +244,8 @@ async function render(url, variantName) {
     convention: 'gl',
     shadow_map_size: MAP_SIZE,
     filter_radius_texels: Math.max(...declared.map((d) => reach[d.filter] ?? 0), 0),
+    // PCSS (computeShadowWithPCSS64): 64 Poisson taps turned per pixel by noise (getRand).
+    ...(v.filter === 'pcss' ? { light_taps: 8, sampling: 'random' } : {}),
     slope_bias_texels: 0,
     constant_bias: 0,
     light_views: 'own',
@@ -196,11 +258,12 @@ async function render(url, variantName) {
       'material.backFaceCulling': loadedCulling,
       generators: declared,
       'spot lights': 'the point light at the spot position (the mask is occlusion everywhere)',
+      ...(v.rectAsSpot ? { 'rect lights': "Babylon's SpotLight at the rect's centre (its PCSS needs one view)" } : {}),
       'camera.maxZ': cam.far,
     },
   };
   scene.dispose();
-  return { width: cam.width, height: cam.height, masks, candidate };
+  return { width: cam.width, height: cam.height, masks, visibility, candidate };
 }
 
 window.harness = {

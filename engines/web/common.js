@@ -45,6 +45,19 @@ export function combine(width, height, shadowRgba, faceRgba, lit) {
   return mask;
 }
 
+// The lit fraction (visibility.png), row 0 at the top, from the same two readbacks: the engine's
+// shadow term as it is (8 bits) where a surface faces the light, 0 where it is turned away, the
+// mask's 128 where there is no surface.
+export function fraction(width, height, shadowRgba, faceRgba) {
+  const out = new Uint8Array(width * height);
+  for (let y = 0; y < height; y++)
+    for (let x = 0; x < width; x++) {
+      const i = ((height - 1 - y) * width + x) * 4;
+      out[y * width + x] = faceRgba[i + 1] < 128 ? NO_SURFACE : faceRgba[i] >= 128 ? shadowRgba[i] : 0;
+    }
+  return out;
+}
+
 export function base64(bytes) {
   let s = '';
   for (let i = 0; i < bytes.length; i += 0x8000) s += String.fromCharCode.apply(null, bytes.subarray(i, i + 0x8000));
@@ -74,7 +87,8 @@ export function packLights(json) {
     const m = n.matrix;
     const homogeneous = def.type === 'directional' ? [m[8], m[9], m[10], 0] : [m[12], m[13], m[14], 1];
     lights[ext.light] = { index: ext.light, type: def.type, kind: def.extras.shadowref_type, homogeneous,
-      forward: [-m[8], -m[9], -m[10]], cone: def.spot ? def.spot.outerConeAngle : undefined };
+      forward: [-m[8], -m[9], -m[10]], cone: def.spot ? def.spot.outerConeAngle : undefined,
+      rect: def.extras.shadowref_type === 'rect' ? { edgeU: def.extras.edge_u, edgeV: def.extras.edge_v } : undefined };
   });
   return lights;
 }

@@ -127,6 +127,11 @@ async function main() {
         const name = r.masks.length === 1 ? 'mask.png' : `mask_${i}.png`;
         fs.writeFileSync(path.join(dir, name), greyPng(r.width, r.height, Buffer.from(b64, 'base64')));
       });
+      // A soft technique's lit fraction, per light with an area (visibility.png / visibility_<i>.png).
+      (r.visibility ?? []).forEach(({ light, png }) => {
+        const name = r.masks.length === 1 ? 'visibility.png' : `visibility_${light}.png`;
+        fs.writeFileSync(path.join(dir, name), greyPng(r.width, r.height, Buffer.from(png, 'base64')));
+      });
       fs.writeFileSync(path.join(dir, 'candidate.json'), JSON.stringify(r.candidate, null, 2) + '\n');
       process.stdout.write(`${scene}: ${r.masks.length} mask(s), ${Date.now() - t0} ms\n`);
     }
