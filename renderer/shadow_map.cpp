@@ -323,7 +323,8 @@ const Program& set_depth_pass_state(const Frame& frame, const LightFit& lc, cons
   gl.Viewport(0, 0, map.size, map.size);
   if (map.distance_range > 0) {
     // A distance cube: the nearest distance kept, 1 where nothing is, in every convention; the
-    // offset's model in the shader (a written depth takes no polygon offset).
+    // offset's model in the shader (a written depth takes no polygon offset). The fault switches
+    // model window-depth maps' bugs and are not applied here: the teeth draw window depth.
     gl.DepthMask(GL_TRUE);
     gl.ClearDepth(1.0);
     gl.Enable(GL_DEPTH_TEST);
