@@ -2,8 +2,10 @@
 # run_fuzzers.sh — builds the libFuzzer targets with clang (ASan + UBSan + libFuzzer) in a build
 # folder of their own and runs each for a bounded time on a copy of its seed corpus.
 #
-#   reliability/fuzz/run_fuzzers.sh [--smoke | --seconds N] [--build-dir DIR] [--jobs J] [TARGET...]
+#   reliability/fuzz/run_fuzzers.sh [--smoke | --seconds N | --build-only] [--build-dir DIR] [--jobs J] [TARGET...]
 #     --smoke       8 s per target (7 targets: 56 s of fuzzing; what `ctest` runs)
+#     --build-only  configure and build the targets, fuzz nothing (what the main build runs, so
+#                   that the test command's fuzz_smoke finds them built)
 #     --seconds N   N s per target
 #     --runs N      N executions per target, however long it takes (the long run in
 #                   reliability/README.md: --runs 1000000)
@@ -17,6 +19,7 @@ set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
 seconds=8
+build_only=
 runs_limit=
 build="$root/build/fuzz"
 jobs=2
@@ -24,11 +27,12 @@ targets=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --smoke) seconds=8 ;;
+    --build-only) build_only=1 ;;
     --seconds) seconds="$2"; shift ;;
     --runs) runs_limit="$2"; shift ;;
     --build-dir) build="$2"; shift ;;
     --jobs) jobs="$2"; shift ;;
-    -h|--help) sed -n 2,16p "$0"; exit 0 ;;
+    -h|--help) sed -n 2,17p "$0"; exit 0 ;;
     *) targets+=("$1") ;;
   esac
   shift
@@ -52,6 +56,10 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
 fi
 start=$(date +%s)
 cmake --build "$build" -j "$jobs" --target "${targets[@]}" >"$build.build.log" 2>&1 || { tail -50 "$build.build.log"; exit 1; }
+if [ -n "$build_only" ]; then
+  echo "run_fuzzers.sh: built ${#targets[@]} target(s) in $(( $(date +%s) - start )) s"
+  exit 0
+fi
 echo "run_fuzzers.sh: built ${#targets[@]} target(s) in $(( $(date +%s) - start )) s; fuzzing ${runs_limit:+$runs_limit executions}${runs_limit:-$seconds s} each"
 
 mkdir -p "$build/artifacts" "$build/logs"
