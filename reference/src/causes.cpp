@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "flush_denormals.hpp"
@@ -143,43 +145,93 @@ double CauseModel::Lookup::texel_at(double at) const {
   return perspective && depth_p > 0 ? texel * std::max(at, 0.0) / depth_p : texel;
 }
 
+// What the ray of one texel met: the first surface and, traced only when a probe asks, the face
+// where the ray leaves that first caster.
+struct TexelRay {
+  Vec3<double> a, dir;  // from the near plane, unit
+  double length = 0;    // to the far plane
+  RTCRayHit first;
+  bool hit = false;
+  int exit = -1;        // -1 not traced yet; 0 none (an open caster, or beyond 8 faces); 1 at (t_exit, ng_exit)
+  double t_exit = 0;
+  Vec3<double> ng_exit;
+};
+
+class CauseModel::Probes {
+ public:
+  // The ray of the texel at map offset (dx, dy) from p's, traced on first use. Offsets on a grid of
+  // 1/8 texel (the rings' quarter steps, the filter's half-texel placements) are remembered.
+  TexelRay& at(const Lookup& k, RTCScene scene, double dx, double dy) {
+    const double ex = dx * 8, ey = dy * 8;
+    const bool on_grid = std::abs(ex - std::round(ex)) < 1e-9 && std::abs(ey - std::round(ey)) < 1e-9;
+    if (!on_grid) return trace(k, scene, dx, dy, scratch_);
+    const std::uint64_t key = (static_cast<std::uint64_t>(std::lround(ex)) << 32) ^ (static_cast<std::uint64_t>(std::lround(ey)) & 0xffffffffu);
+    const auto [it, fresh] = rays_.try_emplace(key);
+    return fresh ? trace(k, scene, dx, dy, it->second) : it->second;
+  }
+
+ private:
+  static TexelRay& trace(const Lookup& k, RTCScene scene, double dx, double dy, TexelRay& ray) {
+    const double mx = k.q.x() + dx * k.texel_ndc, my = k.q.y() + dy * k.texel_ndc;
+    ray.a = unproject(k.inv, mx, my, k.zn);
+    const Vec3<double> b = unproject(k.inv, mx, my, k.zf);
+    ray.dir = (b - ray.a).normalized();
+    ray.length = (b - ray.a).norm();
+    ray.first = first_hit(scene, ray.a, ray.dir, static_cast<float>(ray.length));
+    ray.hit = ray.first.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    ray.exit = -1;
+    return ray;
+  }
+  std::unordered_map<std::uint64_t, TexelRay> rays_;
+  TexelRay scratch_;
+};
+
 // What a texel at map offset (dx, dy) from p's may hold: the depth of the first surface along its
 // ray, or, where the map is drawn with front faces culled (as ours is, and many engines'), the depth
 // where the ray leaves that first caster (its first back face; none for an open caster, drawn
 // two-sided); a miss holds "nothing": infinitely far. Each stored depth carries the bias `bias` gives
 // its own polygon (normal, ray direction, light depth). The texel gives the candidate's answer when
 // p, compared with either stored depth, gets it: lit when p is not beyond it, shadowed when p is.
-bool CauseModel::texel_gives(const Lookup& k, double dx, double dy, bool candidate_lit, const BiasOf& bias) const {
+bool CauseModel::texel_gives(const Lookup& k, Probes& probes, double dx, double dy, bool candidate_lit,
+                             const BiasOf& bias) const {
   const double eps = embree_->epsilon();
-  const double mx = k.q.x() + dx * k.texel_ndc, my = k.q.y() + dy * k.texel_ndc;
-  const Vec3<double> a = unproject(k.inv, mx, my, k.zn), b = unproject(k.inv, mx, my, k.zf);
-  const Vec3<double> ray_dir = (b - a).normalized();
-  RTCRayHit r = first_hit(embree_->handle(), a, ray_dir, static_cast<float>((b - a).norm()));
-  if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) return candidate_lit;
-  const auto stored = [&](double t_hit) {
-    const double at = k.depth(a + t_hit * ray_dir);
-    return at + bias(Vec3<double>(r.hit.Ng_x, r.hit.Ng_y, r.hit.Ng_z), ray_dir, at);
+  TexelRay& ray = probes.at(k, embree_->handle(), dx, dy);
+  if (!ray.hit) return candidate_lit;
+  const auto stored = [&](double t_hit, const Vec3<double>& ng) {
+    const double at = k.depth(ray.a + t_hit * ray.dir);
+    return at + bias(ng, ray.dir, at);
   };
   const auto answer = [&](double depth) { return (k.depth_p <= depth + eps) == candidate_lit; };
-  if (answer(stored(static_cast<double>(r.ray.tfar)))) return true;
-  // Front faces culled: walk on to the first face the ray leaves through (normal along the ray).
-  RTCIntersectContext c;
-  rtcInitIntersectContext(&c);
-  double t = static_cast<double>(r.ray.tfar);
-  for (int step = 0; step < 8; ++step) {
-    const Vec3<double> ng(r.hit.Ng_x, r.hit.Ng_y, r.hit.Ng_z);
-    if (ng.dot(ray_dir) > 0) return answer(stored(t));
-    RTCRayHit next{};
-    next.ray = r.ray;
-    next.ray.tnear = static_cast<float>(t + eps);
-    next.ray.tfar = static_cast<float>((b - a).norm());
-    next.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(embree_->handle(), &c, &next);
-    if (next.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;  // an open caster: only its front was there
-    r = next;
-    t = static_cast<double>(r.ray.tfar);
+  const RTCRayHit& first = ray.first;
+  if (answer(stored(static_cast<double>(first.ray.tfar), Vec3<double>(first.hit.Ng_x, first.hit.Ng_y, first.hit.Ng_z))))
+    return true;
+  if (ray.exit < 0) {
+    // Front faces culled: walk on to the first face the ray leaves through (normal along the ray).
+    RTCIntersectContext c;
+    rtcInitIntersectContext(&c);
+    RTCRayHit r = first;
+    double t = static_cast<double>(r.ray.tfar);
+    ray.exit = 0;
+    for (int step = 0; step < 8; ++step) {
+      const Vec3<double> ng(r.hit.Ng_x, r.hit.Ng_y, r.hit.Ng_z);
+      if (ng.dot(ray.dir) > 0) {
+        ray.exit = 1;
+        ray.t_exit = t;
+        ray.ng_exit = ng;
+        break;
+      }
+      RTCRayHit next{};
+      next.ray = r.ray;
+      next.ray.tnear = static_cast<float>(t + eps);
+      next.ray.tfar = static_cast<float>(ray.length);
+      next.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(embree_->handle(), &c, &next);
+      if (next.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;  // an open caster: only its front was there
+      r = next;
+      t = static_cast<double>(r.ray.tfar);
+    }
   }
-  return false;
+  return ray.exit == 1 && answer(stored(ray.t_exit, ray.ng_exit));
 }
 
 double CauseModel::mask_reach_texels(const outputs::CandidateDeclaration& d) {
@@ -191,7 +243,7 @@ double CauseModel::mask_reach_texels(const outputs::CandidateDeclaration& d) {
   return (d.light_views_from_pack ? 0.5 : 1.0) + std::min(d.filter_radius_texels, kMaxMaskFilterTexels);
 }
 
-bool CauseModel::filter_may_answer(const Lookup& k, const outputs::CandidateDeclaration& d, bool candidate_lit,
+bool CauseModel::filter_may_answer(const Lookup& k, Probes& probes, const outputs::CandidateDeclaration& d, bool candidate_lit,
                                    const std::function<BiasOf(double, double)>& bias_at) const {
   if (!(d.filter_radius_texels > kMaxMaskFilterTexels)) return false;
   // The box's taps at whole-texel offsets out to the radius (at most kMaxFilterTapsPerAxis per axis:
@@ -207,7 +259,7 @@ bool CauseModel::filter_may_answer(const Lookup& k, const outputs::CandidateDecl
       for (int tx = -radius; tx <= radius; tx += stride) {
         const double dx = tx + place[0] * h, dy = ty + place[1] * h;
         ++taps;
-        giving += texel_gives(k, dx, dy, candidate_lit, bias_at(dx, dy));
+        giving += texel_gives(k, probes, dx, dy, candidate_lit, bias_at(dx, dy));
       }
     if (2 * giving >= taps) return true;
   }
@@ -222,6 +274,7 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
   // own shadow whatever a map holds; no footprint or bias lights it.
   if (!found || !(surface->n.dot(found->to_light) > 0)) return Cause::Unexplained;
   const Lookup& k = *found;
+  Probes probes;
   const double reach = mask_reach_texels(d);
   const double precision = k.depth_p * kDepthPrecision;
   // The slope term of a stored polygon (normal ng, met along `along` at light depth `at`): one
@@ -248,11 +301,11 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
       return std::min(declared, needed);
     };
     // Depth bias: the texel of p itself (a contact within the bias comes out lit: peter-panning).
-    if (texel_gives(k, 0, 0, true, bias) && !texel_gives(k, 0, 0, true, none)) return Cause::DepthBias;
+    if (texel_gives(k, probes, 0, 0, true, bias) && !texel_gives(k, probes, 0, 0, true, none)) return Cause::DepthBias;
     for (const double r : rings)
       for (const auto& dv : kDirs)
-        if (texel_gives(k, dv[0] * r, dv[1] * r, true, bias)) return Cause::TexelFootprint;
-    if (filter_may_answer(k, d, true, [&](double, double) { return bias; })) return Cause::TexelFootprint;
+        if (texel_gives(k, probes, dv[0] * r, dv[1] * r, true, bias)) return Cause::TexelFootprint;
+    if (filter_may_answer(k, probes, d, true, [&](double, double) { return bias; })) return Cause::TexelFootprint;
     return Cause::Unexplained;
   }
   // False shadow: a texel within the reach holds an occluder nearer than p by more than the bias a
@@ -265,7 +318,7 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
       const BiasOf needed = [&](const Vec3<double>& ng, const Vec3<double>& along, double at) {
         return distance * slope(ng, along, at) + precision;
       };
-      if (texel_gives(k, dv[0] * r, dv[1] * r, false, needed)) return Cause::TexelFootprint;
+      if (texel_gives(k, probes, dv[0] * r, dv[1] * r, false, needed)) return Cause::TexelFootprint;
     }
   const auto needed_at = [&](double dx, double dy) -> BiasOf {
     const double distance = std::hypot(dx, dy);
@@ -273,10 +326,10 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
       return distance * slope(ng, along, at) + precision;
     };
   };
-  if (filter_may_answer(k, d, false, needed_at)) return Cause::TexelFootprint;
+  if (filter_may_answer(k, probes, d, false, needed_at)) return Cause::TexelFootprint;
   for (const double r : rings)
     for (const auto& dv : kDirs)
-      if (texel_gives(k, dv[0] * r, dv[1] * r, false, none)) return Cause::Acne;
+      if (texel_gives(k, probes, dv[0] * r, dv[1] * r, false, none)) return Cause::Acne;
   return Cause::Unexplained;
 }
 

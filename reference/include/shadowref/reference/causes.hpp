@@ -141,14 +141,17 @@ class CauseModel {
   // The bias a map adds to the depth it stores at a polygon of normal `ng`, met along `along` at
   // light depth `at`.
   using BiasOf = std::function<double(const Vec3<double>& ng, const Vec3<double>& along, double at)>;
-  bool texel_gives(const Lookup& k, double dx, double dy, bool candidate_lit, const BiasOf& bias) const;
+  // The texel rays one explain() has traced, by offset: a probe's answer depends on the bias only
+  // through arithmetic on what its ray met, so each offset is traced once (causes.cpp).
+  class Probes;
+  bool texel_gives(const Lookup& k, Probes& probes, double dx, double dy, bool candidate_lit, const BiasOf& bias) const;
   // The mask's reach in texels: the lookup's grid (pack or own) and the filter, capped.
   static double mask_reach_texels(const outputs::CandidateDeclaration& d);
   // A filter wider than kMaxMaskFilterTexels: whether its box of taps, placed at p's texel or
   // shifted by the grid's uncertainty, may have at least half of them give the candidate's answer
   // (a 1/2 threshold: thin shadows fade, corners round), each tap's stored depth carrying
   // bias_at(its offset). False for narrower filters (the rings cover them).
-  bool filter_may_answer(const Lookup& k, const outputs::CandidateDeclaration& d, bool candidate_lit,
+  bool filter_may_answer(const Lookup& k, Probes& probes, const outputs::CandidateDeclaration& d, bool candidate_lit,
                          const std::function<BiasOf(double, double)>& bias_at) const;
   // The light's views at map size `size` (0: the prepared size), cascaded with `cascades` cascades
   // (0: not cascaded).
