@@ -2,28 +2,32 @@
 //
 // For every scene of the default catalogue and every technique, the renderer's masks in gl-zo,
 // reversed-z and d3d are compared with its masks in gl on the pixels the gl reference marks
-// decided. The conventions change every depth value, the depth test, the clear, the shadow
+// decided. The masks are the ones the per-case conformance tests rendered and judged (their
+// `renders/` folders: each scene is drawn once per technique and convention in the test command,
+// and this test, their fixture's consumer, reads those very renders); the gl reference is the
+// fixtures' cache entry. The conventions change every depth value, the depth test, the clear, the shadow
 // compare, the polygon-offset sign and (d3d) the handedness of every matrix, but not which surface
 // a pixel sees or which side of a shadow boundary it lies on, so on a decided pixel the answer must
 // be the same. What may differ, and the bound for it (kMaxDifferingFraction), is said below.
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
+#include "catalogue_scene.hpp"
 #include "shadowref/conform/catalogue.hpp"
 #include "shadowref/convention.hpp"
+#include "shadowref/outputs/file_names.hpp"
 #include "shadowref/outputs/image.hpp"
+#include "shadowref/outputs/image_io.hpp"
 #include "shadowref/outputs/techniques.hpp"
-#include "shadowref/reference/render.hpp"
-#include "llvmpipe_renderer.hpp"
-#include "shadowref/renderer/renderer.hpp"
-#include "shadowref/scene/load_scene.hpp"
-#include "shadowref/scene/prepared_scene.hpp"
 
 namespace shadowref {
 namespace {
+
+namespace fs = std::filesystem;
 
 // A decided pixel may still differ between two conventions where a triangle edge or a shadow-map
 // texel boundary passes within float rounding of its centre: the conventions compute the same
@@ -36,40 +40,51 @@ namespace {
 // decided surface pixels (the exact-geometry fail bound), a 10-fold margin over what was seen.
 constexpr double kMaxDifferingFraction = 0.0005;
 
+// Where the per-case tests (conformance/tests/CMakeLists.txt) leave a render: in gl one run per
+// scene and technique, in the other conventions one run per scene with every technique.
+fs::path render_dir(const RunConvention& c, const std::string& scene, std::string_view technique) {
+  const fs::path cases = fs::path(SHADOWREF_TEST_CASES) / std::string(c.name);
+  const fs::path run = &c == &kDefaultConvention ? cases / scene / std::string(technique) : cases / scene;
+  return run / "renders" / scene / std::string(technique);
+}
+
 TEST(ConventionMasks, EveryConventionGivesTheGlMasksOnDecidedPixels) {
   const auto files = conform::select_scenes(conform::default_catalogue(), {});
   ASSERT_FALSE(files.empty());
   std::size_t cases = 0, max_differing = 0;
   for (const auto& file : files) {
-    const scene::Scene s = scene::load_scene(file);
-    const scene::PreparedScene gl = scene::prepare_scene(s, kDefaultConvention);
-    reference::Options ro;
-    ro.samples_per_axis = 4;
-    const reference::Images ref = reference::render(gl, ro);
-    std::vector<scene::PreparedScene> others;
-    for (const RunConvention& c : kRunConventions)
-      if (&c != &kDefaultConvention) others.push_back(scene::prepare_scene(s, c));
+    const test::CatalogueScene gl(file.stem().string());
+    const scene::Scene& s = gl.scene;
+    const std::size_t lights = s.lights.size();
+    std::vector<outputs::Image8> decided, reference;
+    for (std::size_t l = 0; l < lights; ++l) {
+      decided.push_back(outputs::read_image8(gl.reference / outputs::decided_name(l, lights), 1, s.width, s.height));
+      reference.push_back(outputs::read_image8(gl.reference / outputs::mask_name(l, lights), 1, s.width, s.height));
+    }
     for (const outputs::TechniqueName& t : outputs::kTechniques) {
-      const renderer::RenderResult base = test::llvmpipe_renderer().render(gl, t.name);
-      for (const scene::PreparedScene& other : others) {
-        const renderer::RenderResult r = test::llvmpipe_renderer().render(other, t.name);
-        ASSERT_EQ(r.masks.size(), base.masks.size());
-        std::size_t decided = 0, differing = 0;
-        for (std::size_t l = 0; l < r.masks.size(); ++l) {
-          const std::vector<std::uint8_t>& dec = ref.lights[l].decided;
-          for (std::size_t i = 0; i < dec.size(); ++i) {
-            if (dec[i] < 128 || ref.lights[l].mask[i] == outputs::kMaskNoSurface) continue;
-            ++decided;
-            differing += r.masks[l].pixels[i] != base.masks[l].pixels[i];
+      std::vector<outputs::Image8> base;
+      for (std::size_t l = 0; l < lights; ++l)
+        base.push_back(outputs::read_image8(render_dir(kDefaultConvention, s.name, t.name) / outputs::mask_name(l, lights), 1,
+                                            s.width, s.height));
+      for (const RunConvention& other : kRunConventions) {
+        if (&other == &kDefaultConvention) continue;
+        std::size_t decided_count = 0, differing = 0;
+        for (std::size_t l = 0; l < lights; ++l) {
+          const outputs::Image8 r = outputs::read_image8(render_dir(other, s.name, t.name) / outputs::mask_name(l, lights), 1,
+                                                         s.width, s.height);
+          for (std::size_t i = 0; i < r.pixels.size(); ++i) {
+            if (decided[l].pixels[i] < 128 || reference[l].pixels[i] == outputs::kMaskNoSurface) continue;
+            ++decided_count;
+            differing += r.pixels[i] != base[l].pixels[i];
           }
         }
         ++cases;
         max_differing = std::max(max_differing, differing);
-        EXPECT_LE(static_cast<double>(differing), kMaxDifferingFraction * static_cast<double>(decided))
-            << s.name << " x " << t.name << " in " << other.convention->name << ": " << differing << " of " << decided
+        EXPECT_LE(static_cast<double>(differing), kMaxDifferingFraction * static_cast<double>(decided_count))
+            << s.name << " x " << t.name << " in " << other.name << ": " << differing << " of " << decided_count
             << " decided pixels differ from gl";
         if (differing) std::printf("%-32s %-20s %-11s %zu of %zu decided pixels differ\n", s.name.c_str(),
-                                   std::string(t.name).c_str(), std::string(other.convention->name).c_str(), differing, decided);
+                                   std::string(t.name).c_str(), std::string(other.name).c_str(), differing, decided_count);
       }
     }
   }
