@@ -13,7 +13,7 @@
 //   - the case's output folder does not exist afterwards (nothing left looking complete).
 #include <gtest/gtest.h>
 
-#include <OpenImageIO/imageio.h>
+#include <zlib.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -61,18 +61,43 @@ void write_text(const fs::path& p, const std::string& text) {
   std::ofstream(p, std::ios::binary) << text;
 }
 
-void write_png(const fs::path& p, int w, int h, int channels, std::uint8_t value,
-               OIIO::TypeDesc format = OIIO::TypeDesc::UINT8) {
+// A PNG chunk: length, type, data, and the CRC of type and data (zlib's crc32).
+void append_chunk(std::string& png, const char* type, const std::string& data) {
+  const auto be32 = [&](std::uint32_t v) {
+    for (int s = 24; s >= 0; s -= 8) png.push_back(static_cast<char>((v >> s) & 0xff));
+  };
+  be32(static_cast<std::uint32_t>(data.size()));
+  const std::string body = type + data;
+  png += body;
+  be32(static_cast<std::uint32_t>(crc32(0, reinterpret_cast<const Bytef*>(body.data()), static_cast<uInt>(body.size()))));
+}
+
+// A w x h PNG of `channels` channels (1 grey, 3 RGB) whose every sample is `value`, 8 or 16 bits
+// deep, encoded here (zlib deflates the rows) so that this test's inputs do not come from the code
+// under test and the test does not load OpenImageIO.
+void write_png(const fs::path& p, int w, int h, int channels, std::uint8_t value, int bits = 8) {
   fs::create_directories(p.parent_path());
-  auto out = OIIO::ImageOutput::create(p.string());
-  ASSERT_TRUE(out);
-  const OIIO::ImageSpec spec(w, h, channels, format);
-  std::vector<std::uint16_t> pixels(static_cast<std::size_t>(w * h * channels), static_cast<std::uint16_t>(value * 257));
-  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(w * h * channels), value);
-  ASSERT_TRUE(out->open(p.string(), spec));
-  ASSERT_TRUE(format == OIIO::TypeDesc::UINT8 ? out->write_image(OIIO::TypeDesc::UINT8, bytes.data())
-                                              : out->write_image(OIIO::TypeDesc::UINT16, pixels.data()));
-  ASSERT_TRUE(out->close());
+  const std::size_t row = 1 + static_cast<std::size_t>(w) * static_cast<std::size_t>(channels) * (bits / 8);
+  std::string raw;
+  raw.reserve(row * static_cast<std::size_t>(h));
+  for (int y = 0; y < h; ++y) {
+    raw.push_back('\0');  // filter: none
+    raw.append(row - 1, static_cast<char>(value));  // 16-bit: value * 257, both bytes alike
+  }
+  uLongf size = compressBound(static_cast<uLong>(raw.size()));
+  std::string deflated(size, '\0');
+  ASSERT_EQ(compress2(reinterpret_cast<Bytef*>(deflated.data()), &size, reinterpret_cast<const Bytef*>(raw.data()),
+                      static_cast<uLong>(raw.size()), 9), Z_OK);
+  deflated.resize(size);
+  std::string ihdr;
+  for (int v : {w, h})
+    for (int s = 24; s >= 0; s -= 8) ihdr.push_back(static_cast<char>((static_cast<std::uint32_t>(v) >> s) & 0xff));
+  ihdr += {static_cast<char>(bits), static_cast<char>(channels == 3 ? 2 : 0), 0, 0, 0};
+  std::string png = "\x89PNG\r\n\x1a\n";
+  append_chunk(png, "IHDR", ihdr);
+  append_chunk(png, "IDAT", deflated);
+  append_chunk(png, "IEND", "");
+  std::ofstream(p, std::ios::binary) << png;
 }
 
 // A mask folder as every producer writes it: mask.png (+ decided.png for a reference).
@@ -331,7 +356,7 @@ std::vector<Case> make_cases() {
   cases.push_back({"sixteen_bit_mask_compare",
                    [ref_ok](const fs::path& dir) {
                      ref_ok(dir);
-                     write_png(dir / "cand" / "mask.png", 16, 16, 1, 255, OIIO::TypeDesc::UINT16);
+                     write_png(dir / "cand" / "mask.png", 16, 16, 1, 255, 16);
                    },
                    compare, 4, "8-bit"});
   cases.push_back({"absurd_header_compare",

@@ -1,16 +1,19 @@
-// image_io.cpp — OpenImageIO reading and writing of the contract's images (image_io.hpp).
+// image_io.cpp — the contract's images (image_io.hpp): every check and message here; the decoding
+// and encoding by OpenImageIO in the image codec module (image_codec.hpp), loaded on first use.
 #include "shadowref/outputs/image_io.hpp"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+#include <dlfcn.h>
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <system_error>
 
+#include "image_codec.hpp"
 #include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/errors.hpp"
 
@@ -20,6 +23,39 @@ namespace {
 // Images larger than this are refused before their pixels are allocated (the scene loader's own
 // resolution limit is 16384 on a side).
 constexpr std::size_t kMaxPixels = std::size_t{16384} * 16384;
+
+// The module, where an installed shadowref has it (beside bin/, SHADOWREF_IMAGE_CODEC_FROM_BIN) and
+// where this build tree has it (SHADOWREF_IMAGE_CODEC_BUILT). The installed place comes first, so
+// that an installed binary never depends on the tree it was built in.
+const ShadowrefImageCodec& codec() {
+  static const ShadowrefImageCodec* loaded = [] {
+    std::string tried;
+    std::error_code ec;
+    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    std::vector<std::filesystem::path> places;
+    if (!ec) places.push_back(exe.parent_path() / SHADOWREF_IMAGE_CODEC_FROM_BIN);
+    places.emplace_back(SHADOWREF_IMAGE_CODEC_BUILT);
+    for (const std::filesystem::path& place : places) {
+      if (!std::filesystem::exists(place, ec)) {
+        tried += (tried.empty() ? "" : "; ") + place.string() + ": no such file";
+        continue;
+      }
+      void* handle = ::dlopen(place.c_str(), RTLD_NOW | RTLD_LOCAL);
+      if (!handle) {
+        const char* why = ::dlerror();
+        tried += (tried.empty() ? "" : "; ") + std::string(why ? why : place.string() + ": dlopen failed");
+        continue;
+      }
+      const auto entry = reinterpret_cast<ShadowrefImageCodecEntry>(::dlsym(handle, "shadowref_image_codec"));
+      const ShadowrefImageCodec* c = entry ? entry() : nullptr;
+      if (c && c->version == kShadowrefImageCodecVersion) return c;
+      tried += (tried.empty() ? "" : "; ") + place.string() + ": not this version's image codec";
+    }
+    throw std::runtime_error("cannot load shadowref's image codec (libshadowref_image_codec.so, which reads and writes "
+                             "images with OpenImageIO): " + tried);
+  }();
+  return *loaded;
+}
 
 // libpng, inside OpenImageIO, writes its own "libpng error: …" lines to stderr when a stream is
 // truncated or corrupt; the command line promises ONE line naming the file, which we print from
@@ -54,25 +90,47 @@ std::string first_line(std::string why, const char* if_empty) {
   return why;
 }
 
-// OpenImageIO prints errors nobody retrieved when their holder dies (at exit for the global
-// queue); we retrieve every error we act on and report it in our own one line.
-void silence_uncaught_errors() {
-  static const bool done = OIIO::attribute("oiio:print_uncaught_errors", 0);
-  (void)done;
+constexpr std::size_t kErrorSize = 1024;
+
+// An opened image: its header, and the reader the module frees.
+struct Opened {
+  ShadowrefImageHeader header{};
+  std::unique_ptr<void, void (*)(void*)> reader{nullptr, +[](void*) {}};
+};
+
+// Opens `file` with the reader of `format`; throws bad(cannot open: …) with `if_empty` when the
+// reader says nothing.
+template <class Bad>
+Opened open_image(const ShadowrefImageCodec& c, const std::filesystem::path& file, const std::string& format,
+                  const char* if_empty, const Bad& bad) {
+  Opened o;
+  char error[kErrorSize] = "";
+  void* reader = c.open(file.c_str(), format.c_str(), &o.header, error, sizeof error);
+  if (!reader) throw bad("cannot open: " + first_line(error, if_empty));
+  o.reader = std::unique_ptr<void, void (*)(void*)>(reader, c.free_reader);
+  return o;
 }
 
 // The image is encoded in memory and written by write_file_atomically: a file appears whole or not at
 // all, and a failed write says the system's reason ("No space left on device"), which OpenImageIO's
 // own file writing does not pass on. An encoding failure is ours (exit 5), never the disk's.
-void write_image(const std::filesystem::path& file, const OIIO::ImageSpec& spec, const void* data) {
-  silence_uncaught_errors();
-  std::vector<unsigned char> encoded;
-  OIIO::Filesystem::IOVecOutput memory(encoded);  // outlives the writer, which may flush into it when destroyed
-  auto out = OIIO::ImageOutput::create(file.string());
-  if (!out) throw std::runtime_error(file.string() + ": no image writer: " + first_line(OIIO::geterror(), "unknown format"));
-  if (!out->set_ioproxy(&memory) || !out->open(file.string(), spec) || !out->write_image(spec.format, data) || !out->close())
-    throw std::runtime_error(file.string() + ": cannot encode: " + first_line(out->geterror(), "encoding failed"));
-  write_file_atomically(file, std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()));
+void write_image(const std::filesystem::path& file, int width, int height, int channels, int type, const void* data,
+                 const char* exr_channel) {
+  const ShadowrefImageCodec& c = codec();
+  // zlib level 1 instead of libpng's 6: a conformance run writes several images per case, and at
+  // 1024² the level-6 deflate was a quarter of the run's CPU time (bench/README.md, "conform at
+  // 1024²"); masks are large flat regions, which level 1 still compresses well.
+  constexpr int kPngCompression = 1;
+  std::string encoded;
+  char error[kErrorSize] = "";
+  const auto sink = +[](void* context, const void* bytes, std::size_t size) {
+    static_cast<std::string*>(context)->assign(static_cast<const char*>(bytes), size);
+  };
+  const int r = c.encode(file.c_str(), width, height, channels, type, data, kPngCompression, exr_channel, sink, &encoded,
+                         error, sizeof error);
+  if (r == 1) throw std::runtime_error(file.string() + ": no image writer: " + first_line(error, "unknown format"));
+  if (r != 0) throw std::runtime_error(file.string() + ": cannot encode: " + first_line(error, "encoding failed"));
+  write_file_atomically(file, encoded);
 }
 
 }  // namespace
@@ -84,17 +142,12 @@ Image8 read_image8(const std::filesystem::path& file, int channels, int width, i
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) throw bad("no such file");
   if (!std::filesystem::is_regular_file(file, ec)) throw bad("not a regular file");
+  const ShadowrefImageCodec& c = codec();
   QuietStderr quiet;
-  silence_uncaught_errors();
-  // Only the reader of the file's own format (its extension): ImageInput::open falls back to every
-  // other reader when that one fails, and OpenImageIO 2.4's RLA reader aborts the process on some
-  // bytes (a fuzzed mask.png did, in RLAInput::seek_subimage), so a broken PNG must stay a PNG error.
   const std::string extension = file.extension().string();
-  auto in = OIIO::ImageInput::create(extension.size() > 1 ? extension.substr(1) : file.string());
-  OIIO::ImageSpec opened;
-  if (!in || !in->open(file.string(), opened))
-    throw bad("cannot open: " + first_line(in ? in->geterror() : OIIO::geterror(), "not an image OpenImageIO can read"));
-  const OIIO::ImageSpec& spec = in->spec();
+  const Opened o = open_image(c, file, extension.size() > 1 ? extension.substr(1) : file.string(),
+                              "not an image OpenImageIO can read", bad);
+  const ShadowrefImageHeader& spec = o.header;
   if (spec.width <= 0 || spec.height <= 0 || spec.depth != 1) throw bad("not a 2D image");
   if (static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) > kMaxPixels)
     throw bad(std::to_string(spec.width) + " x " + std::to_string(spec.height) + " pixels: larger than 16384 x 16384");
@@ -102,20 +155,18 @@ Image8 read_image8(const std::filesystem::path& file, int channels, int width, i
     throw InputError(InputError::Kind::SizeMismatch, file.string() + ": candidate is " + std::to_string(spec.width) + "x" +
                                                          std::to_string(spec.height) + ", reference is " + std::to_string(width) +
                                                          "x" + std::to_string(height));
-  if (spec.nchannels != channels)
-    throw bad("has " + std::to_string(spec.nchannels) + " channel(s), expected " + std::to_string(channels) +
+  if (spec.channels != channels)
+    throw bad("has " + std::to_string(spec.channels) + " channel(s), expected " + std::to_string(channels) +
               (channels == 1 ? " (8-bit grey: 255 lit, 0 shadowed, 128 no surface)" : ""));
-  if (spec.format != OIIO::TypeDesc::UINT8) throw bad("pixel format " + std::string(spec.format.c_str()) + ", expected 8-bit unsigned");
+  if (!spec.is_uint8) throw bad("pixel format " + std::string(spec.format) + ", expected 8-bit unsigned");
   Image8 image;
   image.width = spec.width;
   image.height = spec.height;
   image.channels = channels;
   image.pixels.resize(image.pixel_count() * static_cast<std::size_t>(channels));
-  // A truncated or corrupt PNG fails here (libpng reports the broken stream), not at open.
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, image.pixels.data()))
-    throw bad("cannot read pixels (truncated or corrupt?): " + first_line(in->geterror(), "decoding failed"));
-  // OpenImageIO may defer an error until close (libpng's CRC check at the end of the stream).
-  if (!in->close()) throw bad("cannot read pixels (truncated or corrupt?): " + first_line(in->geterror(), "closing failed"));
+  char error[kErrorSize] = "";
+  if (c.read(o.reader.get(), channels, kShadowrefUint8, image.pixels.data(), error, sizeof error) != 0)
+    throw bad("cannot read pixels (truncated or corrupt?): " + first_line(error, "decoding failed"));
   return image;
 }
 
@@ -123,42 +174,29 @@ std::vector<float> read_exr(const std::filesystem::path& file, int width, int he
   const auto bad = [&](const std::string& what) { return InputError(InputError::Kind::BadInput, file.string() + ": " + what); };
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) throw bad("no such file");
+  const ShadowrefImageCodec& c = codec();
   QuietStderr quiet;
-  silence_uncaught_errors();
-  auto in = OIIO::ImageInput::create("exr");
-  OIIO::ImageSpec opened;
-  if (!in || !in->open(file.string(), opened))
-    throw bad("cannot open: " + first_line(in ? in->geterror() : OIIO::geterror(), "not an OpenEXR file"));
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width != width || spec.height != height || spec.depth != 1 || spec.nchannels != 1)
+  const Opened o = open_image(c, file, "exr", "not an OpenEXR file", bad);
+  const ShadowrefImageHeader& spec = o.header;
+  if (spec.width != width || spec.height != height || spec.depth != 1 || spec.channels != 1)
     throw bad("is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " with " +
-              std::to_string(spec.nchannels) + " channel(s), expected " + std::to_string(width) + "x" +
+              std::to_string(spec.channels) + " channel(s), expected " + std::to_string(width) + "x" +
               std::to_string(height) + " with 1");
   std::vector<float> pixels(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
-  if (!in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, pixels.data()) || !in->close())
-    throw bad("cannot read pixels: " + first_line(in->geterror(), "decoding failed"));
+  char error[kErrorSize] = "";
+  if (c.read(o.reader.get(), 1, kShadowrefFloat, pixels.data(), error, sizeof error) != 0)
+    throw bad("cannot read pixels: " + first_line(error, "decoding failed"));
   return pixels;
 }
 
 void write_png(const Image8& image, const std::filesystem::path& file) {
   if (image.pixels.size() != image.pixel_count() * static_cast<std::size_t>(image.channels))
     throw std::logic_error(file.string() + ": image buffer does not match its size");
-  OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::UINT8);
-  // zlib level 1 instead of libpng's 6: a conformance run writes several images per case, and at
-  // 1024² the level-6 deflate was a quarter of the run's CPU time (bench/README.md, "conform at
-  // 1024²"); masks are large flat regions, which level 1 still compresses well.
-  spec.attribute("png:compressionLevel", 1);
-  write_image(file, spec, image.pixels.data());
+  write_image(file, image.width, image.height, image.channels, kShadowrefUint8, image.pixels.data(), nullptr);
 }
 
 void write_exr(int width, int height, const float* pixels, const std::filesystem::path& file) {
-  OIIO::ImageSpec spec(width, height, 1, OIIO::TypeDesc::FLOAT);
-  spec.channelnames = {"Y"};
-  spec.attribute("compression", "zip");
-  // OpenEXR output stamps the wall-clock time into the header unless DateTime is set; an empty
-  // value suppresses it, so that two runs write byte-identical files (determinism is tested).
-  spec.attribute("DateTime", "");
-  write_image(file, spec, pixels);
+  write_image(file, width, height, 1, kShadowrefFloat, pixels, "Y");
 }
 
 }  // namespace shadowref::outputs
