@@ -98,9 +98,41 @@ using scene::CameraDepth;
 // The GL compare function of a convention's depth comparison (convention.hpp).
 GLenum gl_compare(DepthCompare c);
 
+// Shadow-map storage kept from one render to the next: 2D array textures and renderbuffers, each of
+// one format and size. Why: llvmpipe zeroes a fresh texture's memory and the kernel faults in every
+// page of it, at each allocation; for the 2048-texel maps of a conformance run that was about a
+// third of the drawing's time (perf: clear_page_erms, memset under glTexImage3D). A map's every layer
+// is cleared before it is drawn (shadow_map.cpp), so a reused one carries nothing over.
+class MapStoragePool {
+ public:
+  explicit MapStoragePool(const GlFunctions& gl) : gl_(gl) {}
+  ~MapStoragePool();  // deletes them all: the context must be current
+  MapStoragePool(const MapStoragePool&) = delete;
+  MapStoragePool& operator=(const MapStoragePool&) = delete;
+  // A 2D array texture of `layers` layers of size × size texels of `internal_format` (contents
+  // undefined), bound to GL_TEXTURE_2D_ARRAY on the active unit; `format` and `type` as glTexImage3D's.
+  GLuint texture(GLenum internal_format, GLenum format, GLenum type, int size, int layers);
+  // A size × size renderbuffer of `internal_format`, bound to GL_RENDERBUFFER.
+  GLuint renderbuffer(GLenum internal_format, int size);
+  // Gives back what texture() or renderbuffer() handed out, for a later map of the same kind.
+  void give_back(GLuint id, bool is_texture);
+
+ private:
+  struct Entry {
+    bool is_texture;
+    GLenum internal_format;
+    int size, layers;
+    GLuint id;
+    bool in_use;
+  };
+  const GlFunctions& gl_;
+  std::vector<Entry> entries_;
+};
+
 struct Frame {
   const GlFunctions& gl;
   const Programs& programs;
+  MapStoragePool& maps;                       // the renderer's, kept across renders
   const scene::PreparedScene& prepared;       // camera, lights, casters, light fits, convention
   const scene::Scene& scene;                  // = *prepared.scene
   const RenderOptions& options;

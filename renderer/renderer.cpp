@@ -470,8 +470,10 @@ struct Renderer::Impl {
   GlFunctions gl;
   Programs programs;
   GlInfo info;
+  std::unique_ptr<MapStoragePool> maps;  // destroyed first, while ~Impl has the context current
 
   Impl(GlApi api, Driver driver) : context(create_gl_context(api, driver)), gl(*context) {
+    maps = std::make_unique<MapStoragePool>(gl);
     info.api = api;
     info.driver = driver;
     const auto str = [&](GLenum e) {
@@ -600,7 +602,7 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_
     frame_result.faults = describe(options.faults);
     if (!frame_result.faults.empty())
       frame_result.notes.push_back("deliberately wrong: fault switches " + frame_result.faults + " (renderer/faults.hpp)");
-    Frame frame{gl, impl_->programs, prepared, scene, options, frame_result, objects, target.fbo};
+    Frame frame{gl, impl_->programs, *impl_->maps, prepared, scene, options, frame_result, objects, target.fbo};
     const auto start = std::chrono::steady_clock::now();
     t->render(frame);
     gl.Finish();

@@ -134,7 +134,7 @@ Mat4<double> fit_with_fault(const RunConvention& conv, const Mat4<double>& proje
 // One light's map: the texture (a 2D array, one layer per view) and the matrices that map world
 // points into it.
 struct LightMap {
-  const GlFunctions* gl = nullptr;
+  MapStoragePool* pool = nullptr;  // where texture and moments go back
   GLuint texture = 0;
   GLuint moments = 0;             // vsm: the RG32F moments, the same layers
   int size = 0;
@@ -151,7 +151,7 @@ struct LightMap {
   std::vector<float> inv_view_depth;  // (a, b) per layer
   LightMap() = default;
   LightMap(LightMap&& o) noexcept
-      : gl(o.gl), texture(o.texture), moments(o.moments), size(o.size), layout(o.layout), distance_range(o.distance_range),
+      : pool(o.pool), texture(o.texture), moments(o.moments), size(o.size), layout(o.layout), distance_range(o.distance_range),
         light_position(o.light_position), shadow_from_world(o.shadow_from_world),
         face_from_world(std::move(o.face_from_world)), cascade_depth(o.cascade_depth),
         cascade_begin(o.cascade_begin), cascade_end(o.cascade_end), world_from_face(std::move(o.world_from_face)),
@@ -163,8 +163,8 @@ struct LightMap {
   LightMap& operator=(const LightMap&) = delete;
   LightMap& operator=(LightMap&&) = delete;
   ~LightMap() {
-    if (texture) gl->DeleteTextures(1, &texture);
-    if (moments) gl->DeleteTextures(1, &moments);
+    if (texture) pool->give_back(texture, true);
+    if (moments) pool->give_back(moments, true);
   }
 };
 
@@ -190,16 +190,12 @@ const LightFit& cascade_fit(const Frame& frame, std::size_t i, LightFit& refit) 
   return refit;
 }
 
-// A new 2D array texture, bound, read with nearest taps and `wrap` at its edges.
-GLuint nearest_array_texture(const GlFunctions& gl, GLint wrap) {
-  GLuint t = 0;
-  gl.GenTextures(1, &t);
-  gl.BindTexture(GL_TEXTURE_2D_ARRAY, t);
+// The bound 2D array texture read with nearest taps and `wrap` at its edges.
+void read_nearest(const GlFunctions& gl, GLint wrap) {
   gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, wrap);
   gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, wrap);
-  return t;
 }
 
 // The light map's phases, in order: which cascade a pixel reads (cascaded fits), the matrices
@@ -270,7 +266,14 @@ GLuint allocate_targets(const Frame& frame, LightMap& map, GLsizei layers, Varia
   const GlFunctions& gl = frame.gl;
   const RunConvention& conv = frame.convention();
   const int size = map.size;
-  map.texture = nearest_array_texture(gl, GL_CLAMP_TO_BORDER);
+  map.pool = &frame.maps;
+  if (variant == Variant::Rgba8)
+    map.texture = frame.maps.texture(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, size, layers);
+  else if (conv.float_depth)
+    map.texture = frame.maps.texture(GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, size, layers);
+  else
+    map.texture = frame.maps.texture(GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, size, layers);
+  read_nearest(gl, GL_CLAMP_TO_BORDER);
   // The far depth (1, or 0 under reversed-Z) / its packed form: nothing occludes outside the map. A
   // distance cube's far is 1 in every convention.
   const auto far = map.distance_range > 0 ? 1.0f : static_cast<float>(far_depth(conv));
@@ -281,20 +284,11 @@ GLuint allocate_targets(const Frame& frame, LightMap& map, GLsizei layers, Varia
   gl.GenFramebuffers(1, &fbo);
   gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
   if (variant == Variant::Rgba8) {
-    gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, size, size, layers, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
     // A plain depth buffer still picks the nearest surface; only the colour target is sampled.
-    gl.GenRenderbuffers(1, &depth_rb);
-    gl.BindRenderbuffer(GL_RENDERBUFFER, depth_rb);
-    gl.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, size, size);
+    depth_rb = frame.maps.renderbuffer(GL_DEPTH_COMPONENT24, size);
     gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_rb);
     gl.DrawBuffer(GL_COLOR_ATTACHMENT0);
   } else {
-    if (conv.float_depth)
-      gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_DEPTH_COMPONENT32F, size, size, layers, 0, GL_DEPTH_COMPONENT, GL_FLOAT,
-                    nullptr);
-    else
-      gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_DEPTH_COMPONENT24, size, size, layers, 0, GL_DEPTH_COMPONENT,
-                    GL_UNSIGNED_INT, nullptr);
     // PCSS reads the stored depths themselves (its blocker search averages them).
     gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_MODE, soft(variant) ? GL_NONE : GL_COMPARE_REF_TO_TEXTURE);
     const DepthCompare lit = map.distance_range > 0 ? DepthCompare::LessEqual : lit_compare(conv, frame.faults().shadow_map.compare);
@@ -304,8 +298,8 @@ GLuint allocate_targets(const Frame& frame, LightMap& map, GLsizei layers, Varia
   if (variant == Variant::Vsm) {
     // Read at texel centres like every other map (the filter is the shader's taps); (0, 0) where
     // nothing is drawn, which no surface writes (its view depth is beyond the near plane).
-    map.moments = nearest_array_texture(gl, GL_CLAMP_TO_EDGE);
-    gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RG32F, size, size, layers, 0, GL_RG, GL_FLOAT, nullptr);
+    map.moments = frame.maps.texture(GL_RG32F, GL_RG, GL_FLOAT, size, layers);
+    read_nearest(gl, GL_CLAMP_TO_EDGE);
     gl.DrawBuffer(GL_COLOR_ATTACHMENT0);
   }
   gl.ReadBuffer(GL_NONE);
@@ -440,7 +434,6 @@ void draw_depth_pass(const Frame& frame, const LightFit& lc, const std::vector<M
 LightMap render_light_map(const Frame& frame, std::size_t light, const LightFit& lc, Variant variant) {
   const GlFunctions& gl = frame.gl;
   LightMap map;
-  map.gl = &gl;
   map.size = lc.size + 2 * frame.options.guard_band_texels;
   if (holds_distance(frame.options, variant, lc.cube)) {
     map.distance_range = static_cast<float>(cube_distance_range(frame.prepared, light));
@@ -460,7 +453,7 @@ LightMap render_light_map(const Frame& frame, std::size_t light, const LightFit&
   gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
   gl.DeleteFramebuffers(1, &fbo);
-  if (depth_rb) gl.DeleteRenderbuffers(1, &depth_rb);
+  if (depth_rb) frame.maps.give_back(depth_rb, false);
   return map;
 }
 
@@ -623,5 +616,62 @@ void render_csm(Frame& frame) { render_variant(frame, Variant::Depth, true); }
 void render_csm_pcf(Frame& frame) { render_variant(frame, Variant::Pcf, true); }
 void render_pcss(Frame& frame) { render_variant(frame, Variant::Pcss, false); }
 void render_vsm(Frame& frame) { render_variant(frame, Variant::Vsm, false); }
+
+MapStoragePool::~MapStoragePool() {
+  for (const Entry& e : entries_) {
+    if (e.is_texture) gl_.DeleteTextures(1, &e.id);
+    else gl_.DeleteRenderbuffers(1, &e.id);
+  }
+}
+
+GLuint MapStoragePool::texture(GLenum internal_format, GLenum format, GLenum type, int size, int layers) {
+  for (Entry& e : entries_)
+    if (!e.in_use && e.is_texture && e.internal_format == internal_format && e.size == size && e.layers == layers) {
+      e.in_use = true;
+      gl_.BindTexture(GL_TEXTURE_2D_ARRAY, e.id);
+      return e.id;
+    }
+  GLuint t = 0;
+  gl_.GenTextures(1, &t);
+  gl_.BindTexture(GL_TEXTURE_2D_ARRAY, t);
+  gl_.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, static_cast<GLint>(internal_format), size, size, layers, 0, format, type, nullptr);
+  entries_.push_back({true, internal_format, size, layers, t, true});
+  return t;
+}
+
+GLuint MapStoragePool::renderbuffer(GLenum internal_format, int size) {
+  for (Entry& e : entries_)
+    if (!e.in_use && !e.is_texture && e.internal_format == internal_format && e.size == size) {
+      e.in_use = true;
+      gl_.BindRenderbuffer(GL_RENDERBUFFER, e.id);
+      return e.id;
+    }
+  GLuint r = 0;
+  gl_.GenRenderbuffers(1, &r);
+  gl_.BindRenderbuffer(GL_RENDERBUFFER, r);
+  gl_.RenderbufferStorage(GL_RENDERBUFFER, internal_format, size, size);
+  entries_.push_back({false, internal_format, size, 1, r, true});
+  return r;
+}
+
+void MapStoragePool::give_back(GLuint id, bool is_texture) {
+  // At most kKept unused entries stay (the maps of one render of the largest scene, with room): the
+  // oldest unused one goes first.
+  constexpr std::size_t kKept = 8;
+  for (Entry& e : entries_)
+    if (e.id == id && e.is_texture == is_texture) e.in_use = false;
+  std::size_t unused = 0;
+  for (const Entry& e : entries_) unused += !e.in_use;
+  for (auto it = entries_.begin(); unused > kKept && it != entries_.end();) {
+    if (it->in_use) {
+      ++it;
+      continue;
+    }
+    if (it->is_texture) gl_.DeleteTextures(1, &it->id);
+    else gl_.DeleteRenderbuffers(1, &it->id);
+    it = entries_.erase(it);
+    --unused;
+  }
+}
 
 }  // namespace shadowref::renderer

@@ -40,7 +40,7 @@ const ShadowrefImageCodec& codec() {
         tried += (tried.empty() ? "" : "; ") + place.string() + ": no such file";
         continue;
       }
-      void* handle = ::dlopen(place.c_str(), RTLD_NOW | RTLD_LOCAL);
+      void* handle = ::dlopen(place.c_str(), RTLD_LAZY | RTLD_LOCAL);
       if (!handle) {
         const char* why = ::dlerror();
         tried += (tried.empty() ? "" : "; ") + std::string(why ? why : place.string() + ": dlopen failed");
