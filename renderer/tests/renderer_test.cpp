@@ -206,10 +206,15 @@ TEST(Renderer, OneMaskPerLight) {
 }
 
 // Every technique renders every catalogue scene (small) without a GL error or an exception.
+// Every scene file, the large ones included, on llvmpipe; softpipe, which runs every shader on one
+// core a pixel at a time, draws every scene but those tagged "large" (a million-triangle sphere kept
+// for speed measurements: 62 of softpipe's 89 s here, and nothing in it that the other scenes do
+// not already ask of the driver).
 TEST(Renderer, EveryTechniqueRendersEveryCatalogueScene) {
   for (const auto& entry : std::filesystem::directory_iterator(SHADOWREF_SCENES_DIR)) {
     if (entry.path().extension() != ".json") continue;
     scene::Scene s = scene::load_scene(entry.path());
+    if (test_driver() == Driver::Softpipe && std::find(s.tags.begin(), s.tags.end(), "large") != s.tags.end()) continue;
     s.width = s.height = 48;
     for (const Technique& t : techniques()) {
       SCOPED_TRACE(entry.path().filename().string() + " " + std::string(t.name));
