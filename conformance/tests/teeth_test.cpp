@@ -22,6 +22,7 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <list>
 #include <map>
 #include <set>
 #include <string>
@@ -151,29 +152,47 @@ const KnownMiss* known_miss(std::string_view row, std::string_view size) {
 // to the rows whose technique draws a shadow map and that do not pin their own map size, the soft
 // rows (pcss, vsm) included: at 512 texels their penumbrae on soft_penumbra are a few texels wide,
 // and the judge's texel error (compare/visibility.hpp) is what keeps their controls green there.
+// Several rows share a control (the same technique, convention and map size on the same scene): each
+// is rendered and judged once per size, and its case kept for every row that names it.
 int run_at(const Size& size) {
   int missed = 0, runs = 0;
+  std::list<conform::ConformResult> control_runs;  // a list: the cases stay where they are
+  std::map<std::string, const conform::CaseResult*> control_cases;  // "<technique> <convention> <map> <scene>"
   for (const Row& row : rows()) {
     const outputs::TechniqueName* t = outputs::find_technique_name(row.technique);
     const bool shadow_map = t && t->family != outputs::TechniqueFamily::ExactGeometry;
     if (size.shadow_map_size && (!shadow_map || row.shadow_map_size)) continue;
     const Control control = control_of(row);
-    conform::ConformOptions o =
-        options_for(std::string(row.convention), size.shadow_map_size ? size.shadow_map_size : row.shadow_map_size,
-                    row.scene_list(), std::string(size.name) + "/" + std::string(row.name));
-    o.resolution_scale = size.resolution_scale;
-    o.width = size.width;
-    o.height = size.height;
-    o.write_report = false;
+    const int map = size.shadow_map_size ? size.shadow_map_size : row.shadow_map_size;
+    const auto options = [&](const std::vector<std::string>& scenes, const std::string& out) {
+      conform::ConformOptions o = options_for(std::string(row.convention), map, scenes, std::string(size.name) + "/" + out);
+      o.resolution_scale = size.resolution_scale;
+      o.width = size.width;
+      o.height = size.height;
+      o.write_report = false;
+      return o;
+    };
+    const auto control_key = [&](const std::string& scene) {
+      return control.technique + " " + std::string(row.convention) + " " + std::to_string(map) + " " + scene;
+    };
+    std::vector<std::string> unjudged;
+    for (const std::string& scene : row.scene_list())
+      if (!control_cases.count(control_key(scene))) unjudged.push_back(scene);
+    if (!unjudged.empty()) {
+      conform::ConformOptions o = options(unjudged, control.name);
+      o.techniques = {control.technique};
+      control_runs.push_back(conform::run_conform(o));
+      for (const auto& [scene, c] : cases_of(control_runs.back(), control.technique)) control_cases[control_key(scene)] = c;
+    }
+    conform::ConformOptions o = options(row.scene_list(), std::string(row.name));
     o.extra_techniques.push_back(variant_of(row));
-    o.techniques = {std::string(row.name), control.technique};
+    o.techniques = {std::string(row.name)};
     const conform::ConformResult r = conform::run_conform(o);
     const auto variant = cases_of(r, std::string(row.name));
-    const auto right = cases_of(r, control.technique);
     ++runs;
     for (const std::string& scene : row.scene_list()) {
       const conform::CaseResult& v = *variant.at(scene);
-      const conform::CaseResult& c = *right.at(scene);
+      const conform::CaseResult& c = *control_cases.at(control_key(scene));
       const bool caught = v.status == Status::Fail && green(c.status);
       if (const KnownMiss* k = known_miss(row.name, size.name)) {
         const bool as_predicted = v.status == Status::Pass && green(c.status) && v.comparison &&
