@@ -8,7 +8,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include "flush_denormals.hpp"
@@ -40,11 +39,6 @@ Vec3<double> unproject(const Mat4<double>& inv, double x, double y, double z) {
 
 }  // namespace
 
-CauseModel::CauseModel(const scene::PreparedScene& scene)
-    : scene_(scene), embree_(std::make_unique<EmbreeScene>(*scene.scene)),
-      camera_(std::make_unique<CameraRays>(scene)) {}
-
-CauseModel::~CauseModel() = default;
 
 const LightFit& CauseModel::fit_for(std::size_t light, int size, int cascades) const {
   if (cascades == 0 && (size == 0 || size == scene_.light_fits[light].size)) return scene_.light_fits[light];
@@ -147,27 +141,47 @@ double CauseModel::Lookup::texel_at(double at) const {
 
 // What the ray of one texel met: the first surface and, traced only when a probe asks, the face
 // where the ray leaves that first caster.
+// (Trivially constructible, no initializers: explain() keeps an array of them per pixel, and
+// Probes::trace sets every field a probe reads.)
 struct TexelRay {
   Vec3<double> a, dir;  // from the near plane, unit
-  double length = 0;    // to the far plane
+  double length;        // to the far plane
   RTCRayHit first;
-  bool hit = false;
-  int exit = -1;        // -1 not traced yet; 0 none (an open caster, or beyond 8 faces); 1 at (t_exit, ng_exit)
-  double t_exit = 0;
+  bool hit;
+  int exit;             // -1 not traced yet; 0 none (an open caster, or beyond 8 faces); 1 at (t_exit, ng_exit)
+  double t_exit;
   Vec3<double> ng_exit;
 };
 
 class CauseModel::Probes {
  public:
+  // Forgets every ray: a new pixel (generation-stamped slots, nothing to clear).
+  void reset() {
+    if (++generation_ == 0) {  // wrapped around: clear the stamps once
+      for (Slot& slot : slots_) slot.generation = 0;
+      generation_ = 1;
+    }
+  }
   // The ray of the texel at map offset (dx, dy) from p's, traced on first use. Offsets on a grid of
-  // 1/8 texel (the rings' quarter steps, the filter's half-texel placements) are remembered.
+  // 1/8 texel (the rings' quarter steps, the filter's half-texel placements) are remembered, in an
+  // open-addressed table far larger than one pixel's probes (at most 65 on the rings, 845 taps of a
+  // wide filter).
   TexelRay& at(const Lookup& k, RTCScene scene, double dx, double dy) {
     const double ex = dx * 8, ey = dy * 8;
     const bool on_grid = std::abs(ex - std::round(ex)) < 1e-9 && std::abs(ey - std::round(ey)) < 1e-9;
     if (!on_grid) return trace(k, scene, dx, dy, scratch_);
     const std::uint64_t key = (static_cast<std::uint64_t>(std::lround(ex)) << 32) ^ (static_cast<std::uint64_t>(std::lround(ey)) & 0xffffffffu);
-    const auto [it, fresh] = rays_.try_emplace(key);
-    return fresh ? trace(k, scene, dx, dy, it->second) : it->second;
+    std::size_t h = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> (64 - kSlotBits));
+    for (std::size_t tries = 0; tries < kSlots; ++tries, h = (h + 1) & (kSlots - 1)) {
+      Slot& slot = slots_[h];
+      if (slot.generation != generation_) {
+        slot.generation = generation_;
+        slot.key = key;
+        return trace(k, scene, dx, dy, slot.ray);
+      }
+      if (slot.key == key) return slot.ray;
+    }
+    return trace(k, scene, dx, dy, scratch_);  // never: the table holds 4 times the most probes a pixel asks
   }
 
  private:
@@ -182,9 +196,23 @@ class CauseModel::Probes {
     ray.exit = -1;
     return ray;
   }
-  std::unordered_map<std::uint64_t, TexelRay> rays_;
+  struct Slot {
+    std::uint64_t key;
+    std::uint32_t generation = 0;
+    TexelRay ray;
+  };
+  static constexpr int kSlotBits = 12;
+  static constexpr std::size_t kSlots = std::size_t{1} << kSlotBits;
+  std::vector<Slot> slots_ = std::vector<Slot>(kSlots);
+  std::uint32_t generation_ = 0;
   TexelRay scratch_;
 };
+
+CauseModel::CauseModel(const scene::PreparedScene& scene)
+    : scene_(scene), embree_(std::make_unique<EmbreeScene>(*scene.scene)),
+      camera_(std::make_unique<CameraRays>(scene)), probes_(std::make_unique<Probes>()) {}
+
+CauseModel::~CauseModel() = default;
 
 // What a texel at map offset (dx, dy) from p's may hold: the depth of the first surface along its
 // ray, or, where the map is drawn with front faces culled (as ours is, and many engines'), the depth
@@ -192,8 +220,9 @@ class CauseModel::Probes {
 // two-sided); a miss holds "nothing": infinitely far. Each stored depth carries the bias `bias` gives
 // its own polygon (normal, ray direction, light depth). The texel gives the candidate's answer when
 // p, compared with either stored depth, gets it: lit when p is not beyond it, shadowed when p is.
+template <class Bias>
 bool CauseModel::texel_gives(const Lookup& k, Probes& probes, double dx, double dy, bool candidate_lit,
-                             const BiasOf& bias) const {
+                             const Bias& bias) const {
   const double eps = embree_->epsilon();
   TexelRay& ray = probes.at(k, embree_->handle(), dx, dy);
   if (!ray.hit) return candidate_lit;
@@ -253,12 +282,16 @@ bool CauseModel::filter_may_answer(const Lookup& k, Probes& probes, const output
   const int stride = std::max(1, (2 * radius + 1 + kMaxFilterTapsPerAxis - 1) / kMaxFilterTapsPerAxis);
   const double h = d.light_views_from_pack ? 0.5 : 1.0;
   static constexpr std::array<std::array<double, 2>, 5> kPlacements{{{0, 0}, {1, 1}, {-1, 1}, {1, -1}, {-1, -1}}};
+  const int per_axis = 2 * radius / stride + 1;
+  const int taps = per_axis * per_axis;
   for (const auto& place : kPlacements) {
-    int taps = 0, giving = 0;
-    for (int ty = -radius; ty <= radius; ty += stride)
-      for (int tx = -radius; tx <= radius; tx += stride) {
+    // The placement's verdict is settled as soon as half its taps give the answer, or so many do
+    // not that the rest cannot make half: the same answer as counting them all.
+    int giving = 0, asked = 0;
+    for (int ty = -radius; ty <= radius && 2 * giving < taps && 2 * (giving + taps - asked) >= taps; ty += stride)
+      for (int tx = -radius; tx <= radius && 2 * giving < taps && 2 * (giving + taps - asked) >= taps; tx += stride) {
         const double dx = tx + place[0] * h, dy = ty + place[1] * h;
-        ++taps;
+        ++asked;
         giving += texel_gives(k, probes, dx, dy, candidate_lit, bias_at(dx, dy));
       }
     if (2 * giving >= taps) return true;
@@ -274,7 +307,8 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
   // own shadow whatever a map holds; no footprint or bias lights it.
   if (!found || !(surface->n.dot(found->to_light) > 0)) return Cause::Unexplained;
   const Lookup& k = *found;
-  Probes probes;
+  Probes& probes = *probes_;
+  probes.reset();
   const double reach = mask_reach_texels(d);
   const double precision = k.depth_p * kDepthPrecision;
   // The slope term of a stored polygon (normal ng, met along `along` at light depth `at`): one
@@ -284,7 +318,7 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
   };
   static constexpr std::array<std::array<double, 2>, 8> kDirs{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, 1},
                                                                {1, -1}, {-1, -1}}};
-  const BiasOf none = [](const Vec3<double>&, const Vec3<double>&, double) { return 0.0; };
+  const auto none = [](const Vec3<double>&, const Vec3<double>&, double) { return 0.0; };
   // The probes: rings every kProbeStep texels out to the reach, so that a smaller reach probes a
   // subset of a larger one's texels (declaring less never explains more).
   std::vector<double> rings;
@@ -294,7 +328,7 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
     // bias that removes acne across the mask's reach, with kCorrectBiasMargin, and the depth
     // format's precision), and only what the candidate declares: min(declared, needed).
     const double normal_offset = (d.normal_offset + d.normal_offset_texels * k.texel) * std::sqrt(1.0 + k.tan_p * k.tan_p);
-    const BiasOf bias = [&](const Vec3<double>& ng, const Vec3<double>& along, double at) {
+    const auto bias = [&](const Vec3<double>& ng, const Vec3<double>& along, double at) {
       const double s = slope(ng, along, at);
       const double declared = d.constant_bias + d.slope_bias_texels * s + normal_offset + k.depth_bias_world;
       const double needed = kCorrectBiasMargin * 2.0 * reach * s + precision;
@@ -305,7 +339,7 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
     for (const double r : rings)
       for (const auto& dv : kDirs)
         if (texel_gives(k, probes, dv[0] * r, dv[1] * r, true, bias)) return Cause::TexelFootprint;
-    if (filter_may_answer(k, probes, d, true, [&](double, double) { return bias; })) return Cause::TexelFootprint;
+    if (filter_may_answer(k, probes, d, true, [&](double, double) { return BiasOf(bias); })) return Cause::TexelFootprint;
     return Cause::Unexplained;
   }
   // False shadow: a texel within the reach holds an occluder nearer than p by more than the bias a
@@ -315,7 +349,7 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
   for (const double r : rings)
     for (const auto& dv : kDirs) {
       const double distance = r * std::sqrt(dv[0] * dv[0] + dv[1] * dv[1]);
-      const BiasOf needed = [&](const Vec3<double>& ng, const Vec3<double>& along, double at) {
+      const auto needed = [&](const Vec3<double>& ng, const Vec3<double>& along, double at) {
         return distance * slope(ng, along, at) + precision;
       };
       if (texel_gives(k, probes, dv[0] * r, dv[1] * r, false, needed)) return Cause::TexelFootprint;

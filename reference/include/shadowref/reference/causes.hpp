@@ -89,7 +89,7 @@ class CauseModel {
 
   // The cause that explains the candidate's answer `candidate_lit` (wrong by the reference) at
   // pixel (x, y) (row 0 at the top) for light `light`, under `declared`. Not thread-safe (it
-  // caches light fits per declared map size).
+  // caches light fits per declared map size, and reuses one table of probes).
   Cause explain(std::size_t light, int x, int y, const outputs::CandidateDeclaration& declared, bool candidate_lit) const;
 
   // Soft shadows (the visibility judgement, compare.hpp): the range [lo, hi] of the true lit
@@ -144,7 +144,8 @@ class CauseModel {
   // The texel rays one explain() has traced, by offset: a probe's answer depends on the bias only
   // through arithmetic on what its ray met, so each offset is traced once (causes.cpp).
   class Probes;
-  bool texel_gives(const Lookup& k, Probes& probes, double dx, double dy, bool candidate_lit, const BiasOf& bias) const;
+  template <class Bias>  // BiasOf's signature; a lambda where the caller has one (no std::function per probe)
+  bool texel_gives(const Lookup& k, Probes& probes, double dx, double dy, bool candidate_lit, const Bias& bias) const;
   // The mask's reach in texels: the lookup's grid (pack or own) and the filter, capped.
   static double mask_reach_texels(const outputs::CandidateDeclaration& d);
   // A filter wider than kMaxMaskFilterTexels: whether its box of taps, placed at p's texel or
@@ -160,6 +161,7 @@ class CauseModel {
   std::unique_ptr<EmbreeScene> embree_;
   std::unique_ptr<CameraRays> camera_;
   mutable std::map<std::tuple<std::size_t, int, int>, LightFit> fits_;
+  std::unique_ptr<Probes> probes_;  // explain()'s table of traced probes, reused from pixel to pixel
 };
 
 }  // namespace shadowref::reference
