@@ -125,6 +125,8 @@ class MapStoragePool {
     GLuint id;
     bool in_use;
   };
+  // The unused entry of that kind, now in use; null when there is none.
+  Entry* reuse(bool is_texture, GLenum internal_format, int size, int layers);
   const GlFunctions& gl_;
   std::vector<Entry> entries_;
 };

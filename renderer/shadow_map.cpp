@@ -624,13 +624,21 @@ MapStoragePool::~MapStoragePool() {
   }
 }
 
-GLuint MapStoragePool::texture(GLenum internal_format, GLenum format, GLenum type, int size, int layers) {
+MapStoragePool::Entry* MapStoragePool::reuse(bool is_texture, GLenum internal_format, int size, int layers) {
   for (Entry& e : entries_)
-    if (!e.in_use && e.is_texture && e.internal_format == internal_format && e.size == size && e.layers == layers) {
+    if (!e.in_use && e.is_texture == is_texture && e.internal_format == internal_format && e.size == size &&
+        e.layers == layers) {
       e.in_use = true;
-      gl_.BindTexture(GL_TEXTURE_2D_ARRAY, e.id);
-      return e.id;
+      return &e;
     }
+  return nullptr;
+}
+
+GLuint MapStoragePool::texture(GLenum internal_format, GLenum format, GLenum type, int size, int layers) {
+  if (const Entry* e = reuse(true, internal_format, size, layers)) {
+    gl_.BindTexture(GL_TEXTURE_2D_ARRAY, e->id);
+    return e->id;
+  }
   GLuint t = 0;
   gl_.GenTextures(1, &t);
   gl_.BindTexture(GL_TEXTURE_2D_ARRAY, t);
@@ -640,12 +648,10 @@ GLuint MapStoragePool::texture(GLenum internal_format, GLenum format, GLenum typ
 }
 
 GLuint MapStoragePool::renderbuffer(GLenum internal_format, int size) {
-  for (Entry& e : entries_)
-    if (!e.in_use && !e.is_texture && e.internal_format == internal_format && e.size == size) {
-      e.in_use = true;
-      gl_.BindRenderbuffer(GL_RENDERBUFFER, e.id);
-      return e.id;
-    }
+  if (const Entry* e = reuse(false, internal_format, size, 1)) {
+    gl_.BindRenderbuffer(GL_RENDERBUFFER, e->id);
+    return e->id;
+  }
   GLuint r = 0;
   gl_.GenRenderbuffers(1, &r);
   gl_.BindRenderbuffer(GL_RENDERBUFFER, r);
