@@ -7,7 +7,6 @@
 #include <unistd.h>
 
 #include <memory>
-#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <string_view>
