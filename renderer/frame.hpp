@@ -141,6 +141,8 @@ struct Frame {
   RenderResult& result;
   const std::vector<GpuMesh>& objects;        // scene.objects, same order
   GLuint target_fbo = 0;
+  // The target's second colour attachment, RG8: light_pass's lit fraction and mask.
+  static constexpr GLenum kMaskAttachment = GL_COLOR_ATTACHMENT1;
   // The surface program this technique draws with (pcss, vsm: programs.surface_soft); null: programs.surface.
   const Program* surface = nullptr;
   const Program& surface_program() const { return surface ? *surface : programs.surface; }                      // W × H, RGBA8 + depth/stencil (24-bit, or 32F for reversed-z)
@@ -171,15 +173,19 @@ struct Frame {
   void ambient_pass(const Mat4<float>& clip) const;
   // Light i's additive Lambert pass over the surfaces already in the depth buffer (GL_EQUAL),
   // with the current stencil state left to the caller; `shadow` selects the surface shader's map.
+  // With `masks`, the same pass also writes the light's lit fraction (red) and 0/1 mask (green)
+  // into kMaskAttachment, cleared first to no light and outputs::kMaskNoSurface: the shadow maps'
+  // filters run once per visible pixel for the picture, the mask and the fraction together.
   void light_pass(const Mat4<float>& clip, std::size_t light, int shadow = 0,
-                  const Mat4<float>* shadow_from_world = nullptr) const;
+                  const Mat4<float>* shadow_from_world = nullptr, bool masks = false) const;
 
   // The stencil-derived mask: read stencil and depth; depth at the clear value (far_depth) → no surface;
   // otherwise, with `value_is_lit`, stencil == value → lit and anything else shadowed, and without
   // it stencil == value → shadowed and anything else lit. Rows flipped to top-down.
   Image8 read_stencil_mask(std::uint8_t value, bool value_is_lit) const;
-  // Any mask already drawn into the colour buffer as grey (red channel), rows flipped.
-  Image8 read_grey() const;
+  // Any mask already drawn into a colour attachment as grey (one channel: GL_RED, GL_GREEN, ...),
+  // rows flipped.
+  Image8 read_grey(GLenum channel = GL_RED, GLenum attachment = GL_COLOR_ATTACHMENT0) const;
   // Attached shadows: per light, a mask that is shadowed where the visible surface faces away from
   // the light (n · l <= 0), lit elsewhere, outputs::kMaskNoSurface where there is none. Clears the target:
   // call before drawing the picture.

@@ -30,6 +30,10 @@ namespace shadowref::renderer {
   X(PFNGLPIXELSTOREIPROC, PixelStorei)                                    \
   X(PFNGLREADBUFFERPROC, ReadBuffer)                                      \
   X(PFNGLDRAWBUFFERPROC, DrawBuffer)                                      \
+  X(PFNGLDRAWBUFFERSPROC, DrawBuffers)                                    \
+  X(PFNGLCLEARBUFFERFVPROC, ClearBufferfv)                                \
+  X(PFNGLENABLEIPROC, Enablei)                                            \
+  X(PFNGLDISABLEIPROC, Disablei)                                          \
   X(PFNGLDEPTHFUNCPROC, DepthFunc)                                        \
   X(PFNGLCLIPCONTROLPROC, ClipControl)                                    \
   X(PFNGLDEPTHMASKPROC, DepthMask)                                        \

@@ -278,7 +278,7 @@ void Frame::ambient_pass(const Mat4<float>& clip) const {
 }
 
 void Frame::light_pass(const Mat4<float>& clip, std::size_t light_index, int shadow,
-                       const Mat4<float>* shadow_from_world) const {
+                       const Mat4<float>* shadow_from_world, bool masks) const {
   gl.BindFramebuffer(GL_FRAMEBUFFER, target_fbo);
   gl.Viewport(0, 0, width(), height());
   gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -287,6 +287,15 @@ void Frame::light_pass(const Mat4<float>& clip, std::size_t light_index, int sha
   gl.DepthFunc(GL_EQUAL);  // only the nearest surfaces, laid down by ambient_pass (same shader → same depth)
   gl.Enable(GL_BLEND);
   gl.BlendFunc(GL_ONE, GL_ONE);  // lights add up
+  if (masks) {
+    // The mask attachment too, cleared to "no surface" (green) and no light (red), and not blended:
+    // each visible pixel is drawn once (GL_EQUAL) and keeps what the shader wrote.
+    const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, kMaskAttachment};
+    gl.DrawBuffers(2, buffers);
+    const GLfloat clear[4] = {0.0f, static_cast<float>(outputs::kMaskNoSurface) / 255.0f, 0.0f, 1.0f};
+    gl.ClearBufferfv(GL_COLOR, 1, clear);
+    gl.Disablei(GL_BLEND, 1);
+  }
   gl.Disable(GL_CULL_FACE);
   const Program& p = surface_program();
   gl.UseProgram(p.id);
@@ -309,6 +318,7 @@ void Frame::light_pass(const Mat4<float>& clip, std::size_t light_index, int sha
     gl.Uniform3f(p.albedo, c.x(), c.y(), c.z());
     objects[i].draw();
   }
+  if (masks) gl.DrawBuffer(GL_COLOR_ATTACHMENT0);
   gl.Disable(GL_BLEND);
   gl.DepthMask(GL_TRUE);
   gl.DepthFunc(depth_nearer());
@@ -356,12 +366,14 @@ std::vector<Image8> Frame::facing_masks(const Mat4<float>& clip) const {
   return masks;
 }
 
-Image8 Frame::read_grey() const {
+Image8 Frame::read_grey(GLenum channel, GLenum attachment) const {
   gl.BindFramebuffer(GL_FRAMEBUFFER, target_fbo);
   gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-  std::vector<std::uint8_t> red(static_cast<std::size_t>(width()) * static_cast<std::size_t>(height()));
-  gl.ReadPixels(0, 0, width(), height(), GL_RED, GL_UNSIGNED_BYTE, red.data());
-  return Image8{width(), height(), 1, flip_rows(red, width(), height(), 1)};
+  std::vector<std::uint8_t> grey(static_cast<std::size_t>(width()) * static_cast<std::size_t>(height()));
+  gl.ReadBuffer(attachment);
+  gl.ReadPixels(0, 0, width(), height(), channel, GL_UNSIGNED_BYTE, grey.data());
+  gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+  return Image8{width(), height(), 1, flip_rows(grey, width(), height(), 1)};
 }
 
 Image8 Frame::read_rgb() const {
@@ -509,30 +521,36 @@ const GlInfo& Renderer::info() const { return impl_->info; }
 
 namespace {
 
-// The W × H render target: RGBA8 colour and a packed depth + 8-bit stencil renderbuffer, the depth
-// 24-bit fixed point or, where the convention asks (reversed-z), 32-bit float.
+// The W × H render target: RGBA8 colour, an RG8 mask attachment (Frame::kMaskAttachment) and a
+// packed depth + 8-bit stencil renderbuffer, the depth 24-bit fixed point or, where the convention
+// asks (reversed-z), 32-bit float.
 struct Target {
   const GlFunctions& gl;
-  GLuint fbo = 0, colour = 0, depth_stencil = 0;
+  GLuint fbo = 0, colour = 0, mask = 0, depth_stencil = 0;
   Target(const GlFunctions& g, int w, int h, bool float_depth) : gl(g) {
     gl.GenRenderbuffers(1, &colour);
     gl.BindRenderbuffer(GL_RENDERBUFFER, colour);
     gl.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
+    gl.GenRenderbuffers(1, &mask);
+    gl.BindRenderbuffer(GL_RENDERBUFFER, mask);
+    gl.RenderbufferStorage(GL_RENDERBUFFER, GL_RG8, w, h);
     gl.GenRenderbuffers(1, &depth_stencil);
     gl.BindRenderbuffer(GL_RENDERBUFFER, depth_stencil);
     gl.RenderbufferStorage(GL_RENDERBUFFER, float_depth ? GL_DEPTH32F_STENCIL8 : GL_DEPTH24_STENCIL8, w, h);
     gl.GenFramebuffers(1, &fbo);
     gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
     gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, Frame::kMaskAttachment, GL_RENDERBUFFER, mask);
     gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, depth_stencil);
     if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw GlError(std::string("the RGBA8 + ") + (float_depth ? "DEPTH32F_STENCIL8" : "DEPTH24_STENCIL8") +
+      throw GlError(std::string("the RGBA8 + RG8 + ") + (float_depth ? "DEPTH32F_STENCIL8" : "DEPTH24_STENCIL8") +
                     " framebuffer is incomplete");
   }
   ~Target() {
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl.DeleteFramebuffers(1, &fbo);
     gl.DeleteRenderbuffers(1, &colour);
+    gl.DeleteRenderbuffers(1, &mask);
     gl.DeleteRenderbuffers(1, &depth_stencil);
   }
   Target(const Target&) = delete;

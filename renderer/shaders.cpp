@@ -112,7 +112,7 @@ const char* const kSurfaceFragmentBody = R"glsl(
 in vec3 v_world;
 in vec4 v_shadow;
 flat in vec3 v_normal;
-uniform int u_mode;                  // 0 ambient, 1 one light's contribution, 2 the 0/1 mask, 3 the visibility
+uniform int u_mode;                  // 0 ambient, 1 one light's contribution (and o_mask), 2 the 0/1 mask
 uniform int u_shadow;                // 0 none, 1 depth compare, 2 PCF 3x3, 3 RGBA8 packed depth, 4 PCSS, 5 VSM
 uniform vec3 u_albedo;
 uniform float u_ambient;
@@ -145,7 +145,8 @@ uniform float u_normal_offset_texels;  // hard maps: the lookup moved along the 
 uniform float u_distance_range;      // > 0: a cube holding distance / this range (kDistanceFragment), 0: window depth
 // VSM (u_shadow 5): the moments (view depth, its square) of the same layers; (0, 0) where nothing was drawn.
 uniform sampler2DArray u_moment_map; // unit 3
-out vec4 o_colour;
+layout(location = 0) out vec4 o_colour;
+layout(location = 1) out vec4 o_mask;    // mode 1: the lit fraction (red) and the 0/1 mask (green)
 
 // The cube face a cube-map lookup picks for direction d from the light: the axis of its largest
 // component (+x, -x, +y, -y, +z, -z).
@@ -483,15 +484,14 @@ void main() {
   // a map (u_shadow 0) is that facing test alone: planar shadows' attached-shadow mask.
   // (PCSS and VSM test every light point they filter over themselves.)
   if ((u_shadow != 0 || u_mode == 2) && u_shadow < 4 && n_dot_l <= 0.0) visibility = 0.0;
+  float lit = visibility >= 0.5 ? 1.0 : 0.0;  // PCF: lit when at least half the taps are
   if (u_mode == 2) {
-    float lit = visibility >= 0.5 ? 1.0 : 0.0;  // PCF: lit when at least half the taps are
     o_colour = vec4(lit, lit, lit, 1.0);
     return;
   }
-  if (u_mode == 3) {  // the lit fraction itself (visibility.png), rounded to 8 bits by the target
-    o_colour = vec4(visibility, visibility, visibility, 1.0);
-    return;
-  }
+  // The lit fraction itself (visibility.png, rounded to 8 bits by the target) and the mask decided
+  // from the same unrounded fraction, beside the light's contribution: a filter's taps are paid once.
+  o_mask = vec4(visibility, lit, 0.0, 1.0);
   float cone = 1.0;
   if (u_spot.w > -1.0) cone = dot(-to_light, u_spot.xyz) >= u_spot.w ? 1.0 : 0.0;
   o_colour = vec4(u_albedo * (u_light_intensity * max(n_dot_l, 0.0) * visibility * cone), 1.0);

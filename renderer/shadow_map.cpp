@@ -549,37 +549,18 @@ void render_variant(Frame& frame, Variant variant, bool cascaded) {
         render_light_map(frame, i, cascaded ? cascade_fit(frame, i, refit) : frame.prepared.light_fits[i], variants[i]));
   }
 
-  // Per light, one camera pass per image: the 0/1 mask (mode 2; the clear colour is "no surface")
-  // and, for the filtered variants, the lit fraction (mode 3: visibility.png).
-  const Program& p = frame.surface_program();
-  const auto camera_pass = [&](std::size_t i, int mode, float clear) {
-    frame.bind_target(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, clear);
-    gl.Enable(GL_DEPTH_TEST);
-    gl.DepthFunc(frame.depth_nearer());
-    gl.Disable(GL_BLEND);
-    gl.Disable(GL_STENCIL_TEST);
-    bind_map(frame, maps[i], variants[i]);
-    set_light_uniforms(frame, i, variants[i]);
-    set_matrix(gl, p.clip_from_world, clip);
-    set_matrix(gl, p.shadow_from_world, maps[i].shadow_from_world);
-    gl.Uniform1i(p.mode, mode);
-    gl.Uniform1i(p.shadow, shader_mode(variants[i]));
-    const Vec4<float> l = frame.light(i).cast<float>();
-    gl.Uniform4f(p.light, l.x(), l.y(), l.z(), l.w());
-    for (const GpuMesh& m : frame.objects) m.draw();
-    return frame.read_grey();
-  };
-  for (std::size_t i = 0; i < maps.size(); ++i)
-    frame.result.masks.push_back(camera_pass(i, 2, static_cast<float>(outputs::kMaskNoSurface) / 255.0f));
-  if (variant == Variant::Pcf || soft(variant))
-    for (std::size_t i = 0; i < maps.size(); ++i) frame.result.visibility.push_back(camera_pass(i, 3, 0.0f));
-
-  // The shaded picture: ambient once, then each light added where its map says lit.
+  // The picture, the masks and the lit fractions in one camera pass per light: ambient_pass lays
+  // down the nearest surfaces' depth and colour, and each light's pass (GL_EQUAL: every visible
+  // pixel shaded once) adds its light there and writes its mask, and for the filtered variants its
+  // lit fraction (visibility.png), into the mask attachment (Frame::light_pass).
+  const bool filtered = variant == Variant::Pcf || soft(variant);
   frame.ambient_pass(clip);
   for (std::size_t i = 0; i < maps.size(); ++i) {
     bind_map(frame, maps[i], variants[i]);
     set_light_uniforms(frame, i, variants[i]);
-    frame.light_pass(clip, i, shader_mode(variants[i]), &maps[i].shadow_from_world);
+    frame.light_pass(clip, i, shader_mode(variants[i]), &maps[i].shadow_from_world, /*masks=*/true);
+    frame.result.masks.push_back(frame.read_grey(GL_GREEN, Frame::kMaskAttachment));
+    if (filtered) frame.result.visibility.push_back(frame.read_grey(GL_RED, Frame::kMaskAttachment));
   }
   unbind_maps(gl);
   frame.result.shaded = frame.read_rgb();
