@@ -12,6 +12,7 @@ find_package(TBB REQUIRED CONFIG)
 find_package(Threads REQUIRED)
 
 find_package(OpenImageIO REQUIRED CONFIG)
+find_package(PNG REQUIRED)  # libpng writes the PNGs (outputs/src/image_io.cpp)
 # Debian's OpenImageIO target names /usr/include/opencv4 as an include directory although the
 # package does not depend on OpenCV; CMake refuses a non-existent include path at generate time.
 get_target_property(_oiio_includes OpenImageIO::OpenImageIO INTERFACE_INCLUDE_DIRECTORIES)

@@ -1,5 +1,5 @@
 // image_codec.cpp — the OpenImageIO side of the contract's images (image_codec.hpp says why it is a
-// module of its own): open and read with the file's own format's reader, encode in memory.
+// module of its own): open and read with the file's own format's reader, encode OpenEXR in memory.
 #include "image_codec.hpp"
 
 #include <OpenImageIO/filesystem.h>
@@ -55,37 +55,29 @@ int read_image(void* reader, int channels, int type, void* pixels, char* error, 
 
 void free_reader(void* reader) { delete static_cast<OIIO::ImageInput*>(reader); }
 
-int encode(const char* file, int width, int height, int channels, int type, const void* pixels, int png_compression,
-           const char* exr_channel, void (*sink)(void*, const void*, std::size_t), void* context, char* error,
-           std::size_t error_size) {
-  OIIO::ImageSpec spec(width, height, channels, type_of(type));
-  if (!exr_channel) {
-    spec.attribute("png:compressionLevel", png_compression);
-  } else {
-    spec.channelnames = {exr_channel};
-    spec.attribute("compression", "zip");
-    // OpenEXR output stamps the wall-clock time into the header unless DateTime is set; an empty
-    // value suppresses it, so that two runs write byte-identical files.
-    spec.attribute("DateTime", "");
-  }
+int encode_exr(const char* file, int width, int height, const float* pixels, const char* channel,
+               void (*sink)(void*, const void*, std::size_t), void* context, char* error, std::size_t error_size) {
+  OIIO::ImageSpec spec(width, height, 1, OIIO::TypeDesc::FLOAT);
+  spec.channelnames = {channel};
+  spec.attribute("compression", "zip");
+  // OpenEXR output stamps the wall-clock time into the header unless DateTime is set; an empty
+  // value suppresses it, so that two runs write byte-identical files.
+  spec.attribute("DateTime", "");
   std::vector<unsigned char> encoded;
   {
     OIIO::Filesystem::IOVecOutput memory(encoded);  // outlives the writer, which may flush into it when destroyed
-    auto out = OIIO::ImageOutput::create(file);
-    if (!out) {
-      fill(error, error_size, OIIO::geterror());
+    auto out = OIIO::ImageOutput::create("exr");
+    if (!out || !out->set_ioproxy(&memory) || !out->open(file, spec) || !out->write_image(spec.format, pixels) ||
+        !out->close()) {
+      fill(error, error_size, out ? out->geterror() : OIIO::geterror());
       return 1;
-    }
-    if (!out->set_ioproxy(&memory) || !out->open(file, spec) || !out->write_image(spec.format, pixels) || !out->close()) {
-      fill(error, error_size, out->geterror());
-      return 2;
     }
   }
   sink(context, encoded.data(), encoded.size());
   return 0;
 }
 
-constexpr ShadowrefImageCodec kCodec{kShadowrefImageCodecVersion, open_image, read_image, free_reader, encode};
+constexpr ShadowrefImageCodec kCodec{kShadowrefImageCodecVersion, open_image, read_image, free_reader, encode_exr};
 
 }  // namespace
 

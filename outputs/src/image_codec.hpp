@@ -3,9 +3,10 @@
 //
 // Why a module: OpenImageIO 2.4 as Debian builds it pulls about 260 shared libraries into a process,
 // and binding their symbols costs every process that links it about 0.3 s before main() (measured
-// with perf: do_lookup_x in the dynamic loader). Most runs of shadowref that never read or write an
-// image (a refused argument, a bad scene, `math`, `--help`) then paid for it, and the test command
-// runs a thousand such processes. The image functions load this module on their first call instead.
+// with perf: do_lookup_x in the dynamic loader). Most runs of shadowref that never touch an image
+// other than a PNG (a refused argument, a bad scene, `math`, `--help`, a conformance case of a hard
+// technique: libpng reads and writes PNGs, png_codec.hpp) then paid for it, and the test command
+// runs a thousand such processes. The image functions load this module on their first other image.
 //
 // The interface is plain C so that no C++ object or exception crosses the module's edge: each call
 // returns 0 on success or fills `error` (a NUL-terminated message from OpenImageIO, possibly several
@@ -34,16 +35,15 @@ struct ShadowrefImageCodec {
   // decoder may report a broken stream only then). The reader stays to be freed.
   int (*read)(void* reader, int channels, int type, void* pixels, char* error, std::size_t error_size);
   void (*free_reader)(void* reader);
-  // Encodes a width × height image of `channels` channels of `type`, row 0 at the top, in the format
-  // `file`'s extension names, in memory, and hands the bytes to sink(context, ...). PNG: zlib level
-  // `png_compression`. EXR: zip, the one channel named `exr_channel`, no wall-clock DateTime.
-  // Returns 0, 1 (no writer for that extension) or 2 (the encoding failed).
-  int (*encode)(const char* file, int width, int height, int channels, int type, const void* pixels, int png_compression,
-                const char* exr_channel, void (*sink)(void* context, const void* bytes, std::size_t size), void* context,
-                char* error, std::size_t error_size);
+  // Encodes a width × height single-channel float image, row 0 at the top, as OpenEXR (zip, the one
+  // channel named `channel`, no wall-clock DateTime) in memory, and hands the bytes to
+  // sink(context, ...). Returns 0, or non-zero with `error` filled.
+  int (*encode_exr)(const char* file, int width, int height, const float* pixels, const char* channel,
+                    void (*sink)(void* context, const void* bytes, std::size_t size), void* context, char* error,
+                    std::size_t error_size);
 };
 
-inline constexpr int kShadowrefImageCodecVersion = 1;
+inline constexpr int kShadowrefImageCodecVersion = 2;
 
 // The module's one exported symbol.
 const ShadowrefImageCodec* shadowref_image_codec();

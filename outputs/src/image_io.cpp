@@ -1,11 +1,14 @@
-// image_io.cpp — the contract's images (image_io.hpp): every check and message here; the decoding
-// and encoding by OpenImageIO in the image codec module (image_codec.hpp), loaded on first use.
+// image_io.cpp — the contract's images (image_io.hpp): every check and message here; PNG decoded
+// and encoded by libpng (png_codec.hpp), every other format by OpenImageIO in the image codec module
+// (image_codec.hpp), loaded on first use.
 #include "shadowref/outputs/image_io.hpp"
 
 #include <dlfcn.h>
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <cctype>
+#include <cstdio>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -13,6 +16,7 @@
 #include <system_error>
 
 #include "image_codec.hpp"
+#include "png_codec.hpp"
 #include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/errors.hpp"
 
@@ -110,25 +114,19 @@ Opened open_image(const ShadowrefImageCodec& c, const std::filesystem::path& fil
   return o;
 }
 
-// The image is encoded in memory and written by write_file_atomically: a file appears whole or not at
-// all, and a failed write says the system's reason ("No space left on device"), which OpenImageIO's
-// own file writing does not pass on. An encoding failure is ours (exit 5), never the disk's.
-void write_image(const std::filesystem::path& file, int width, int height, int channels, int type, const void* data,
-                 const char* exr_channel) {
+// An EXR is encoded in memory by the codec module and written by write_file_atomically, as a PNG is:
+// a file appears whole or not at all, and a failed write says the system's reason ("No space left on
+// device"), which OpenImageIO's own file writing does not pass on. An encoding failure is ours (exit
+// 5), never the disk's.
+void write_exr_image(const std::filesystem::path& file, int width, int height, const float* pixels, const char* channel) {
   const ShadowrefImageCodec& c = codec();
-  // zlib level 1 instead of libpng's 6: a conformance run writes several images per case, and at
-  // 1024² the level-6 deflate was a quarter of the run's CPU time (bench/README.md, "conform at
-  // 1024²"); masks are large flat regions, which level 1 still compresses well.
-  constexpr int kPngCompression = 1;
   std::string encoded;
   char error[kErrorSize] = "";
   const auto sink = +[](void* context, const void* bytes, std::size_t size) {
     static_cast<std::string*>(context)->assign(static_cast<const char*>(bytes), size);
   };
-  const int r = c.encode(file.c_str(), width, height, channels, type, data, kPngCompression, exr_channel, sink, &encoded,
-                         error, sizeof error);
-  if (r == 1) throw std::runtime_error(file.string() + ": no image writer: " + first_line(error, "unknown format"));
-  if (r != 0) throw std::runtime_error(file.string() + ": cannot encode: " + first_line(error, "encoding failed"));
+  if (c.encode_exr(file.c_str(), width, height, pixels, channel, sink, &encoded, error, sizeof error) != 0)
+    throw std::runtime_error(file.string() + ": cannot encode: " + first_line(error, "encoding failed"));
   write_file_atomically(file, encoded);
 }
 
@@ -141,12 +139,28 @@ Image8 read_image8(const std::filesystem::path& file, int channels, int width, i
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) throw bad("no such file");
   if (!std::filesystem::is_regular_file(file, ec)) throw bad("not a regular file");
-  const ShadowrefImageCodec& c = codec();
-  QuietStderr quiet;
-  const std::string extension = file.extension().string();
-  const Opened o = open_image(c, file, extension.size() > 1 ? extension.substr(1) : file.string(),
-                              "not an image OpenImageIO can read", bad);
-  const ShadowrefImageHeader& spec = o.header;
+  // The header, by the reader of the file's own format (its extension): libpng for a PNG, else the
+  // codec module's.
+  std::string extension = file.extension().string();
+  for (char& ch : extension) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  std::unique_ptr<png::Reader> png_file;
+  Opened o;
+  ShadowrefImageHeader spec{};
+  if (extension == ".png") {
+    png_file = std::make_unique<png::Reader>(file);
+    if (!png_file->why().empty()) throw bad("cannot open: " + png_file->why());
+    spec.width = png_file->width();
+    spec.height = png_file->height();
+    spec.depth = 1;
+    spec.channels = png_file->channels();
+    spec.is_uint8 = png_file->bit_depth() == 8;
+    std::snprintf(spec.format, sizeof spec.format, "uint%d", png_file->bit_depth());
+  } else {
+    QuietStderr quiet;
+    o = open_image(codec(), file, extension.size() > 1 ? extension.substr(1) : file.string(),
+                   "not an image OpenImageIO can read", bad);
+    spec = o.header;
+  }
   if (spec.width <= 0 || spec.height <= 0 || spec.depth != 1) throw bad("not a 2D image");
   if (static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) > kMaxPixels)
     throw bad(std::to_string(spec.width) + " x " + std::to_string(spec.height) + " pixels: larger than 16384 x 16384");
@@ -163,8 +177,14 @@ Image8 read_image8(const std::filesystem::path& file, int channels, int width, i
   image.height = spec.height;
   image.channels = channels;
   image.pixels.resize(image.pixel_count() * static_cast<std::size_t>(channels));
+  if (png_file) {
+    if (!png_file->read(image.pixels.data()))
+      throw bad("cannot read pixels (truncated or corrupt?): " + png_file->why());
+    return image;
+  }
+  QuietStderr quiet;
   char error[kErrorSize] = "";
-  if (c.read(o.reader.get(), channels, kShadowrefUint8, image.pixels.data(), error, sizeof error) != 0)
+  if (codec().read(o.reader.get(), channels, kShadowrefUint8, image.pixels.data(), error, sizeof error) != 0)
     throw bad("cannot read pixels (truncated or corrupt?): " + first_line(error, "decoding failed"));
   return image;
 }
@@ -191,11 +211,17 @@ std::vector<float> read_exr(const std::filesystem::path& file, int width, int he
 void write_png(const Image8& image, const std::filesystem::path& file) {
   if (image.pixels.size() != image.pixel_count() * static_cast<std::size_t>(image.channels))
     throw std::logic_error(file.string() + ": image buffer does not match its size");
-  write_image(file, image.width, image.height, image.channels, kShadowrefUint8, image.pixels.data(), nullptr);
+  std::string encoded;
+  try {
+    encoded = png::encode(image);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(file.string() + ": cannot encode: " + e.what());
+  }
+  write_file_atomically(file, encoded);
 }
 
 void write_exr(int width, int height, const float* pixels, const std::filesystem::path& file) {
-  write_image(file, width, height, 1, kShadowrefFloat, pixels, "Y");
+  write_exr_image(file, width, height, pixels, "Y");
 }
 
 }  // namespace shadowref::outputs

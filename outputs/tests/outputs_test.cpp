@@ -1,6 +1,7 @@
 // outputs_test.cpp — the output contract's naming rule, image round trip, staged folder, atomic
 // file write and interruption. (A full disk, kills and signals in a real run: reliability/faults/.)
 #include <gtest/gtest.h>
+#include <png.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <iterator>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/candidate.hpp"
@@ -117,6 +119,51 @@ TEST(ImageIo, PngRoundTripsAndWrongChannelCountIsRefused) {
   EXPECT_EQ(back.pixels, m.pixels);
   EXPECT_THROW(read_image8(d / "m.png", 3), InputError);
   EXPECT_THROW(read_image8(d / "missing.png", 1), InputError);
+}
+
+// A grey PNG written by libpng's own writer, not by ours: `bit_depth` bits per sample, each row
+// already packed as PNG stores it, and a gAMA chunk when `gamma` > 0. False when libpng fails.
+bool write_grey_png_with_libpng(const fs::path& file, int width, int height, int bit_depth,
+                                const std::vector<std::vector<png_byte>>& rows, double gamma) {
+  std::FILE* f = std::fopen(file.c_str(), "wb");
+  if (!f) return false;
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  std::vector<png_bytep> pointers;
+  for (const auto& r : rows) pointers.push_back(const_cast<png_bytep>(r.data()));
+  bool ok = png && info;
+  if (ok && setjmp(png_jmpbuf(png))) ok = false;
+  else if (ok) {
+    png_init_io(png, f);
+    png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), bit_depth,
+                 PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    if (gamma > 0) png_set_gAMA(png, info, gamma);
+    png_write_info(png, info);
+    png_write_image(png, pointers.data());
+    png_write_end(png, nullptr);
+  }
+  png_destroy_write_struct(&png, &info);
+  std::fclose(f);
+  return ok;
+}
+
+// The samples are the file's own: a gAMA chunk (here linear light, 1.0) changes none of them, as
+// OpenImageIO's reader left them; 1-bit grey reads as 0 and 255, as OpenImageIO expanded it.
+TEST(ImageIo, PngSamplesAreTheFilesOwnWhateverItsGammaAnd1BitGreyIs0And255) {
+  const fs::path d = fresh_dir("png_kinds");
+  ASSERT_TRUE(write_grey_png_with_libpng(d / "linear.png", 4, 1, 8, {{0, 64, 128, 255}}, 1.0));
+  EXPECT_EQ(read_image8(d / "linear.png", 1).pixels, (std::vector<std::uint8_t>{0, 64, 128, 255}));
+  // 0b1010'0000: lit, shadowed, lit, shadowed (the row's last four bits are padding).
+  ASSERT_TRUE(write_grey_png_with_libpng(d / "one_bit.png", 4, 1, 1, {{0xA0}}, 0.0));
+  EXPECT_EQ(read_image8(d / "one_bit.png", 1).pixels, (std::vector<std::uint8_t>{255, 0, 255, 0}));
+  // 16-bit samples are refused by name, not narrowed.
+  ASSERT_TRUE(write_grey_png_with_libpng(d / "sixteen.png", 1, 1, 16, {{0xff, 0xff}}, 0.0));
+  try {
+    read_image8(d / "sixteen.png", 1);
+    ADD_FAILURE() << "a 16-bit PNG was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("pixel format uint16, expected 8-bit unsigned"), std::string::npos) << e.what();
+  }
 }
 
 // A file named .png is read by the PNG reader only. These bytes (found by mask_compare_fuzzer,

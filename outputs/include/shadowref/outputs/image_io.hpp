@@ -1,16 +1,19 @@
-// shadowref/outputs/image_io.hpp — reading and writing the contract's images with OpenImageIO,
-// row 0 = the top row. The only PNG / EXR reader and writer of the project.
+// shadowref/outputs/image_io.hpp — reading and writing the contract's images, row 0 = the top row:
+// PNG with libpng, everything else with OpenImageIO. The only PNG / EXR reader and writer of the
+// project.
 //
 // Reading refuses, with a one-line InputError(BadInput) naming the file, everything a comparison
-// cannot judge honestly: a missing file, a file OpenImageIO cannot open or decode (a truncated
-// PNG), more than 16384 × 16384 pixels (checked from the header, before any pixel is allocated),
-// a channel count other than the one asked for, a pixel format other than 8-bit unsigned.
-// Nothing is converted behind the caller's back (an RGB "grey" mask is refused, not averaged).
+// cannot judge honestly: a missing file, a file libpng or OpenImageIO cannot open or decode (a
+// truncated PNG), more than 16384 × 16384 pixels (checked from the header, before any pixel is
+// allocated), a channel count other than the one asked for, a pixel format other than 8-bit
+// unsigned. Nothing is converted behind the caller's back (an RGB "grey" mask is refused, not
+// averaged; a gAMA chunk changes no sample).
 //
-// Writing: PNG for Image8 (grey or RGB), OpenEXR (zip, one float channel "Y", no wall-clock
-// DateTime so that two runs write identical bytes) for float images, each file all or nothing
-// (atomic_file.hpp): FileError naming the file and the system's reason when it cannot be written.
-// Callers that need all-or-nothing folders write into a StagedFolder (staged_folder.hpp).
+// Writing: PNG for Image8 (grey or RGB; a fast deflate, no colour-space chunk), OpenEXR (zip, one
+// float channel "Y", no wall-clock DateTime so that two runs write identical bytes) for float
+// images, each file all or nothing (atomic_file.hpp): FileError naming the file and the system's
+// reason when it cannot be written. Callers that need all-or-nothing folders write into a
+// StagedFolder (staged_folder.hpp).
 #pragma once
 
 #include <filesystem>
