@@ -46,7 +46,7 @@ if(SHADOWREF_BUILD_TESTS)
   set(_install_test ${PROJECT_SOURCE_DIR}/cmake/install_test/install_test.sh)
   set(_install_work ${PROJECT_BINARY_DIR}/install-test)
   add_test(NAME install.prefix COMMAND ${_install_test} prefix ${PROJECT_BINARY_DIR} ${_install_work})
-  shadowref_hang_guard(_install_guard 60)  # install.properties builds a consumer: 52 s beside the suite
+  shadowref_hang_guard(_install_guard 50)  # install.properties builds a consumer: 46 s beside the suite
   set_tests_properties(install.prefix PROPERTIES FIXTURES_SETUP shadowref_installed LABELS install TIMEOUT ${_install_guard})
   foreach(mode cmake pkgconfig properties standalone)
     add_test(NAME install.${mode} COMMAND ${_install_test} ${mode} ${PROJECT_BINARY_DIR} ${_install_work})
@@ -55,5 +55,5 @@ if(SHADOWREF_BUILD_TESTS)
   # The consumers build in folders of their own; the properties consumer is the slow one (one
   # RapidCheck translation unit), so it must not run beside another build on a 2-core machine.
   set_tests_properties(install.cmake install.pkgconfig install.properties PROPERTIES RESOURCE_LOCK shadowref_install_builds)
-  shadowref_run_early(61 install.properties)
+  shadowref_run_early(46 install.properties)
 endif()
