@@ -140,12 +140,13 @@ struct Frame {
   const RenderOptions& options;
   RenderResult& result;
   const std::vector<GpuMesh>& objects;        // scene.objects, same order
-  GLuint target_fbo = 0;
+  GLuint target_fbo = 0;                      // W × H: RGBA8 colour, the RG8 mask attachment, depth/stencil
+                                              // (24-bit, or 32F for reversed-z)
   // The target's second colour attachment, RG8: light_pass's lit fraction and mask.
   static constexpr GLenum kMaskAttachment = GL_COLOR_ATTACHMENT1;
   // The surface program this technique draws with (pcss, vsm: programs.surface_soft); null: programs.surface.
   const Program* surface = nullptr;
-  const Program& surface_program() const { return surface ? *surface : programs.surface; }                      // W × H, RGBA8 + depth/stencil (24-bit, or 32F for reversed-z)
+  const Program& surface_program() const { return surface ? *surface : programs.surface; }
 
   int width() const { return scene.width; }
   int height() const { return scene.height; }

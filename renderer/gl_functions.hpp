@@ -32,7 +32,6 @@ namespace shadowref::renderer {
   X(PFNGLDRAWBUFFERPROC, DrawBuffer)                                      \
   X(PFNGLDRAWBUFFERSPROC, DrawBuffers)                                    \
   X(PFNGLCLEARBUFFERFVPROC, ClearBufferfv)                                \
-  X(PFNGLENABLEIPROC, Enablei)                                            \
   X(PFNGLDISABLEIPROC, Disablei)                                          \
   X(PFNGLDEPTHFUNCPROC, DepthFunc)                                        \
   X(PFNGLCLIPCONTROLPROC, ClipControl)                                    \

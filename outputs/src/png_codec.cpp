@@ -4,6 +4,7 @@
 
 #include <png.h>
 
+#include <cerrno>
 #include <cstring>
 #include <stdexcept>
 #include <vector>
