@@ -138,6 +138,7 @@ std::vector<Declaration> grid() {
       {"distance-bias-1m", R"("depth": "distance", "depth_bias": 0.1, "depth_range": 10, "slope_bias_texels": 0)"},
       {"filter-8", R"("filter_radius_texels": 8)"},
       {"map-512", R"("shadow_map_size": 512)"},
+      {"map-512-pack", R"("shadow_map_size": 512, "light_views": "pack")"},
       {"map-4096-pack", R"("shadow_map_size": 4096, "light_views": "pack")"},
       {"largest", R"("slope_bias_texels": 8, "constant_bias": 1.0, "normal_offset_texels": 4, "depth_bias": 0.01, )"
                   R"("filter_radius_texels": 8, "light_views": "own", "shadow_map_size": 512, "sampling": "random", )"
@@ -160,6 +161,8 @@ std::vector<std::vector<Declaration>> chains() {
        {"distance bias 0", R"("depth": "distance", "depth_range": 10, "depth_bias": 0, "slope_bias_texels": 0)"}},
       {{"filter 8", R"("filter_radius_texels": 8)"}, {"filter 1", R"("filter_radius_texels": 1)"}, {"filter 0", R"("filter_radius_texels": 0)"}},
       {{"own", R"("light_views": "own")"}, {"pack", R"("light_views": "pack")"}},
+      {{"map 512 own", R"("shadow_map_size": 512, "light_views": "own")"},
+       {"map 512 pack", R"("shadow_map_size": 512, "light_views": "pack")"}},
   };
 }
 
@@ -260,6 +263,35 @@ TEST_P(DeclarationGrid, DeclaringLessNeverExplainsMore) {
       }
     }
   }
+}
+
+// A declared map size on the pack's grid is checked against the mask's own staircases
+// (conform/staircases.hpp). Under grazing_light's sun 8 degrees up a 512-texel map's texel spans
+// several pixels along the ground. Our render at 512 texels agrees with that declaration and PASSes;
+// our finer render declared as 512 texels is contradicted, judged at the automatic size, and still
+// PASSes (a correct render wrongly declared is still correct); the same render shifted by one pixel
+// under that declaration FAILs — without the check the 512-texel footprint explained the shift.
+TEST(Staircases, ADeclaredPackMapSizeIsCheckedAgainstTheMasksOwnStaircases) {
+  SceneUnderTest s("grazing_light");
+  const std::string at_512 = R"("slope_bias_texels": 2, "shadow_map_size": 512, "light_views": "pack")";
+  renderer::RenderOptions options;
+  options.shadow_map_size = 512;
+  const renderer::RenderResult coarse = test::llvmpipe_renderer().render(s.scene, "shadowmap", options);
+  ASSERT_EQ(coarse.declaration.shadow_map_size, 512);
+  ASSERT_TRUE(coarse.declaration.light_views_from_pack);
+  const conform::CaseJudgement drawn = s.judged("staircases-512", coarse.masks.at(0), at_512);
+  EXPECT_EQ(drawn.comparison.judgement.verdict, compare::Verdict::Pass);
+  EXPECT_NE(drawn.causes.find("512-texel map on the pack's grid is not contradicted"), std::string::npos) << drawn.causes;
+  const conform::CaseJudgement finer = s.judged("staircases-finer", s.control, at_512);
+  EXPECT_EQ(finer.comparison.judgement.verdict, compare::Verdict::Pass) << "a correct render, wrongly declared";
+  EXPECT_NE(finer.causes.find("is contradicted"), std::string::npos) << finer.causes;
+  Image8 moved = s.control;
+  shifted(1)(moved);
+  const conform::CaseJudgement shift = s.judged("staircases-shifted", moved, at_512);
+  EXPECT_NE(shift.causes.find("is contradicted"), std::string::npos) << shift.causes;
+  EXPECT_EQ(shift.comparison.judgement.verdict, compare::Verdict::Fail)
+      << shift.comparison.total.unexplained << " px unexplained (" << 100 * shift.comparison.total.unexplained_ratio()
+      << " % of the edges)";
 }
 
 // Peter-panning of a measured size, declared honestly: our shadowmap with a constant offset of

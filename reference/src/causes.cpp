@@ -91,6 +91,14 @@ double capped_tan(double c) {
 }
 }  // namespace
 
+namespace {
+// The cascades a declaration's technique splits a directional light's map into (0: not cascaded).
+int cascades_of(const outputs::CandidateDeclaration& d) {
+  const outputs::TechniqueName* technique = outputs::find_technique_name(d.technique);
+  return technique && technique->cascaded ? (d.cascades ? d.cascades : kDefaultCascades) : 0;
+}
+}  // namespace
+
 std::optional<CauseModel::Lookup> CauseModel::lookup(std::size_t light, const Surface& s,
                                                      const outputs::CandidateDeclaration& d) const {
   Lookup k;
@@ -99,9 +107,7 @@ std::optional<CauseModel::Lookup> CauseModel::lookup(std::size_t light, const Su
   const Vec4<double>& L = scene_.lights[light];
   k.to_light = L.w() == 0 ? Vec3<double>(L.head<3>().normalized()) : Vec3<double>((L.head<3>() / L.w() - s.p).normalized());
   // The light view that decides p: the cube face, the cascade, or the one view (light_view_of).
-  const outputs::TechniqueName* technique = outputs::find_technique_name(d.technique);
-  const int cascades = technique && technique->cascaded ? (d.cascades ? d.cascades : kDefaultCascades) : 0;
-  const LightFit& fit = fit_for(light, d.shadow_map_size, cascades);
+  const LightFit& fit = fit_for(light, d.shadow_map_size, cascades_of(d));
   k.view = &fit.views[static_cast<std::size_t>(light_view_of(fit, L, s.p))];
   k.m = k.view->projection * k.view->view;
   const Vec4<double> h = k.m * Vec4<double>(s.p.x(), s.p.y(), s.p.z(), 1.0);
@@ -129,6 +135,23 @@ std::optional<CauseModel::Lookup> CauseModel::lookup(std::size_t light, const Su
     k.depth_bias_world = std::abs(k.depth(unproject(k.inv, k.q.x(), k.q.y(), z)) - k.depth_p);
   }
   return k;
+}
+
+std::optional<CauseModel::TexelCell> CauseModel::texel_cell(std::size_t light, int x, int y,
+                                                             const outputs::CandidateDeclaration& d) const {
+  const std::optional<Surface> s = surface_at(x, y);
+  if (!s) return std::nullopt;
+  const std::optional<Lookup> k = lookup(light, *s, d);
+  if (!k || !(s->n.dot(k->to_light) > 0)) return std::nullopt;
+  // NDC −1..1 spans the view's texels 0..size (the viewport transform); texel_ndc = 2 / size.
+  TexelCell c;
+  c.view = static_cast<int>(k->view - fit_for(light, d.shadow_map_size, cascades_of(d)).views.data());
+  c.column = static_cast<long>(std::floor((k->q.x() + 1.0) / k->texel_ndc));
+  c.row = static_cast<long>(std::floor((k->q.y() + 1.0) / k->texel_ndc));
+  c.n = s->n;
+  c.offset = s->n.dot(s->p);
+  c.p = s->p;
+  return c;
 }
 
 double CauseModel::Lookup::depth(const Vec3<double>& w) const {

@@ -5,9 +5,11 @@
 #include <chrono>
 #include <utility>
 
+#include "shadowref/conform/staircases.hpp"
 #include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/errors.hpp"
 #include "shadowref/outputs/file_names.hpp"
+#include "shadowref/outputs/image_io.hpp"
 #include "shadowref/outputs/techniques.hpp"
 #include "shadowref/reference/causes.hpp"
 #include "shadowref/renderer/renderer.hpp"
@@ -57,6 +59,36 @@ compare::CompareOptions options_for(const scene::Scene& s, const compare::Thresh
     causes += "; the lit fraction of every area light, within its sampling and the filter's footprint";
   }
   return o;
+}
+
+// `declared` with the map size of every light whose staircases contradict it (staircases.hpp)
+// taken back to the automatic size; `said` gets each checked light's finding. A mask that cannot be
+// read, or of another size than the scene's, is left to the comparison, which says what is wrong.
+outputs::CandidateDeclaration checked_against_staircases(const reference::CauseModel& model, const scene::Scene& s,
+                                                         const std::filesystem::path& candidate_dir,
+                                                         const outputs::CandidateDeclaration& declared, std::string& said) {
+  outputs::CandidateDeclaration judged = declared;
+  for (std::size_t i = 0; i < s.lights.size(); ++i) {
+    const outputs::CandidateDeclaration& d = declared.for_light(i);
+    if (!staircases_apply(d)) continue;
+    outputs::Image8 mask;
+    try {
+      mask = outputs::read_image8(candidate_dir / outputs::mask_name(i, s.lights.size()), 1, s.width, s.height);
+    } catch (const outputs::InputError&) {
+      continue;
+    }
+    const StaircaseCheck check = check_staircases(model, mask, i, d);
+    said += (said.empty() ? "" : "; ") + describe(check, i, d);
+    if (!check.contradicted) continue;
+    if (judged.lights.size() <= i) {  // the lights without an entry take the top level's declaration
+      outputs::CandidateDeclaration top = declared;
+      top.lights.clear();
+      judged.lights.resize(s.lights.size(), top);
+    }
+    judged.lights[i].shadow_map_size = 0;
+    judged.lights[i].atlas_tile_size = judged.lights[i].atlas_guard_band = 0;
+  }
+  return judged;
 }
 
 }  // namespace
@@ -114,10 +146,16 @@ CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJud
                                   std::to_string(s.lights.size()) + " light(s)");
   if (const auto e = s.expect.find(j.technique); e != s.expect.end()) j.expectation = e->second;
 
-  // 2-4. Threshold, causes, lit fraction: the comparison.
+  // 2-4. Threshold, causes, lit fraction: the comparison, under the declaration as the pixels bear it out.
   const reference::CauseModel* model = threshold.bands || soft ? &causes_of(*prepared) : nullptr;
+  std::string staircases;
+  const outputs::CandidateDeclaration judged =
+      model && named && named->family == outputs::TechniqueFamily::ShadowMap
+          ? checked_against_staircases(*model, s, c.candidate_dir, j.declaration, staircases)
+          : j.declaration;
   Explainers explainers;
-  const compare::CompareOptions options = options_for(s, threshold, named, j.declaration, model, explainers, j.causes);
+  const compare::CompareOptions options = options_for(s, threshold, named, judged, model, explainers, j.causes);
+  if (!staircases.empty()) j.causes += "; " + staircases;
   j.comparison = compare::compare_folders(c.reference_dir, c.candidate_dir, threshold, options);
 
   // 5. Status and signature.

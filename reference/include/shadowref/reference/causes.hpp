@@ -112,6 +112,20 @@ class CauseModel {
   // 0 when the centre sees no surface. Cost: 9 · samples² shadow rays.
   double visibility_texel_shift(std::size_t light, int x, int y, const outputs::CandidateDeclaration& declared) const;
 
+  // The texel of the declared map (its size, cascades, `pack` grid) that a nearest lookup at pixel
+  // (x, y)'s surface point p reads for light `light`: the light view that decides p, the texel's
+  // column and row on that view's grid, and p's plane (unit normal toward the viewer, offset) so that
+  // callers can tell points of one receiver. nullopt where the centre sees no surface or p faces
+  // away from the light (its shadow is attached, not looked up). Cost: one primary ray.
+  struct TexelCell {
+    int view = 0;
+    long column = 0, row = 0;
+    Vec3<double> n;
+    double offset = 0;  // n · p
+    Vec3<double> p;
+  };
+  std::optional<TexelCell> texel_cell(std::size_t light, int x, int y, const outputs::CandidateDeclaration& declared) const;
+
  private:
   // The surface seen through pixel (x, y)'s centre (as the reference finds it): its point and its
   // face normal turned toward the viewer; nullopt when the centre sees none.

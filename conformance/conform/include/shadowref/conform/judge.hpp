@@ -6,7 +6,8 @@
 //      when absent) and takes the technique judged from the caller, else from that file;
 //   2. picks the technique's threshold (compare/thresholds.hpp);
 //   3. for a technique with texel and bias bands, explains wrong pixels by the scene's cause model
-//      (reference/causes.hpp) under that declaration;
+//      (reference/causes.hpp) under that declaration — a hard map's size on the pack's grid first
+//      checked against the candidate's own staircases (staircases.hpp);
 //   4. for a soft technique, judges the lit fraction of every light with an area in visibility
 //      units (compare/visibility.hpp) with the same cause model's bands;
 //   5. gives the case's status under the scene file's expectation (status.hpp), and for an expected

@@ -1,0 +1,78 @@
+// staircases.cpp — a declared map size against the candidate's staircases on the pack's grid
+// (staircases.hpp).
+#include "shadowref/conform/staircases.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <vector>
+
+#include "shadowref/reference/causes.hpp"
+
+namespace shadowref::conform {
+namespace {
+
+using Cell = reference::CauseModel::TexelCell;
+
+// Two points on one receiver plane: the same plane through both (a cube's two faces meet at an edge;
+// a caster's top and the ground beneath it are parallel but apart). The tolerances are far above the
+// float rounding of a traced hit (about 1e-6 of the scene) and far below any two surfaces' angle or gap.
+bool one_plane(const Cell& a, const Cell& b) {
+  const double gap = (b.p - a.p).norm();
+  return a.n.dot(b.n) > 1.0 - 1e-6 && std::abs(a.n.dot(b.p) - a.offset) <= 1e-4 * gap;
+}
+
+}  // namespace
+
+bool staircases_apply(const outputs::CandidateDeclaration& d) {
+  return d.light_views_from_pack && d.shadow_map_size > 0 && d.filter_radius_texels == 0 &&
+         d.sampling == outputs::Sampling::Grid && d.normal_offset == 0 && d.normal_offset_texels == 0;
+}
+
+StaircaseCheck check_staircases(const reference::CauseModel& model, const outputs::Image8& mask, std::size_t light,
+                                const outputs::CandidateDeclaration& d) {
+  const int w = mask.width, h = mask.height;
+  const auto at = [&](int x, int y) { return mask.pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)]; };
+  // Each pixel's cell, traced once and only beside a candidate boundary (the rest are never asked).
+  std::vector<std::optional<Cell>> cells(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+  std::vector<bool> traced(cells.size());
+  const auto cell = [&](int x, int y) -> const std::optional<Cell>& {
+    const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+    if (!traced[i]) {
+      cells[i] = model.texel_cell(light, x, y, d);
+      traced[i] = true;
+    }
+    return cells[i];
+  };
+  StaircaseCheck c;
+  const auto pair = [&](int ax, int ay, int bx, int by) {
+    const std::uint8_t a = at(ax, ay), b = at(bx, by);
+    const bool crossing = (a == outputs::kMaskLit && b == outputs::kMaskShadowed) ||
+                          (a == outputs::kMaskShadowed && b == outputs::kMaskLit);
+    if (!crossing) return;
+    const std::optional<Cell>& ca = cell(ax, ay);
+    const std::optional<Cell>& cb = cell(bx, by);
+    if (!ca || !cb || ca->view != cb->view || !one_plane(*ca, *cb)) return;
+    ++c.crossings;
+    c.in_one_texel += ca->column == cb->column && ca->row == cb->row;
+  };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (x + 1 < w) pair(x, y, x + 1, y);
+      if (y + 1 < h) pair(x, y, x, y + 1);
+    }
+  c.contradicted = c.crossings >= kMinStaircaseCrossings && 2 * c.in_one_texel > c.crossings;
+  return c;
+}
+
+std::string describe(const StaircaseCheck& c, std::size_t light, const outputs::CandidateDeclaration& d) {
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "light %zu: the declared %d-texel map on the pack's grid %s by the candidate's staircases (%zu of %zu "
+                "lit/shadowed crossings on one receiver lie inside one texel)%s",
+                light, d.shadow_map_size, c.contradicted ? "is contradicted" : "is not contradicted", c.in_one_texel, c.crossings,
+                c.contradicted ? ": its texels are judged at the automatic size" : "");
+  return buf;
+}
+
+}  // namespace shadowref::conform
