@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
-#include <vector>
+#include <unordered_map>
 
 #include "shadowref/reference/causes.hpp"
 
@@ -33,16 +33,14 @@ StaircaseCheck check_staircases(const reference::CauseModel& model, const output
                                 const outputs::CandidateDeclaration& d) {
   const int w = mask.width, h = mask.height;
   const auto at = [&](int x, int y) { return mask.pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)]; };
-  // Each pixel's cell, traced once and only beside a candidate boundary (the rest are never asked).
-  std::vector<std::optional<Cell>> cells(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
-  std::vector<bool> traced(cells.size());
+  // Each pixel's cell, traced once and only beside a candidate boundary: a few thousand pixels of a
+  // mask, so kept by index rather than in an image-sized table.
+  std::unordered_map<std::size_t, std::optional<Cell>> cells;
   const auto cell = [&](int x, int y) -> const std::optional<Cell>& {
     const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
-    if (!traced[i]) {
-      cells[i] = model.texel_cell(light, x, y, d);
-      traced[i] = true;
-    }
-    return cells[i];
+    auto [it, added] = cells.try_emplace(i);
+    if (added) it->second = model.texel_cell(light, x, y, d);
+    return it->second;
   };
   StaircaseCheck c;
   const auto pair = [&](int ax, int ay, int bx, int by) {
