@@ -239,8 +239,12 @@ CauseModel::~CauseModel() = default;
 
 // What a texel at map offset (dx, dy) from p's may hold: the depth of the first surface along its
 // ray, or, where the map is drawn with front faces culled (as ours is, and many engines'), the depth
-// where the ray leaves that first caster (its first back face; none for an open caster, drawn
-// two-sided); a miss holds "nothing": infinitely far. Each stored depth carries the bias `bias` gives
+// of the first surface drawn behind the culled front faces: the first back face along the ray, or
+// the first open mesh (drawn two-sided, whichever side faces the light), whichever comes first. A box
+// standing on a ground plane shows why the open mesh counts: a ray entering the box's near face
+// reaches the ground and the box's bottom face at one depth, and either one is stored (with the
+// grazing slope's offset that lights a receiver a few texels beyond the box's far base). A miss
+// holds "nothing": infinitely far. Each stored depth carries the bias `bias` gives
 // its own polygon (normal, ray direction, light depth). The texel gives the candidate's answer when
 // p, compared with either stored depth, gets it: lit when p is not beyond it, shadowed when p is.
 template <class Bias>
@@ -258,7 +262,8 @@ bool CauseModel::texel_gives(const Lookup& k, Probes& probes, double dx, double 
   if (answer(stored(static_cast<double>(first.ray.tfar), Vec3<double>(first.hit.Ng_x, first.hit.Ng_y, first.hit.Ng_z))))
     return true;
   if (ray.exit < 0) {
-    // Front faces culled: walk on to the first face the ray leaves through (normal along the ray).
+    // Front faces culled: walk on to the first face the ray leaves through (normal along the ray)
+    // or the first open mesh, which the depth pass draws two-sided.
     RTCIntersectContext c;
     rtcInitIntersectContext(&c);
     RTCRayHit r = first;
@@ -266,7 +271,7 @@ bool CauseModel::texel_gives(const Lookup& k, Probes& probes, double dx, double 
     ray.exit = 0;
     for (int step = 0; step < 8; ++step) {
       const Vec3<double> ng(r.hit.Ng_x, r.hit.Ng_y, r.hit.Ng_z);
-      if (ng.dot(ray.dir) > 0) {
+      if (ng.dot(ray.dir) > 0 || !scene_.casters[r.hit.geomID].closed) {
         ray.exit = 1;
         ray.t_exit = t;
         ray.ng_exit = ng;
@@ -278,7 +283,7 @@ bool CauseModel::texel_gives(const Lookup& k, Probes& probes, double dx, double 
       next.ray.tfar = static_cast<float>(ray.length);
       next.hit.geomID = RTC_INVALID_GEOMETRY_ID;
       rtcIntersect1(embree_->handle(), &c, &next);
-      if (next.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;  // an open caster: only its front was there
+      if (next.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;  // nothing drawn behind the culled front faces
       r = next;
       t = static_cast<double>(r.ray.tfar);
     }
