@@ -60,13 +60,16 @@ CLI::Validator shadow_map_size_check();
 CLI::Validator random_taps_check();
 
 // Our renderer's correct variants on the command line (render_variant_options.cpp), the same in
-// `render` and `conform`: --random-taps, --depth-faces, --guard-band, --normal-offset-texels.
+// `render` and `conform`: --random-taps, --depth-faces, --guard-band, --normal-offset-texels,
+// --cube-depth, --view-turn, --view-phase.
 struct RenderVariantArgs {
   int random_taps = 0;
   std::string depth_faces = "back";
   int guard_band = 0;
   double normal_offset_texels = 0;
   std::string cube_depth = "window";
+  double view_turn = 0;
+  double view_phase = 0;
 };
 void add_render_variant_options(CLI::App& cmd, RenderVariantArgs& args);
 // Sets `options`' variant fields from `args`; BadInput when the guard band would make a map of

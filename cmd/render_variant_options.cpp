@@ -1,6 +1,7 @@
 // render_variant_options.cpp — our renderer's correct variants on the command line, one definition
 // for `shadowref render` and `shadowref conform`: a randomized kernel, the depth pass's faces, a
-// shadow-atlas guard band, a normal offset and distance cubes, each declared in candidate.json by
+// shadow-atlas guard band, a normal offset, distance cubes and light views of our own (turned, their
+// grid moved), each declared in candidate.json by
 // the renderer.
 #include <CLI/CLI.hpp>
 
@@ -39,6 +40,16 @@ void add_render_variant_options(CLI::App& cmd, RenderVariantArgs& args) {
                  "declared per light as \"depth\", \"depth_range\" and \"depth_bias\"")
       ->check(CLI::IsMember({"window", "distance"}))
       ->capture_default_str();
+  cmd.add_option("--view-turn", args.view_turn,
+                 "degrees each light view of our maps turns about its axis, as an engine's own views may (the view "
+                 "widened to cover the pack's: texels up to 1.41 times wider); declared \"light_views\": \"own\"")
+      ->check(CLI::Range(-90.0, 90.0))
+      ->capture_default_str();
+  cmd.add_option("--view-phase", args.view_phase,
+                 "texels our maps' texel grid moves along both axes of each light view, as an engine's own views may "
+                 "place it; declared \"light_views\": \"own\"")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
 }
 
 void apply_render_variants(const RenderVariantArgs& a, int shadow_map_size, renderer::RenderOptions& options) {
@@ -50,6 +61,8 @@ void apply_render_variants(const RenderVariantArgs& a, int shadow_map_size, rend
   options.guard_band_texels = a.guard_band;
   options.normal_offset_texels = a.normal_offset_texels;
   options.cube_depth = a.cube_depth == "distance" ? outputs::StoredDepth::Distance : outputs::StoredDepth::Window;
+  options.view_turn_degrees = a.view_turn;
+  options.view_phase_texels = a.view_phase;
 }
 
 }  // namespace shadowref::cli

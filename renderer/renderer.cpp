@@ -658,7 +658,8 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_
       result.declaration.depth_faces = named && named->family == outputs::TechniqueFamily::SoftShadow
                                            ? outputs::DepthFaces::Both
                                            : options.depth_faces;
-      result.declaration.light_views_from_pack = true;  // the prepared scene's light fits: the pack's
+      // The prepared scene's light fits are the pack's, unless turned or moved (RenderOptions).
+      result.declaration.light_views_from_pack = options.view_turn_degrees == 0 && options.view_phase_texels == 0;
       if (!(named && named->family == outputs::TechniqueFamily::SoftShadow))
         result.declaration.normal_offset_texels = options.normal_offset_texels;
       // Per light: a guard band makes each map an atlas tile around the view of its fit, and a

@@ -271,6 +271,29 @@ TEST(Renderer, DistanceCubesAreDeclaredPerLightWhereTheyAreDrawn) {
   EXPECT_TRUE(rect.declaration.lights.empty()) << "pcss's rect light keeps window depth";
 }
 
+// Light views of our own (RenderOptions::view_turn_degrees, view_phase_texels): the texel grid
+// turns and moves, so the staircases move with it (the verdicts are the conformance sweeps'), and
+// the declaration says "own"; neither one set leaves the pack's views, byte for byte.
+TEST(Renderer, OwnViewsMoveTheStaircasesAndAreDeclaredOwn) {
+  const scene::Scene s = load("grazing_light", 128);
+  RenderOptions pack;
+  pack.shadow_map_size = 256;
+  const RenderResult plain = renderer().render(s, "shadowmap", pack);
+  EXPECT_TRUE(plain.declaration.light_views_from_pack);
+  for (const double turn : {0.0, 30.0}) {
+    RenderOptions own = pack;
+    own.view_turn_degrees = turn;
+    own.view_phase_texels = 0.5;
+    const RenderResult r = renderer().render(s, "shadowmap", own);
+    EXPECT_FALSE(r.declaration.light_views_from_pack) << turn;
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < r.masks.at(0).pixels.size(); ++i) differ += r.masks[0].pixels[i] != plain.masks[0].pixels[i];
+    // At 128² a 256-texel texel spans several pixels along this ground: a grid moved by half a
+    // texel moves the long shadows' staircases by pixels.
+    EXPECT_GT(differ, 20u) << "turned " << turn << " degrees, moved half a texel";
+  }
+}
+
 TEST(Renderer, UnknownTechniqueIsRefused) {
   const scene::Scene s = load("ground_sphere", 16);
   EXPECT_THROW((void)renderer().render(s, "no-such-technique"), std::invalid_argument);

@@ -61,6 +61,14 @@ struct RenderOptions {
   // view keeps its texel grid (the pack's), and the band holds what lies beyond it. Declared per
   // light as "atlas_tile": {"size": size + 2 G, "guard_band": G}. 0: none.
   int guard_band_texels = 0;
+  // Light views of our own, as engines fit theirs: each view turned about its axis by
+  // view_turn_degrees (its projection's x and y scaled by 1 / (|cos| + |sin|), so that the turned view
+  // still covers the fit's: texels up to √2 wider) and its texel grid moved by view_phase_texels of a
+  // texel along both axes (the view scaled by size / (size + 1) first, so that no edge texel is lost).
+  // Either one declares "light_views": "own" (the judge then knows neither the grid's turn nor its
+  // phase). 0 and 0: the pack's views.
+  double view_turn_degrees = 0.0;
+  double view_phase_texels = 0.0;
   // The hard maps' normal offset (three.js and Babylon `normalBias`, Unity's "normal bias"): each
   // lookup moves along the surface normal, turned toward the light, by this many texels of the map
   // at the point. Declared as "normal_offset_texels". 0: none.
