@@ -218,22 +218,23 @@ void select_cascades(const Frame& frame, const LightFit& lc, LightMap& map) {
   }
 }
 
-// The light's projections (FitFault: with a depth range that clips casters), and for each view the
-// matrices between the world and its texels and the line of 1 / view depth in window depth.
 // RenderOptions::view_turn_degrees and view_phase_texels, on clip coordinates: x and y turned and
-// scaled (the turned square inside −1..1), then moved by the phase (NDC is 2 / size per texel; a
-// move of x by t·w in clip space is a move by t in NDC under any w). The identity for the pack's views.
+// scaled (the turned square inside −1..1, with a texel to spare on each side for the move), then
+// moved by the phase (NDC is 2 / size per texel; a move of x by t·w in clip space is a move by t in
+// NDC under any w). The identity for the pack's views.
 Mat4<double> own_view(const RenderOptions& o, int size) {
   Mat4<double> m = Mat4<double>::Identity();
   if (o.view_turn_degrees == 0 && o.view_phase_texels == 0) return m;
   const double a = o.view_turn_degrees * std::acos(-1.0) / 180.0, c = std::cos(a), s = std::sin(a);
-  const double scale = 1.0 / (std::abs(c) + std::abs(s)) * size / (size + 1.0);
+  const double scale = 1.0 / (std::abs(c) + std::abs(s)) * size / (size + 2.0);
   m(0, 0) = scale * c, m(0, 1) = -scale * s;
   m(1, 0) = scale * s, m(1, 1) = scale * c;
   m(0, 3) = m(1, 3) = o.view_phase_texels * 2.0 / size;
   return m;
 }
 
+// The light's projections (FitFault: with a depth range that clips casters), and for each view the
+// matrices between the world and its texels and the line of 1 / view depth in window depth.
 std::vector<Mat4<double>> light_matrices(const Frame& frame, const LightFit& lc, LightMap& map) {
   const RunConvention& conv = frame.convention();
   const ShadowMapFaults& faults = frame.faults().shadow_map;

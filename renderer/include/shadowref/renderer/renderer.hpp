@@ -64,7 +64,7 @@ struct RenderOptions {
   // Light views of our own, as engines fit theirs: each view turned about its axis by
   // view_turn_degrees (its projection's x and y scaled by 1 / (|cos| + |sin|), so that the turned view
   // still covers the fit's: texels up to √2 wider) and its texel grid moved by view_phase_texels of a
-  // texel along both axes (the view scaled by size / (size + 1) first, so that no edge texel is lost).
+  // texel along both axes (the view scaled by size / (size + 2) first, so that no edge texel is lost).
   // Either one declares "light_views": "own" (the judge then knows neither the grid's turn nor its
   // phase). 0 and 0: the pack's views.
   double view_turn_degrees = 0.0;
