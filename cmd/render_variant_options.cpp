@@ -1,8 +1,7 @@
 // render_variant_options.cpp — our renderer's correct variants on the command line, one definition
 // for `shadowref render` and `shadowref conform`: a randomized kernel, the depth pass's faces, a
 // shadow-atlas guard band, a normal offset, distance cubes and light views of our own (turned, their
-// grid moved), each declared in candidate.json by
-// the renderer.
+// grid moved), each declared in candidate.json by the renderer.
 #include <CLI/CLI.hpp>
 
 #include <string>
