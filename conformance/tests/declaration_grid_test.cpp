@@ -183,33 +183,48 @@ struct SceneUnderTest : test::CatalogueScene {
   }
 };
 
-// Known limitations, each seen to fail in the predicted way (not FAIL, with the unexplained count
-// below the fail bound): a declared map SMALLER than the one drawn widens the texel footprint, and a
-// wide filter the mask's reach by one texel, and the judge checks a declared size against the
-// candidate's staircases only on the pack's grid (conform/staircases.hpp), not on its own views.
-// At 256² under a sun 8 degrees up one 512-texel map texel lies along the ground over about 7 px
-// (1 / sin 8°), so a 1-px shift, a 1-px growth or a swapped tile within that stretch is what such a
-// map may honestly show; and where a box stands on that ground, a correct map that culls front
-// faces stores the box's bottom (or the ground, drawn two-sided) with the ground's steep slope
-// offset, which lights the ground for two texels behind the box's far base: a filter's reach takes
-// in that leak too. Any other mutant that does not FAIL fails the test, and so does a listed one
-// that FAILs (the list must then shrink).
+// Known limitations, each seen to fail in the predicted way (not FAIL, no unexplained core, and no
+// more displaced pixels than the bound lets through), measured over the whole catalogue
+// (docs/tolerance-model.md, "What is left"). Three kinds:
+// - a declared map SMALLER than the one drawn, on the candidate's own views, widens the texel
+//   footprint until it takes in the whole change: at 256² under grazing_light's sun 8 degrees up one
+//   512-texel map texel lies along the ground over about 7 px (1 / sin 8°), so a swapped tile inside
+//   that stretch is what such a map may honestly show, and so are a 1-px shift of light_near_caster's
+//   shadow and the shrunk shadows of nested_256_volumes' plates: nothing is left unexplained, so
+//   nothing is displaced either (the judge checks a declared size against the candidate's
+//   staircases on the pack's grid only: conform/staircases.hpp);
+// - camera_at_light, whose camera sits at the light: no cast shadow is visible, and a mutant changes
+//   only slivers along silhouettes (1 to 4 px unexplained), as the engines' correct renders show
+//   them (4 px, OpenSceneGraph SoftShadowMap);
+// - sun_horizon under a 512-texel own map, whose texels are a metre wide over 600 m of ground: its
+//   casters may honestly fall between texels, so the all-lit mask is the quality WARN the scene
+//   expects of one coarse map, not a PASS; and under all the largest keys at once a 1-px shift
+//   leaves 23 px unexplained, every one displaced, just below that bound (0.92 % of the edges).
+// Any other mutant that does not FAIL fails the test, and so does a listed one that FAILs (the list
+// must then shrink).
 struct KnownGap {
   const char* scene;
   const char* mutant;
-  const char* declaration;
+  const char* declarations;  // comma-separated grid names
 };
 constexpr KnownGap kKnownGaps[] = {
-    {"grazing_light", "shifted-1px", "map-512"},   {"grazing_light", "shifted-1px", "largest"},
-    {"grazing_light", "shifted-1px", "filter-8"},  {"grazing_light", "grown-1px", "largest"},
-    {"grazing_light", "swapped-tile", "filter-8"},
-    {"grazing_light", "swapped-tile", "map-512"},  {"grazing_light", "swapped-tile", "largest"},
-    {"ground_sphere", "shifted-1px", "map-512"},   {"ground_sphere", "shifted-1px", "largest"},
+    {"grazing_light", "swapped-tile", "filter-8,map-512,largest"},
+    {"light_near_caster", "shifted-1px", "largest"},
+    {"nested_256_volumes", "shrunk-1px", "map-512,largest"},
+    {"nested_256_volumes", "shrunk-2px", "map-512,largest"},
+    {"camera_at_light", "shifted-1px", "map-512,largest"},
+    {"camera_at_light", "shifted-2px", "largest"},
+    {"camera_at_light", "swapped-tile",
+     "ours,slope-0,slope-0-own,slope-8,constant-6.4cm,constant-1m,normal-offset-4-texels,depth-bias-1%,distance-bias-1m,"
+     "filter-8,map-512,map-512-pack,largest"},
+    {"sun_horizon", "all-lit", "map-512,largest"},
+    {"sun_horizon", "shifted-1px", "largest"},
 };
 
 bool known_gap(const std::string& scene, const std::string& mutant, const std::string& declaration) {
   for (const KnownGap& g : kKnownGaps)
-    if (scene == g.scene && mutant == g.mutant && declaration == g.declaration) return true;
+    if (scene == g.scene && mutant == g.mutant && ("," + std::string(g.declarations) + ",").find("," + declaration + ",") != std::string::npos)
+      return true;
   return false;
 }
 
@@ -235,12 +250,14 @@ TEST_P(DeclarationGrid, TheControlPassesAndNoDeclarationLetsAMutantPass) {
         EXPECT_NE(j.comparison.judgement.verdict, compare::Verdict::Fail)
             << m.name << " declared " << d.name << " FAILs now: remove it from kKnownGaps";
         EXPECT_EQ(t.unexplained_core, 0u) << m.name << " declared " << d.name << ": not the predicted kind of gap";
+        EXPECT_LE(t.displaced, compare::kDisplaced.displaced_fail * static_cast<double>(t.edge_pixels))
+            << m.name << " declared " << d.name << ": not the predicted kind of gap";
         continue;
       }
       EXPECT_EQ(j.comparison.judgement.verdict, compare::Verdict::Fail)
           << m.name << " declared " << d.name << ": " << compare::to_string(j.comparison.judgement.verdict) << " with "
           << t.unexplained << " px unexplained of " << t.wrong << " wrong (" << 100 * t.unexplained_ratio() << " % of "
-          << t.edge_pixels << " edge px, core " << t.unexplained_core << ")";
+          << t.edge_pixels << " edge px, core " << t.unexplained_core << ", " << t.displaced << " displaced)";
     }
   }
 }
@@ -414,8 +431,11 @@ TEST(PerLightDeclarations, AnEntryReachesItsLightAndBuysNothing) {
 }
 
 // Directional light over flat ground (acne's home), a sun 8 degrees up (grazing), a slab on the ground
-// (contact shadows: peter-panning), a point light's cube over a sphere's whole shadow. CTest runs
-// these four; SHADOWREF_GRID_SCENES (comma-separated catalogue names) runs the grid on others by hand,
+// (contact shadows: peter-panning), a point light's cube over a sphere's whole shadow, a box whose
+// one-pixel shift changes few decided pixels (cornell_box: below the unexplained bound under every
+// declaration, caught as displaced), 600 m of ground under one map (sun_horizon: its control's own
+// staircases beside every mutant), the camera at the light (camera_at_light: the known gaps of the
+// second kind). CTest runs these seven; SHADOWREF_GRID_SCENES (comma-separated catalogue names) runs the grid on others by hand,
 // e.g. the whole catalogue, as docs/tolerance-model.md records.
 std::vector<const char*> grid_scenes() {
   // Filled once (gtest may ask again), and never grown after: the names' pointers stay valid.
@@ -433,7 +453,8 @@ std::vector<const char*> grid_scenes() {
   std::vector<const char*> out;
   for (const std::string& n : names) out.push_back(n.c_str());
   if (!out.empty()) return out;
-  return {"directional_light", "grazing_light", "contact_shadow", "ground_sphere"};
+  return {"directional_light", "grazing_light", "contact_shadow", "ground_sphere", "cornell_box", "sun_horizon",
+          "camera_at_light"};
 }
 INSTANTIATE_TEST_SUITE_P(Scenes, DeclarationGrid, ::testing::ValuesIn(grid_scenes()),
                          [](const ::testing::TestParamInfo<const char*>& i) { return std::string(i.param); });

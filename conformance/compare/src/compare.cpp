@@ -71,6 +71,7 @@ MaskMetrics& MaskMetrics::operator+=(const MaskMetrics& o) {
   unexplained_core += o.unexplained_core;
   edge_pixels += o.edge_pixels;
   invariant_pixels += o.invariant_pixels;
+  displaced += o.displaced;
   return *this;
 }
 
@@ -324,6 +325,13 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
                        "and 128 (no surface), e.g. " + std::to_string(cand[first]) + " at (" +
                        std::to_string(first % static_cast<std::size_t>(w)) + ", " + std::to_string(first / static_cast<std::size_t>(w)) + ")");
   }
+  if (!unexplained.empty() && static_cast<double>(unexplained.size()) <= options.displacement_up_to * static_cast<double>(edges)) {
+    std::vector<std::size_t> shadow_errors;  // coverage has its own count
+    for (const std::size_t i : unexplained)
+      if (codes[i] != kCoverage) shadow_errors.push_back(i);
+    out.displacement = find_displacement(reference, decided, candidate, options.no_cast_shadow_invariant, shadow_errors);
+    m.displaced = out.displacement.fixed_unexplained;
+  }
   if (m.wrong) regions_listed(codes.get(), wrong, w, h, m);
   return out;
 }
@@ -337,7 +345,7 @@ const char* to_string(Verdict v) {
   return "?";
 }
 
-Judgement judge(const MaskMetrics& m, const Threshold& t) {
+Judgement judge(const MaskMetrics& m, const Threshold& t, const std::string& displaced_how) {
   Judgement j;
   const auto raise = [&](Verdict v, std::string why) {
     j.verdict = std::max(j.verdict, v);
@@ -350,6 +358,11 @@ Judgement judge(const MaskMetrics& m, const Threshold& t) {
   if (m.unexplained_ratio() > t.unexplained_fail)
     raise(Verdict::Fail, "unexplained wrong " + std::to_string(m.unexplained) + " px = " + percent(m.unexplained_ratio()) +
                              " of " + edges + " > " + percent(t.unexplained_fail) + " (fail bound, " + std::string(t.name) + ")");
+  if (static_cast<double>(m.displaced) > kDisplaced.displaced_fail * static_cast<double>(std::max<std::size_t>(m.edge_pixels, 1)))
+    raise(Verdict::Fail, std::to_string(m.displaced) + " unexplained px = " +
+                             percent(ratio_to_edges(m.displaced, m.edge_pixels)) + " of " + edges +
+                             " come right when the shadows are moved back" + (displaced_how.empty() ? "" : " (" + displaced_how + ")") +
+                             ": displaced shadows > " + percent(kDisplaced.displaced_fail) + " (fail bound)");
   if (m.explained_ratio() > t.explained_warn)
     raise(Verdict::QualityWarning, "explained wrong " + std::to_string(m.explained_texel + m.explained_bias) + " px = " +
                                        percent(m.explained_ratio()) + " of " + edges + " > " + percent(t.explained_warn) +
@@ -388,6 +401,7 @@ FolderComparison compare_folders(const std::filesystem::path& reference_dir,
     const Image8 cand = read_image8(candidate_dir / name, 1, ref.width, ref.height);
     CompareOptions o = options;
     if (!threshold.bands) o.explain = nullptr;  // exact techniques: no texel or bias band
+    o.displacement_up_to = threshold.unexplained_fail;
     out.per_light.push_back(compare_mask(ref, dec, cand, (candidate_dir / name).string(), i, o));
     out.total += out.per_light.back().metrics;
     // Soft shadows: the lit fraction of a light with an area.
@@ -409,7 +423,14 @@ FolderComparison compare_folders(const std::filesystem::path& reference_dir,
     if (!out.visibility_total) out.visibility_total = VisibilityMetrics{};
     *out.visibility_total += out.visibility.back()->metrics;
   }
-  out.judgement = judge(out.total, threshold);
+  std::string displaced_how;  // each light's move, where one was found
+  for (std::size_t i = 0; i < out.per_light.size(); ++i) {
+    const Displacement& d = out.per_light[i].displacement;
+    if (d.fixed_unexplained == 0) continue;
+    displaced_how += (displaced_how.empty() ? "" : "; ") + (out.masks.size() > 1 ? out.masks[i] + ": " : std::string()) +
+                     describe(d.move);
+  }
+  out.judgement = judge(out.total, threshold, displaced_how);
   if (out.visibility_total) judge_visibility(*out.visibility_total, out.judgement);
   return out;
 }

@@ -26,7 +26,8 @@ nlohmann::json to_json(const compare::MaskMetrics& m) {
           {"edge_pixels", m.edge_pixels},
           {"unexplained_percent_of_edges", 100.0 * m.unexplained_ratio()},
           {"explained_percent_of_edges", 100.0 * m.explained_ratio()},
-          {"invariant_pixels", m.invariant_pixels}};
+          {"invariant_pixels", m.invariant_pixels},
+          {"displaced", m.displaced}};
 }
 
 nlohmann::json to_json(const compare::VisibilityMetrics& m) {
@@ -60,6 +61,8 @@ nlohmann::json to_json(const compare::Threshold& t) {
           {"unexplained_fail_percent_of_edges", 100.0 * t.unexplained_fail},
           {"explained_warn_percent_of_edges", 100.0 * t.explained_warn},
           {"unexplained_core_fail", 0},
+          {"displaced_fail_percent_of_edges", 100.0 * compare::kDisplaced.displaced_fail},
+          {"displaced_why", compare::kDisplaced.why},
           {"why", t.why}};
 }
 
@@ -69,6 +72,15 @@ nlohmann::json to_json(const compare::FolderComparison& c) {
   {
     masks.push_back({{"mask", c.masks[i]}, {"metrics", to_json(c.per_light[i].metrics)}});
     if (i < c.visibility.size() && c.visibility[i]) masks.back()["visibility"] = to_json(c.visibility[i]->metrics);
+    const compare::Displacement& d = c.per_light[i].displacement;
+    if (d.fixed_unexplained > 0)
+      masks.back()["displacement"] = {{"move", compare::describe(d.move)},
+                                      {"dx", d.move.dx},
+                                      {"dy", d.move.dy},
+                                      {"grow", d.move.grow},
+                                      {"unexplained_made_right", d.fixed_unexplained},
+                                      {"shadow_errors", d.wrong_before},
+                                      {"shadow_errors_moved_back", d.wrong_after}};
   }
   nlohmann::json j;
   j["verdict"] = compare::to_string(c.judgement.verdict);

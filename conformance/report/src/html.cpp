@@ -219,7 +219,8 @@ void metrics_table(std::ostringstream& h, const json& m) {
   row("coverage", str(m, "coverage"));
   row("unexplained", str(m, "unexplained") + " px (" + num(m, "unexplained_percent_of_edges") + " % of " +
                          str(m, "edge_pixels") + " edge px), core " + str(m, "unexplained_core") + " px, of which " +
-                         str(m, "unexplained_acne") + " self-shadowing (acne)");
+                         str(m, "unexplained_acne") + " self-shadowing (acne) and " + str(m, "displaced") +
+                         " right once the shadows are moved back (displaced)");
   row("explained", str(m, "explained_texel") + " texel footprint + " + str(m, "explained_bias") + " depth bias (" +
                        num(m, "explained_percent_of_edges") + " % of edge px)");
   row("largest region", str(m, "largest_region") + " px (" + str(m, "regions") + " regions)");

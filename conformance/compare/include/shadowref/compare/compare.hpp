@@ -32,6 +32,7 @@
 #include "shadowref/outputs/cause.hpp"
 #include "shadowref/outputs/errors.hpp"
 #include "shadowref/outputs/image_io.hpp"
+#include "shadowref/compare/displacement.hpp"
 #include "shadowref/compare/thresholds.hpp"
 #include "shadowref/compare/visibility.hpp"
 
@@ -67,6 +68,7 @@ struct MaskMetrics {
   std::size_t edge_pixels = 0;      // reference pixels with a 4-neighbour of another class (lit,
                                     // shadowed, no surface): the length of every boundary, in pixels
   std::size_t invariant_pixels = 0; // undecided pixels judged because the scene's invariant holds there
+  std::size_t displaced = 0;        // unexplained pixels right once the mask's shadows are moved back (displacement.hpp)
 
   // wrong / decided_surface (0 when nothing is decided).
   double wrong_fraction() const;
@@ -92,6 +94,7 @@ std::size_t count_cores(const std::vector<std::uint8_t>& flagged, int w, int h, 
 
 struct MaskComparison {
   MaskMetrics metrics;
+  Displacement displacement;  // looked for where options.displacement_up_to allows (metrics.displaced: its count)
   Image8 error;  // RGB: wrong pixels by kind over the dimmed reference (colours in kErrorColours)
 };
 
@@ -125,6 +128,10 @@ struct CompareOptions {
   std::vector<VisibilityBounds> visibility;
   const VisibilityExplainer* explain_visibility = nullptr;
   const VisibilityTexelShift* visibility_texel_shift = nullptr;  // null: the means get no texel shift
+  // Displaced shadows (displacement.hpp) are looked for where the unexplained pixels are at most
+  // this share of the edge pixels (beyond the fail bound they change no verdict); negative: never.
+  // compare_folders sets the threshold's fail bound.
+  double displacement_up_to = -1;
 };
 
 // Compares one mask. All three images are 1-channel and of the same size; throws
@@ -140,9 +147,10 @@ struct Judgement {
   std::vector<std::string> reasons;  // one line per bound exceeded, with the numbers; empty on pass
 };
 
-// The verdict of `metrics` against `threshold` (thresholds.hpp): FAIL beyond a fail bound, a
-// quality warning beyond a pass bound, PASS otherwise.
-Judgement judge(const MaskMetrics& metrics, const Threshold& threshold);
+// The verdict of `metrics` against `threshold` (thresholds.hpp; displaced shadows against
+// kDisplaced, `displaced_how` saying the moves in its reason): FAIL beyond a fail bound, a quality
+// warning beyond a pass bound, PASS otherwise.
+Judgement judge(const MaskMetrics& metrics, const Threshold& threshold, const std::string& displaced_how = "");
 
 // A reference folder (mask.png or mask_<i>.png, decided.png or decided_<i>.png) against a
 // candidate folder with the same mask names.
