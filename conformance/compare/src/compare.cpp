@@ -326,10 +326,11 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
                        std::to_string(first % static_cast<std::size_t>(w)) + ", " + std::to_string(first / static_cast<std::size_t>(w)) + ")");
   }
   if (!unexplained.empty() && static_cast<double>(unexplained.size()) <= options.displacement_up_to * static_cast<double>(edges)) {
-    std::vector<std::size_t> shadow_errors;  // coverage has its own count
+    std::vector<std::size_t> unexplained_shadow;  // coverage has its own count
     for (const std::size_t i : unexplained)
-      if (codes[i] != kCoverage) shadow_errors.push_back(i);
-    out.displacement = find_displacement(reference, decided, candidate, options.no_cast_shadow_invariant, shadow_errors);
+      if (codes[i] != kCoverage) unexplained_shadow.push_back(i);
+    out.displacement = find_displacement(reference, decided, candidate, options.no_cast_shadow_invariant, unexplained_shadow,
+                                         m.false_shadow + m.false_light);
     m.displaced = out.displacement.fixed_unexplained;
   }
   if (m.wrong) regions_listed(codes.get(), wrong, w, h, m);

@@ -1,77 +1,88 @@
 // displacement.cpp — displaced shadows (displacement.hpp): each screen-space move undone on the
-// candidate's classes, its shadow errors counted on the judged pixels, its unexplained pixels
-// checked one by one.
+// candidate's mask, its unexplained pixels checked one by one, the change in its shadow errors
+// counted on the band where a move can change anything.
 #include "shadowref/compare/displacement.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
+#include <cstdlib>
+#include <memory>
+#include <new>
 
 namespace shadowref::compare {
 namespace {
 
-enum Class : std::uint8_t { kShadowed = 0, kNoSurface = 1, kLit = 2 };
-inline std::uint8_t classify(std::uint8_t v) { return static_cast<std::uint8_t>((v >= 64) + (v >= 192)); }
+// The mask's three values (outputs/image.hpp); the comparison refuses any other before asking.
+constexpr std::uint8_t kShadowed = outputs::kMaskShadowed, kNoSurface = outputs::kMaskNoSurface, kLit = outputs::kMaskLit;
+// A reference value as the nearest of the three, as compare.cpp classifies it.
+inline std::uint8_t nearest(std::uint8_t v) { return v < 64 ? kShadowed : (v < 192 ? kNoSurface : kLit); }
 
-std::vector<std::uint8_t> classes(const outputs::Image8& m) {
-  std::vector<std::uint8_t> c(m.pixels.size());
-  for (std::size_t i = 0; i < c.size(); ++i) c[i] = classify(m.pixels[i]);
-  return c;
+// The candidate's class at pixel i = (x, y) with `move` undone: translated back by (dx, dy), or its
+// shadows shrunk back (grow > 0) or grown back (grow < 0) by |grow| px within a square — a surface
+// pixel takes `into` where any pixel within |grow| px has it. A translated pixel keeps its own
+// class where it or the pixel it would take from is no surface.
+struct Undo {
+  const std::vector<std::uint8_t>& cand;  // the candidate's mask values
+  int w, h;
+  std::uint8_t operator()(const ShadowMove& m, std::size_t i) const {
+    const std::uint8_t c = cand[i];
+    if (c == kNoSurface) return c;
+    const int x = static_cast<int>(i % static_cast<std::size_t>(w)), y = static_cast<int>(i / static_cast<std::size_t>(w));
+    if (m.grow == 0) {
+      const int u = x + m.dx, v = y + m.dy;
+      if (u < 0 || v < 0 || u >= w || v >= h) return c;
+      const std::uint8_t from = cand[static_cast<std::size_t>(v) * static_cast<std::size_t>(w) + static_cast<std::size_t>(u)];
+      return from == kNoSurface ? c : from;
+    }
+    // Grown shadows are undone by growing the light, shrunk ones by growing the shadow.
+    const std::uint8_t into = m.grow > 0 ? kLit : kShadowed;
+    if (c == into) return c;
+    const int k = std::abs(m.grow);
+    for (int v = std::max(0, y - k); v <= std::min(h - 1, y + k); ++v)
+      for (int u = std::max(0, x - k); u <= std::min(w - 1, x + k); ++u)
+        if (cand[static_cast<std::size_t>(v) * static_cast<std::size_t>(w) + static_cast<std::size_t>(u)] == into) return into;
+    return c;
+  }
+};
+
+// Whether class `c` at pixel i is a judged shadow error (lit against shadowed; judged: decided, or,
+// under the scene's invariant, a false shadow where the reference is lit).
+inline bool shadow_error(const std::vector<std::uint8_t>& ref, const outputs::Image8& decided, bool invariant,
+                         std::size_t i, std::uint8_t c) {
+  const std::uint8_t r = nearest(ref[i]);
+  if (r == kNoSurface || c == kNoSurface || r == c) return false;
+  return decided.pixels[i] >= 128 || (invariant && r == kLit && c == kShadowed);
 }
 
-// The candidate's classes with `move` undone: translated back by (dx, dy), or its shadows shrunk
-// back (grow > 0) or grown back (grow < 0) by |grow| px within a square — a surface pixel takes
-// `into` where any surface pixel within |grow| px has it (separable: rows, then columns).
-void undo(const std::vector<std::uint8_t>& cand, int w, int h, const ShadowMove& move, std::vector<std::uint8_t>& out) {
-  out = cand;
-  if (move.grow == 0) {
-    for (int y = 0; y < h; ++y) {
-      const int v = y + move.dy;
-      if (v < 0 || v >= h) continue;
-      for (int x = 0; x < w; ++x) {
-        const int u = x + move.dx;
-        if (u < 0 || u >= w) continue;
-        const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
-        const std::uint8_t from = cand[static_cast<std::size_t>(v) * static_cast<std::size_t>(w) + static_cast<std::size_t>(u)];
-        if (cand[i] != kNoSurface && from != kNoSurface) out[i] = from;
+// The pixels a move of at most kReach px can change: those within kReach px (a square) of a pair of
+// 4-neighbours of different values. Everywhere else the moved mask is the mask, so each move is
+// judged on this band alone. One pass over the image finds the pairs; the band is marked around
+// them only (a calloc'd image: its untouched pages cost nothing).
+constexpr int kReach = 2;
+std::vector<std::size_t> near_boundaries(const std::vector<std::uint8_t>& cand, int w, int h) {
+  const std::size_t stride = static_cast<std::size_t>(w);
+  std::vector<std::size_t> edges;
+  for (int y = 0; y < h; ++y) {
+    const std::uint8_t* row = cand.data() + static_cast<std::size_t>(y) * stride;
+    const std::uint8_t* below = y + 1 < h ? row + stride : row;
+    for (int x = 0; x < w; ++x)
+      if ((x + 1 < w && row[x] != row[x + 1]) || row[x] != below[x])
+        edges.push_back(static_cast<std::size_t>(y) * stride + static_cast<std::size_t>(x));
+  }
+  std::unique_ptr<std::uint8_t, void (*)(void*)> marked(static_cast<std::uint8_t*>(std::calloc(cand.size() + 1, 1)), std::free);
+  if (!marked) throw std::bad_alloc();
+  std::vector<std::size_t> band;
+  for (const std::size_t e : edges) {
+    // The pair's other pixel is right of or below e: the square from e reaches it, one more px.
+    const int x = static_cast<int>(e % stride), y = static_cast<int>(e / stride);
+    for (int v = std::max(0, y - kReach); v <= std::min(h - 1, y + kReach + 1); ++v)
+      for (int u = std::max(0, x - kReach); u <= std::min(w - 1, x + kReach + 1); ++u) {
+        const std::size_t i = static_cast<std::size_t>(v) * stride + static_cast<std::size_t>(u);
+        if (!marked.get()[i]) marked.get()[i] = 1, band.push_back(i);
       }
-    }
-    return;
   }
-  // Grown shadows are undone by growing the light, shrunk ones by growing the shadow.
-  const std::uint8_t into = move.grow > 0 ? kLit : kShadowed;
-  const int k = std::abs(move.grow);
-  const std::size_t n = cand.size();
-  std::vector<std::uint8_t> has(n), rows(n, 0);
-  for (std::size_t i = 0; i < n; ++i) has[i] = cand[i] == into;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      std::uint8_t any = 0;
-      for (int u = std::max(0, x - k); u <= std::min(w - 1, x + k) && !any; ++u)
-        any = has[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(u)];
-      rows[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)] = any;
-    }
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
-      if (cand[i] == kNoSurface || cand[i] == into) continue;
-      bool any = false;
-      for (int v = std::max(0, y - k); v <= std::min(h - 1, y + k) && !any; ++v)
-        any = rows[static_cast<std::size_t>(v) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)] != 0;
-      if (any) out[i] = into;
-    }
-}
-
-// Shadow errors (lit against shadowed) of `cand` on the judged pixels.
-std::size_t shadow_errors(const std::vector<std::uint8_t>& ref, const outputs::Image8& decided,
-                          const std::vector<std::uint8_t>& cand, bool invariant) {
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < ref.size(); ++i) {
-    const std::uint8_t r = ref[i], c = cand[i];
-    if (r == kNoSurface || c == kNoSurface || r == c) continue;
-    const bool judged = decided.pixels[i] >= 128 || (invariant && r == kLit && c == kShadowed);
-    n += judged;
-  }
-  return n;
+  return band;
 }
 
 }  // namespace
@@ -92,27 +103,35 @@ std::string describe(const ShadowMove& m) {
 
 Displacement find_displacement(const outputs::Image8& reference, const outputs::Image8& decided,
                                const outputs::Image8& candidate, bool invariant,
-                               const std::vector<std::size_t>& unexplained) {
+                               const std::vector<std::size_t>& unexplained, std::size_t shadow_errors) {
   Displacement best;
-  const std::vector<std::uint8_t> ref = classes(reference), cand = classes(candidate);
-  best.wrong_before = best.wrong_after = shadow_errors(ref, decided, cand, invariant);
+  best.wrong_before = best.wrong_after = shadow_errors;
   if (unexplained.empty()) return best;
+  const std::vector<std::uint8_t>& ref = reference.pixels;
+  const std::vector<std::uint8_t>& cand = candidate.pixels;
+  const Undo undo{cand, reference.width, reference.height};
+  const std::vector<std::size_t> band = near_boundaries(cand, reference.width, reference.height);
   std::vector<ShadowMove> moves;
-  for (int dy = -2; dy <= 2; ++dy)
-    for (int dx = -2; dx <= 2; ++dx)
+  for (int dy = -kReach; dy <= kReach; ++dy)
+    for (int dx = -kReach; dx <= kReach; ++dx)
       if (dx != 0 || dy != 0) moves.push_back({dx, dy, 0});
   for (const int g : {1, 2, -1, -2}) moves.push_back({0, 0, g});
-  std::vector<std::uint8_t> moved;
   for (const ShadowMove& m : moves) {
-    undo(cand, reference.width, reference.height, m, moved);
     std::size_t fixed = 0;
-    for (const std::size_t i : unexplained) fixed += moved[i] == ref[i];
+    for (const std::size_t i : unexplained) fixed += undo(m, i) == nearest(ref[i]);
     if (fixed <= best.fixed_unexplained) continue;
-    const std::size_t after = shadow_errors(ref, decided, moved, invariant);
-    if (after >= best.wrong_before) continue;  // the mask moved back agrees no better
+    // The moved mask's shadow errors: the mask's, changed within the band only.
+    std::ptrdiff_t change = 0;
+    for (const std::size_t i : band) {
+      const std::uint8_t moved = undo(m, i);
+      if (moved != cand[i])
+        change += static_cast<std::ptrdiff_t>(shadow_error(ref, decided, invariant, i, moved)) -
+                  static_cast<std::ptrdiff_t>(shadow_error(ref, decided, invariant, i, cand[i]));
+    }
+    if (change >= 0) continue;  // the mask moved back agrees no better
     best.move = m;
     best.fixed_unexplained = fixed;
-    best.wrong_after = after;
+    best.wrong_after = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(best.wrong_before) + change);
   }
   return best;
 }

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <random>
 #include <string>
 
 #include "shadowref/compare/compare.hpp"
@@ -111,6 +113,93 @@ TEST(Displacement, ExplainingLessNeverImprovesTheVerdict) {
   const MaskComparison none = compared(ref, cand, nullptr);
   EXPECT_GT(none.metrics.unexplained_ratio(), kShadowMap.unexplained_fail);
   EXPECT_EQ(judge(none.metrics, kShadowMap).verdict, Verdict::Fail);
+}
+
+// The plain definition, every move on the whole image (displacement.cpp judges each move on the
+// band near boundaries only): the same move, count and errors on random masks.
+TEST(Displacement, TheBandEqualsThePlainDefinition) {
+  std::mt19937 rng(7);
+  int found = 0;  // rounds with a displacement: the comparison is not of zeros
+  for (int round = 0; round < 40; ++round) {
+    const int w = 24 + round % 7, h = 20 + round % 5;
+    const auto random_mask = [&](int density) {
+      Image8 m{w, h, 1, std::vector<std::uint8_t>(static_cast<std::size_t>(w * h), outputs::kMaskLit)};
+      // Blobs: a few discs of shadow and a little background, so that boundaries are runs.
+      for (int b = 0; b < 3; ++b) {
+        const int cx = static_cast<int>(rng() % static_cast<unsigned>(w)), cy = static_cast<int>(rng() % static_cast<unsigned>(h));
+        const int r = 2 + static_cast<int>(rng() % 5);
+        for (int y = 0; y < h; ++y)
+          for (int x = 0; x < w; ++x)
+            if ((x - cx) * (x - cx) + (y - cy) * (y - cy) < r * r) m.pixels[static_cast<std::size_t>(y * w + x)] = 0;
+      }
+      for (std::uint8_t& v : m.pixels)
+        if (static_cast<int>(rng() % 100) < density) v = rng() % 4 == 0 ? outputs::kMaskNoSurface : (v ? 0 : 255);
+      return m;
+    };
+    const Image8 ref = random_mask(0), cand = random_mask(3);
+    Image8 dec{w, h, 1, std::vector<std::uint8_t>(static_cast<std::size_t>(w * h), 255)};
+    for (std::uint8_t& v : dec.pixels)
+      if (rng() % 8 == 0) v = 0;
+    const bool invariant = round % 2 == 1;
+    const auto cls = [](std::uint8_t v) { return v < 64 ? 0 : (v < 192 ? 1 : 2); };
+    std::vector<std::size_t> unexplained;
+    for (std::size_t i = 0; i < ref.pixels.size(); ++i)
+      if (cls(ref.pixels[i]) != 1 && cls(cand.pixels[i]) != 1 && cls(ref.pixels[i]) != cls(cand.pixels[i]) && rng() % 3)
+        unexplained.push_back(i);
+    // The plain definition.
+    const auto undone = [&](const ShadowMove& m) {
+      std::vector<int> out(cand.pixels.size());
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          const std::size_t i = static_cast<std::size_t>(y * w + x);
+          int c = cls(cand.pixels[i]);
+          if (c != 1 && m.grow == 0) {
+            const int u = x + m.dx, v = y + m.dy;
+            if (u >= 0 && v >= 0 && u < w && v < h && cls(cand.pixels[static_cast<std::size_t>(v * w + u)]) != 1)
+              c = cls(cand.pixels[static_cast<std::size_t>(v * w + u)]);
+          } else if (c != 1) {
+            const int into = m.grow > 0 ? 2 : 0;
+            for (int v = y - std::abs(m.grow); v <= y + std::abs(m.grow); ++v)
+              for (int u = x - std::abs(m.grow); u <= x + std::abs(m.grow); ++u)
+                if (u >= 0 && v >= 0 && u < w && v < h && cls(cand.pixels[static_cast<std::size_t>(v * w + u)]) == into) c = into;
+          }
+          out[i] = c;
+        }
+      return out;
+    };
+    const auto errors = [&](const std::vector<int>& c) {
+      std::size_t n = 0;
+      for (std::size_t i = 0; i < c.size(); ++i) {
+        const int r = cls(ref.pixels[i]);
+        if (r == 1 || c[i] == 1 || r == c[i]) continue;
+        n += dec.pixels[i] >= 128 || (invariant && r == 2 && c[i] == 0);
+      }
+      return n;
+    };
+    std::vector<int> as_is(cand.pixels.size());
+    for (std::size_t i = 0; i < as_is.size(); ++i) as_is[i] = cls(cand.pixels[i]);
+    Displacement plain;
+    plain.wrong_before = plain.wrong_after = errors(as_is);
+    std::vector<ShadowMove> moves;
+    for (int dy = -2; dy <= 2; ++dy)
+      for (int dx = -2; dx <= 2; ++dx)
+        if (dx != 0 || dy != 0) moves.push_back({dx, dy, 0});
+    for (const int g : {1, 2, -1, -2}) moves.push_back({0, 0, g});
+    for (const ShadowMove& m : moves) {
+      const std::vector<int> moved = undone(m);
+      std::size_t fixed = 0;
+      for (const std::size_t i : unexplained) fixed += moved[i] == cls(ref.pixels[i]);
+      const std::size_t after = errors(moved);
+      if (fixed > plain.fixed_unexplained && after < plain.wrong_before) plain = {m, fixed, plain.wrong_before, after};
+    }
+    const Displacement fast = find_displacement(ref, dec, cand, invariant, unexplained, plain.wrong_before);
+    found += plain.fixed_unexplained > 0;
+    EXPECT_EQ(fast.fixed_unexplained, plain.fixed_unexplained) << "round " << round;
+    EXPECT_EQ(fast.wrong_before, plain.wrong_before) << "round " << round;
+    EXPECT_EQ(fast.wrong_after, plain.wrong_after) << "round " << round;
+    EXPECT_EQ(describe(fast.move), describe(plain.move)) << "round " << round;
+  }
+  EXPECT_GE(found, 10);
 }
 
 }  // namespace
