@@ -65,8 +65,8 @@ void BM_MaskCompare_Ours(benchmark::State& state) {
 }
 BENCHMARK(BM_MaskCompare_Ours)->Arg(1)->ArgName("threads")->UseRealTime()->Unit(benchmark::kMillisecond)->Setup(shadowref::bench::start_peak_rss);
 
-// The same comparison with the displaced-shadow search on (displacement.hpp: as the judge runs it
-// below the fail bound; here on every one of the shift's unexplained pixels): what the search adds.
+// The same comparison with the displaced-shadow search on (displacement.hpp), as compare_folders
+// runs it: what the search adds.
 void BM_MaskCompare_Displaced(benchmark::State& state) {
   const Pair& p = pair();
   cmp::CompareOptions o;

@@ -34,11 +34,12 @@ Image8 scene(int dx, int grow = 0) {
 
 const Image8 kDecided{kSize, kSize, 1, std::vector<std::uint8_t>(kSize * kSize, 255)};
 
-// As the judge compares: the displaced count looked for below the shadow-map fail bound.
+// As compare_folders compares: the displaced count looked for up to as many unexplained pixels as
+// edge pixels.
 MaskComparison compared(const Image8& ref, const Image8& cand, const Explainer* explain) {
   CompareOptions o;
   o.explain = explain;
-  o.displacement_up_to = kShadowMap.unexplained_fail;
+  o.displacement_up_to = 1.0;
   return compare_mask(ref, kDecided, cand, "mask", 0, o);
 }
 
@@ -102,16 +103,16 @@ TEST(Displacement, AStaircaseThatLeansBothWaysIsNotDisplaced) {
 
 TEST(Displacement, ExplainingLessNeverImprovesTheVerdict) {
   // Verdicts along ever smaller explanations: PASS (all explained), FAIL (displaced), FAIL (beyond
-  // the unexplained bound, where the count is not looked for).
+  // the unexplained bound, and displaced).
   const Image8 ref = scene(0), cand = scene(1);
   const MaskComparison all = compared(ref, cand, &kAll), most = compared(ref, cand, &kMostly);
   EXPECT_EQ(all.metrics.displaced, 0u) << "nothing unexplained, nothing displaced";
   EXPECT_EQ(judge(all.metrics, kShadowMap).verdict, Verdict::Pass);
   EXPECT_GT(most.metrics.displaced, 0u);
   EXPECT_EQ(judge(most.metrics, kShadowMap).verdict, Verdict::Fail);
-  // Beyond the fail bound the count is not looked for (the verdict is a FAIL already).
   const MaskComparison none = compared(ref, cand, nullptr);
   EXPECT_GT(none.metrics.unexplained_ratio(), kShadowMap.unexplained_fail);
+  EXPECT_GE(none.metrics.displaced, most.metrics.displaced);
   EXPECT_EQ(judge(none.metrics, kShadowMap).verdict, Verdict::Fail);
 }
 

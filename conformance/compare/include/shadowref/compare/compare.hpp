@@ -129,8 +129,8 @@ struct CompareOptions {
   const VisibilityExplainer* explain_visibility = nullptr;
   const VisibilityTexelShift* visibility_texel_shift = nullptr;  // null: the means get no texel shift
   // Displaced shadows (displacement.hpp) are looked for where the unexplained pixels are at most
-  // this share of the edge pixels (beyond the fail bound they change no verdict); negative: never.
-  // compare_folders sets the threshold's fail bound.
+  // this share of the edge pixels (a mask wrong beyond it FAILs anyway); negative: never.
+  // compare_folders sets 1.
   double displacement_up_to = -1;
 };
 
