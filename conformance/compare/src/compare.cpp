@@ -18,7 +18,9 @@ namespace {
 enum Class : std::uint8_t { kShadowed = 0, kNoSurface = 1, kLit = 2 };
 
 // Nearest of 0 / 128 / 255: 0, 1 or 2 thresholds passed (branchless, so that loops over it vectorise).
-inline Class classify(std::uint8_t v) { return static_cast<Class>((v >= 64) + (v >= 192)); }
+inline Class classify(std::uint8_t v) {
+  return static_cast<Class>((v >= outputs::kMaskNoSurfaceFrom) + (v >= outputs::kMaskLitFrom));
+}
 inline bool exact(std::uint8_t v) { return outputs::is_mask_value(v); }
 
 // Wrong-pixel codes in the scratch image.

@@ -15,8 +15,6 @@ namespace {
 
 // The mask's three values (outputs/image.hpp); the comparison refuses any other before asking.
 constexpr std::uint8_t kShadowed = outputs::kMaskShadowed, kNoSurface = outputs::kMaskNoSurface, kLit = outputs::kMaskLit;
-// A reference value as the nearest of the three, as compare.cpp classifies it.
-inline std::uint8_t nearest(std::uint8_t v) { return v < 64 ? kShadowed : (v < 192 ? kNoSurface : kLit); }
 
 // The candidate's class at pixel i = (x, y) with `move` undone: translated back by (dx, dy), or its
 // shadows shrunk back (grow > 0) or grown back (grow < 0) by |grow| px within a square — a surface
@@ -50,7 +48,7 @@ struct Undo {
 // under the scene's invariant, a false shadow where the reference is lit).
 inline bool shadow_error(const std::vector<std::uint8_t>& ref, const outputs::Image8& decided, bool invariant,
                          std::size_t i, std::uint8_t c) {
-  const std::uint8_t r = nearest(ref[i]);
+  const std::uint8_t r = outputs::nearest_mask_value(ref[i]);
   if (r == kNoSurface || c == kNoSurface || r == c) return false;
   return decided.pixels[i] >= 128 || (invariant && r == kLit && c == kShadowed);
 }
@@ -118,7 +116,7 @@ Displacement find_displacement(const outputs::Image8& reference, const outputs::
   for (const int g : {1, 2, -1, -2}) moves.push_back({0, 0, g});
   for (const ShadowMove& m : moves) {
     std::size_t fixed = 0;
-    for (const std::size_t i : unexplained) fixed += undo(m, i) == nearest(ref[i]);
+    for (const std::size_t i : unexplained) fixed += undo(m, i) == outputs::nearest_mask_value(ref[i]);
     if (fixed <= best.fixed_unexplained) continue;
     // The moved mask's shadow errors: the mask's, changed within the band only.
     std::ptrdiff_t change = 0;

@@ -19,6 +19,14 @@ inline constexpr std::uint8_t kMaskNoSurface = 128;
 // True for the three values a mask may hold.
 constexpr bool is_mask_value(std::uint8_t v) { return v == kMaskLit || v == kMaskShadowed || v == kMaskNoSurface; }
 
+// A grey value read as the nearest of the three (a reference's mask, or a candidate's before its
+// values are checked): below kMaskNoSurfaceFrom shadowed, from kMaskLitFrom lit, no surface between.
+inline constexpr std::uint8_t kMaskNoSurfaceFrom = 64;
+inline constexpr std::uint8_t kMaskLitFrom = 192;
+constexpr std::uint8_t nearest_mask_value(std::uint8_t v) {
+  return v < kMaskNoSurfaceFrom ? kMaskShadowed : (v < kMaskLitFrom ? kMaskNoSurface : kMaskLit);
+}
+
 struct Image8 {
   int width = 0;
   int height = 0;
