@@ -58,6 +58,10 @@ void write_candidate_json(const std::filesystem::path& dir, const Declaration& d
     j["slope_bias_texels"] = d.slope_bias_texels;
     j["constant_bias"] = d.constant_bias;
     j["light_views"] = d.light_views_from_pack ? "pack" : "own";
+    if (d.light_taps > 0) {
+      j["sampling"] = "random";
+      j["light_taps"] = d.light_taps;
+    }
   }
   std::ofstream out(dir / "candidate.json");
   out << j.dump(2) << "\n";

@@ -38,6 +38,7 @@ struct Declaration {
   double slope_bias_texels = 0;
   double constant_bias = 0;
   bool light_views_from_pack = false;
+  int light_taps = 0;  // > 0: a kernel of light_taps^2 taps drawn at random per pixel ("sampling": "random")
 };
 
 // Writes `dir`/candidate.json (convention gl). Shadow-map keys only for a shadow map.

@@ -17,7 +17,8 @@
 //     the harness (attached_shadow.hpp), all else white. The technique's ambient bias is (0, 1), so
 //     the shadow test alone scales the colour: 1 lit, 0 shadowed, greys where it filters.
 //   * Everything else is the technique's default: 1024² map, front faces culled in the depth pass,
-//     glPolygonOffset(-1, -1), bilinear depth compare; SoftShadowMap's softness 0.005.
+//     glPolygonOffset(-1, -1), bilinear depth compare; SoftShadowMap's softness 0.005 and its 64 taps
+//     of a random 3D texture (declared as a random kernel of 8 x 8 taps).
 //   * The control (shadowmap-no-offset): ShadowMap with setPolygonOffset(0, 0), its one public knob
 //     that the default runs' failures point at (ShadowMap::init applies the *negated* offset). Nothing
 //     else changes, so where the control passes and the default fails, the harness is not the cause.
@@ -53,6 +54,7 @@ using engines::Mat4;
 
 constexpr int kMapSize = 1024;            // ShadowMap's default texture size
 constexpr float kSoftnessWidth = 0.005f;  // SoftShadowMap's default, in shadow-texture coordinates
+constexpr int kSoftTaps = 8;              // SoftShadowMap's shader: SAMPLECOUNT 64 jittered taps, 8 per axis
 
 // OSG matrices are row-vector (v' = v M): the transpose of the canonical layout.
 osg::Matrixd to_osg(const Mat4& m) {
@@ -227,6 +229,9 @@ int main(int argc, char** argv) {
       // half a texel beyond the nearest one. SoftShadowMap adds its jittered disk of
       // softness x map size texels around the point.
       d.filter_radius_texels = 0.5 + (soft ? static_cast<double>(kSoftnessWidth) * kMapSize : 0.0);
+      // Its taps come from a 3D texture of random offsets indexed by the fragment's window position:
+      // a kernel drawn at random per pixel, 64 taps (8 per axis) where the first 8 disagree.
+      if (soft) d.light_taps = kSoftTaps;
       // glPolygonOffset(-1, -1) pulls the stored back faces toward the light: less allowance than
       // none, and the contract has no negative bias, so 0 is the honest declaration.
       d.slope_bias_texels = 0;

@@ -43,11 +43,11 @@ MaskComparison compared(const Image8& ref, const Image8& cand, const Explainer* 
   return compare_mask(ref, kDecided, cand, "mask", 0, o);
 }
 
-// Explains every wrong pixel left of x = 60 and on the stripes, as a coarse map's footprint would
+// Explains every wrong pixel left of x = 65 and on the stripes, as a coarse map's footprint would
 // most of them, leaving the disc's right rim unexplained: about 2 % of the edge pixels, below the
 // unexplained bound.
 const Explainer kMostly = [](std::size_t, int x, int y, bool) {
-  return x < 60 || y >= 70 ? Cause::TexelFootprint : Cause::Unexplained;
+  return x < 65 || y >= 70 ? Cause::TexelFootprint : Cause::Unexplained;
 };
 const Explainer kAll = [](std::size_t, int, int, bool) { return Cause::TexelFootprint; };
 

@@ -50,10 +50,16 @@ struct Threshold {
 //                      (half-texel offset, 128-texel maps).
 // A whole shadow shifted by one pixel (conformance/tests/blatant_errors_test.cpp) leaves 3.9 .. 6.2 %
 // unexplained (shadow_on_object 3.85, grazing_light 4.58, ground_sphere 4.85, directional_light
-// 5.65, spot_light 6.20, at 256²): the mildest error that must FAIL.
+// 5.65, spot_light 6.20, at 256²). Milder still (2026-11-26): sun_horizon's shadows all lit, declared
+// as a 512-texel map of the candidate's own views (texels a metre wide over 600 m of ground, which
+// explain most of its thin shadows lost, not the 75 px a correct map of that size keeps), 2.998 %
+// (conformance/tests/declaration_grid_test.cpp) — the mildest error that must FAIL. The engines'
+// correct renders (engines/verdicts.json, every PASS and WARN, 256²) reach 2.00 % (OpenSceneGraph
+// ShadowMap on beyond_light_and_below_receiver, 26 px of 1 300), ours 1.75 % (above).
 // Hence the fail bounds: 2 % for exact techniques (2.5 times their worst correct case, 1.5 times
-// below the mildest known limitation) and 3 % for shadow maps (1.7 times their worst correct case,
-// 1.3 times below the mildest one-pixel shift); thin margins on both sides, measured, not guessed.
+// below the mildest known limitation) and 2.5 % for shadow maps (1.25 times the engines' worst
+// correct case, 1.2 times below the mildest known error); thin margins on both sides, measured, not
+// guessed.
 // The quality bound of 50 % explained is 1.8 times the worst correct case.
 
 // Planar projection and stencil volumes rasterise exactly the triangles the reference intersects
@@ -69,24 +75,25 @@ inline constexpr Threshold kExactGeometry{
 // A shadow map samples occluder depth at texel centres and offsets it by its bias: its honest errors
 // are the texel-footprint and depth-bias bands, which the cause model explains (reference/causes.hpp).
 inline constexpr Threshold kShadowMap{
-    "shadow-map", true, 0.03, 0.5,
+    "shadow-map", true, 0.025, 0.5,
     "depth is sampled at texel centres and offset by the bias: errors within the declared texel footprint of a true "
     "boundary or within the declared bias are explained (measured: unexplained <= 1.75 % of the edge pixels at any "
-    "map size 512..4096 and resolution 256..1024, a sun 8 degrees up); FAIL beyond 3 % unexplained or any 5x5 "
-    "unexplained core (a one-pixel shift: >= 3.85 %; the mildest wrong variant: 30.8 %); WARN when explained errors "
+    "map size 512..4096 and resolution 256..1024, a sun 8 degrees up; engines' correct renders <= 2.00 %); FAIL "
+    "beyond 2.5 % unexplained or any 5x5 unexplained core (a scene's thin shadows all lit under a coarse map: 2.998 %; "
+    "a one-pixel shift: >= 3.85 %; the mildest wrong variant: 30.8 %); WARN when explained errors "
     "exceed half the edge pixels "
     "(measured <= 27.3 %)"};
 
 // PCF: the same model with the declared filter radius widening the footprint.
 inline constexpr Threshold kShadowMapPcf{
-    "shadow-map-pcf", true, 0.03, 0.5,
+    "shadow-map-pcf", true, 0.025, 0.5,
     "as shadow-map, with the footprint widened by the filter radius the candidate declares (filter_radius_texels, "
     "listed with its declaration; our 3x3 PCF box declares 1 texel)"};
 
 // PCSS and VSM: the mask as PCF's (the footprint widened by the declared filter radius), and the
 // visibility judged in visibility units where the light has an area (compare.hpp, compare_visibility).
 inline constexpr Threshold kSoftShadow{
-    "soft-shadow", true, 0.03, 0.5,
+    "soft-shadow", true, 0.025, 0.5,
     "the mask as shadow-map-pcf (the footprint widened by the declared filter radius); the lit fraction, where "
     "the light has an area, in visibility units: sampling's mean bound, with the map's texel error where it is "
     "exceeded (kPenumbra)"};
