@@ -98,7 +98,7 @@ void assert_no_shadow(const std::vector<std::uint8_t>& mask, const reference::Im
 // counted and printed instead of asserted, unless SHADOWREF_E2E_STRICT=1. History (the first report):
 //   * shadowmap, shadowmap-pcf, shadowmap-rgba8 showed shadowed pixels from the light's position
 //     when the scene's bounds did not fit in one light frustum of at most 160 degrees; fixed by the
-//     cube shadow map for such point lights (renderer/shadow_map.cpp, mathlib/include/shadowref/light_fit.hpp);
+//     cube shadow map for such point lights (renderer/shadow_maps/light_map.cpp, mathlib/include/shadowref/light_fit.hpp);
 //   * planar showed 1 to 5 pixels on casters' silhouettes: pixels whose sub-pixel samples see two
 //     surfaces (the projected shadow's outline is the caster's own outline seen from the light, up
 //     to float rounding), which the reference now calls undecided.

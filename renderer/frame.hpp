@@ -3,7 +3,10 @@
 // ambient pre-pass, one light's additive pass, mask read-back). Private to the renderer library.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
+#include <string_view>
 #include <span>
 #include <vector>
 
@@ -16,25 +19,45 @@
 
 namespace shadowref::renderer {
 
-// A linked program and the uniform locations the renderer sets (-1 when a program lacks one).
+// What the surface program's pass writes (u_mode; shaders.cpp generates its GLSL constants from these).
+enum class SurfaceMode { Ambient, Light, Mask };
+
+// How a light's map is laid out in its layers (u_layout): one view, a cube's six faces, or cascades.
+enum class MapLayout { Single, Cube, Cascades };
+
+// The shadow-map lookups (shadow_maps/lookup.hpp), each with a surface program of its own; None:
+// the surface program without a map.
+enum class Lookup { None, DepthCompare, Pcf, PackedRgba8, Pcss, Vsm };
+inline constexpr std::size_t kLookupCount = 6;
+
+// A linked program and the locations of the uniforms every scene pass sets (-1 when a program lacks
+// one); the others are looked up by name where they are set (at()).
 struct Program {
   GLuint id = 0;
-  GLint clip_from_world = -1, shadow_from_world = -1, colour = -1, mode = -1, shadow = -1, albedo = -1,
-        ambient = -1, light = -1, light_intensity = -1, spot = -1, shadow_map = -1, packed_map = -1,
-        texel = -1, offset_factor = -1, offset_units = -1, layout = -1, layer_from_world = -1, cascade_depth = -1,
-        cascade_begin = -1, cascade_end = -1, reversed = -1, lit_greater = -1, depth_map = -1, world_from_layer = -1,
-        inv_view_depth = -1, rect_u = -1, rect_v = -1, blocker_at_receiver = -1, moment_map = -1,
-        layer_inv_view_depth = -1, taps_in_own_face = -1, random_taps = -1, random_pcf_radius = -1,
-        normal_offset_texels = -1, light_position = -1, distance_range = -1;
+  GLint clip_from_world = -1, shadow_from_world = -1, colour = -1, mode = -1, albedo = -1, ambient = -1, light = -1,
+        light_intensity = -1, spot = -1;
+  GLint at(const GlFunctions& gl, const char* name) const { return gl.GetUniformLocation(id, name); }
 };
 
-struct Programs {
+// The renderer's programs (programs.cpp). The surface program of each lookup is compiled the first
+// time a render asks for it: a process that draws one technique pays for one.
+class Programs {
+ public:
+  explicit Programs(const GlFunctions& gl);  // compiles the depth passes' and the plain surface program
+  ~Programs();                                // the context must be current
+  Programs(const Programs&) = delete;
+  Programs& operator=(const Programs&) = delete;
+
   Program flat;           // kSceneVertex + kFlatFragment
-  Program surface;        // kSceneVertex + kSurfaceFragment
-  Program surface_soft;   // the same with PCSS compiled in (shaders::kPcssDefine): pcss and vsm only
   Program packed_depth;   // kSceneVertex + kPackedDepthFragment
   Program moments;        // kSceneVertex + kMomentsFragment: vsm's light pass
   Program distance;       // kSceneVertex + kDistanceFragment: a distance cube's light pass
+  // kSceneVertex + shaders::surface_fragment(lookup): Lookup::None for the passes without a map.
+  const Program& surface(Lookup lookup = Lookup::None) const;
+
+ private:
+  const GlFunctions& gl_;
+  mutable std::array<Program, kLookupCount> surface_{};  // id 0: not compiled yet
 };
 
 // Homogeneous vertices (vec4) and optional 32-bit triangle indices on the GPU.
@@ -62,74 +85,13 @@ class GpuMesh {
 void set_matrix(const GlFunctions& gl, GLint location, const Mat4<float>& m);
 Mat4<float> to_float(const Mat4<double>& m);
 
-// Slope-scaled and constant offset of the shadow maps' depth pass, in glPolygonOffset's units (the
-// constant in steps of the 24-bit depth): large enough for the two-sided ground's self-comparison at
-// grazing light, small enough not to detach shadows visibly at the catalogue's scale. The factor is
-// what candidate.json declares as slope_bias_texels.
-inline constexpr float kShadowMapOffsetFactor = 2.0f;
-// The 3 x 3 PCF kernel compares the fragment's depth with texels up to one texel away on both axes:
-// its diagonal tap stands two texels' slope off the fragment's own (|dz/ds| + |dz/dt|), and a texel
-// centre half a texel more. A factor of 2 left one-tap acne on lit ground (8/9 fractions on 5 % of
-// directional_light's pixels, seen in shaded.png and visibility.png, not in the mask); 3 covers it.
-inline constexpr float kPcfOffsetFactor = 3.0f;
-inline constexpr float kShadowMapOffsetUnits = 8.0f;
-// RenderOptions::random_taps's PCF disk: its radius in texels, the 3 x 3 box's corner taps' reach,
-// which PCF's slope factor (kPcfOffsetFactor) covers; what candidate.json declares as
-// filter_radius_texels.
-inline constexpr double kRandomPcfRadiusTexels = 1.41421356237309515;
-// ShadowMapFaults::large_constant_offset: a constant offset of 2^17 depth steps, about 0.8 % of the
-// 24-bit range (the size of constant bias that hides acne everywhere, grazing light included),
-// which detaches shadows from their contacts.
-inline constexpr float kPeterPanUnits = 131072.0f;
-// One glPolygonOffset unit as window depth (0..1): one step of the 24-bit depth; what candidate.json
-// declares as depth_bias per unit.
-inline constexpr double kWindowDepthPerUnit = 1.0 / 16777216.0;
-
-// RenderOptions::cube_depth: whether light i's map under `technique` holds distances (a cube of a
-// depth-texture map, when distances are asked for), and the range they are stored over: the largest
-// distance from the light to a corner of the scene's box, with 1 % to spare, so that every caster's
-// distance lies below 1 (the clear value: nothing there).
-bool cube_holds_distance(const RenderOptions& options, std::string_view technique, const scene::Light& light, bool cube);
-double cube_distance_range(const scene::PreparedScene& prepared, std::size_t light);
-
 // How the camera's far plane is set up for a technique (x and y rows never change).
 using scene::CameraDepth;
 
 // The GL compare function of a convention's depth comparison (convention.hpp).
 GLenum gl_compare(DepthCompare c);
 
-// Shadow-map storage kept from one render to the next: 2D array textures and renderbuffers, each of
-// one format and size. Why: llvmpipe zeroes a fresh texture's memory and the kernel faults in every
-// page of it, at each allocation; for the 2048-texel maps of a conformance run that was about a
-// third of the drawing's time (perf: clear_page_erms, memset under glTexImage3D). A map's every layer
-// is cleared before it is drawn (shadow_map.cpp), so a reused one carries nothing over.
-class MapStoragePool {
- public:
-  explicit MapStoragePool(const GlFunctions& gl) : gl_(gl) {}
-  ~MapStoragePool();  // deletes them all: the context must be current
-  MapStoragePool(const MapStoragePool&) = delete;
-  MapStoragePool& operator=(const MapStoragePool&) = delete;
-  // A 2D array texture of `layers` layers of size × size texels of `internal_format` (contents
-  // undefined), bound to GL_TEXTURE_2D_ARRAY on the active unit; `format` and `type` as glTexImage3D's.
-  GLuint texture(GLenum internal_format, GLenum format, GLenum type, int size, int layers);
-  // A size × size renderbuffer of `internal_format`, bound to GL_RENDERBUFFER.
-  GLuint renderbuffer(GLenum internal_format, int size);
-  // Gives back what texture() or renderbuffer() handed out, for a later map of the same kind.
-  void give_back(GLuint id, bool is_texture);
-
- private:
-  struct Entry {
-    bool is_texture;
-    GLenum internal_format;
-    int size, layers;
-    GLuint id;
-    bool in_use;
-  };
-  // The unused entry of that kind, now in use; null when there is none.
-  Entry* reuse(bool is_texture, GLenum internal_format, int size, int layers);
-  const GlFunctions& gl_;
-  std::vector<Entry> entries_;
-};
+class MapStoragePool;  // shadow_maps/light_map.hpp: the maps' storage, kept across renders
 
 struct Frame {
   const GlFunctions& gl;
@@ -144,9 +106,6 @@ struct Frame {
                                               // (24-bit, or 32F for reversed-z)
   // The target's second colour attachment, RG8: light_pass's lit fraction and mask.
   static constexpr GLenum kMaskAttachment = GL_COLOR_ATTACHMENT1;
-  // The surface program this technique draws with (pcss, vsm: programs.surface_soft); null: programs.surface.
-  const Program* surface = nullptr;
-  const Program& surface_program() const { return surface ? *surface : programs.surface; }
 
   int width() const { return scene.width; }
   int height() const { return scene.height; }
@@ -170,14 +129,17 @@ struct Frame {
 
   // Binds the W × H target and its viewport; clears what `mask` says (GL_*_BUFFER_BIT).
   void bind_target(GLbitfield clear_mask, float clear_grey = 0.0f) const;
-  // Ambient pre-pass: clears the target, writes depth (depth_nearer) and ambient colour for every object.
+  // Ambient pre-pass: clears the target, writes depth (depth_nearer) and ambient colour for every
+  // object, with the plain surface program (its depths equal every surface program's: the vertex
+  // shader's gl_Position is invariant).
   void ambient_pass(const Mat4<float>& clip) const;
   // Light i's additive Lambert pass over the surfaces already in the depth buffer (GL_EQUAL),
-  // with the current stencil state left to the caller; `shadow` selects the surface shader's map.
+  // with the current stencil state left to the caller, drawn with `program` (a lookup's surface
+  // program, its map bound and its uniforms set; null: the plain one) and `shadow_from_world`.
   // With `masks`, the same pass also writes the light's lit fraction (red) and 0/1 mask (green)
   // into kMaskAttachment, cleared first to no light and outputs::kMaskNoSurface: the shadow maps'
   // filters run once per visible pixel for the picture, the mask and the fraction together.
-  void light_pass(const Mat4<float>& clip, std::size_t light, int shadow = 0,
+  void light_pass(const Mat4<float>& clip, std::size_t light, const Program* program = nullptr,
                   const Mat4<float>* shadow_from_world = nullptr, bool masks = false) const;
 
   // The stencil-derived mask: read stencil and depth; depth at the clear value (far_depth) → no surface;
@@ -198,19 +160,24 @@ struct Frame {
 };
 
 
-// The technique entry points (planar.cpp, stencil_volumes.cpp, shadow_map.cpp).
+// The technique entry points (planar.cpp, stencil_volumes.cpp, shadow_maps/).
 void render_planar(Frame& frame);
 void render_volume_zpass(Frame& frame);
 void render_volume_zfail(Frame& frame);
 void render_volume_zfail_clamp(Frame& frame);
 void render_volume_robust(Frame& frame);
 void render_volume_finite(Frame& frame);
-void render_shadowmap(Frame& frame);
+void render_shadowmap(Frame& frame);        // shadow_maps/shadow_map_techniques.cpp
 void render_shadowmap_pcf(Frame& frame);
 void render_shadowmap_rgba8(Frame& frame);
 void render_csm(Frame& frame);
 void render_csm_pcf(Frame& frame);
 void render_pcss(Frame& frame);
 void render_vsm(Frame& frame);
+// Completes `declaration` (producer, convention and map size set) with what the shadow-map
+// technique `technique` draws for this prepared scene and these options, per light where lights
+// differ (shadow_maps/declaration.cpp); false, and nothing changed, for the other techniques.
+bool declare_shadow_map(std::string_view technique, const scene::PreparedScene& prepared, const RenderOptions& options,
+                        outputs::CandidateDeclaration& declaration);
 
 }  // namespace shadowref::renderer

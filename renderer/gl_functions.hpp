@@ -18,6 +18,10 @@ namespace shadowref::renderer {
   X(PFNGLGETSTRINGPROC, GetString)                                        \
   X(PFNGLGETERRORPROC, GetError)                                          \
   X(PFNGLGETINTEGERVPROC, GetIntegerv)                                    \
+  X(PFNGLGETFLOATVPROC, GetFloatv)                                        \
+  X(PFNGLISENABLEDPROC, IsEnabled)                                        \
+  X(PFNGLGETUNIFORMFVPROC, GetUniformfv)                                  \
+  X(PFNGLGETTEXLEVELPARAMETERIVPROC, GetTexLevelParameteriv)              \
   X(PFNGLENABLEPROC, Enable)                                              \
   X(PFNGLDISABLEPROC, Disable)                                            \
   X(PFNGLVIEWPORTPROC, Viewport)                                          \

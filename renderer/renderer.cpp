@@ -14,7 +14,7 @@
 #include <string>
 
 #include "frame.hpp"
-#include "shaders.hpp"
+#include "shadow_maps/light_map.hpp"
 #include "shadowref/outputs/shading.hpp"
 #include "shadowref/outputs/techniques.hpp"
 #include "shadowref/adjacency.hpp"
@@ -101,84 +101,6 @@ Mat4<float> to_float(const Mat4<double>& m) { return m.cast<float>(); }
 
 namespace {
 
-GLuint compile(const GlFunctions& gl, GLenum type, std::initializer_list<const char*> sources, const char* what) {
-  const GLuint s = gl.CreateShader(type);
-  gl.ShaderSource(s, static_cast<GLsizei>(sources.size()), sources.begin(), nullptr);
-  gl.CompileShader(s);
-  GLint ok = 0;
-  gl.GetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[4096] = {};
-    gl.GetShaderInfoLog(s, sizeof log, nullptr, log);
-    gl.DeleteShader(s);
-    throw GlError(std::string("shader ") + what + " does not compile: " + log);
-  }
-  return s;
-}
-
-Program link(const GlFunctions& gl, std::initializer_list<const char*> fragment, const char* what) {
-  const GLuint vs = compile(gl, GL_VERTEX_SHADER, {shaders::kSceneVertex}, "scene vertex");
-  const GLuint fs = compile(gl, GL_FRAGMENT_SHADER, fragment, what);
-  Program p;
-  p.id = gl.CreateProgram();
-  gl.AttachShader(p.id, vs);
-  gl.AttachShader(p.id, fs);
-  gl.LinkProgram(p.id);
-  gl.DeleteShader(vs);
-  gl.DeleteShader(fs);
-  GLint ok = 0;
-  gl.GetProgramiv(p.id, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[4096] = {};
-    gl.GetProgramInfoLog(p.id, sizeof log, nullptr, log);
-    throw GlError(std::string("program ") + what + " does not link: " + log);
-  }
-  const auto loc = [&](const char* name) { return gl.GetUniformLocation(p.id, name); };
-  p.clip_from_world = loc("u_clip_from_world");
-  p.shadow_from_world = loc("u_shadow_from_world");
-  p.colour = loc("u_colour");
-  p.mode = loc("u_mode");
-  p.shadow = loc("u_shadow");
-  p.albedo = loc("u_albedo");
-  p.ambient = loc("u_ambient");
-  p.light = loc("u_light");
-  p.light_intensity = loc("u_light_intensity");
-  p.spot = loc("u_spot");
-  p.shadow_map = loc("u_shadow_map");
-  p.packed_map = loc("u_packed_map");
-  p.texel = loc("u_texel");
-  p.offset_factor = loc("u_offset_factor");
-  p.offset_units = loc("u_offset_units");
-  p.layout = loc("u_layout");
-  p.layer_from_world = loc("u_layer_from_world[0]");
-  p.cascade_depth = loc("u_cascade_depth");
-  p.cascade_begin = loc("u_cascade_begin");
-  p.cascade_end = loc("u_cascade_end");
-  p.reversed = loc("u_reversed");
-  p.lit_greater = loc("u_lit_greater");
-  p.depth_map = loc("u_depth_map");
-  p.world_from_layer = loc("u_world_from_layer[0]");
-  p.inv_view_depth = loc("u_inv_view_depth[0]");
-  p.rect_u = loc("u_rect_u");
-  p.rect_v = loc("u_rect_v");
-  p.blocker_at_receiver = loc("u_blocker_at_receiver");
-  p.moment_map = loc("u_moment_map");
-  p.layer_inv_view_depth = loc("u_layer_inv_view_depth");
-  p.taps_in_own_face = loc("u_taps_in_own_face");
-  p.random_taps = loc("u_random_taps");
-  p.random_pcf_radius = loc("u_random_pcf_radius");
-  p.normal_offset_texels = loc("u_normal_offset_texels");
-  p.light_position = loc("u_light_position");
-  p.distance_range = loc("u_distance_range");
-  gl.UseProgram(p.id);
-  if (p.shadow_map >= 0) gl.Uniform1i(p.shadow_map, 0);
-  if (p.packed_map >= 0) gl.Uniform1i(p.packed_map, 1);
-  if (p.depth_map >= 0) gl.Uniform1i(p.depth_map, 2);
-  if (p.moment_map >= 0) gl.Uniform1i(p.moment_map, 3);
-  gl.UseProgram(0);
-  return p;
-}
-
 std::vector<std::uint8_t> flip_rows(const std::vector<std::uint8_t>& bottom_up, int w, int h, int channels) {
   std::vector<std::uint8_t> out(bottom_up.size());
   const std::size_t row = static_cast<std::size_t>(w) * static_cast<std::size_t>(channels);
@@ -263,12 +185,11 @@ void Frame::ambient_pass(const Mat4<float>& clip) const {
   gl.Disable(GL_CULL_FACE);
   gl.Enable(GL_DEPTH_TEST);
   gl.DepthFunc(depth_nearer());
-  const Program& p = surface_program();
+  const Program& p = programs.surface();
   gl.UseProgram(p.id);
   set_matrix(gl, p.clip_from_world, clip);
   set_matrix(gl, p.shadow_from_world, Mat4<float>::Identity());
-  gl.Uniform1i(p.mode, 0);
-  gl.Uniform1i(p.shadow, 0);
+  gl.Uniform1i(p.mode, static_cast<int>(SurfaceMode::Ambient));
   gl.Uniform1f(p.ambient, kAmbient);
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const auto& c = scene.objects[i].color;
@@ -277,7 +198,7 @@ void Frame::ambient_pass(const Mat4<float>& clip) const {
   }
 }
 
-void Frame::light_pass(const Mat4<float>& clip, std::size_t light_index, int shadow,
+void Frame::light_pass(const Mat4<float>& clip, std::size_t light_index, const Program* program,
                        const Mat4<float>* shadow_from_world, bool masks) const {
   gl.BindFramebuffer(GL_FRAMEBUFFER, target_fbo);
   gl.Viewport(0, 0, width(), height());
@@ -297,12 +218,11 @@ void Frame::light_pass(const Mat4<float>& clip, std::size_t light_index, int sha
     gl.Disablei(GL_BLEND, 1);
   }
   gl.Disable(GL_CULL_FACE);
-  const Program& p = surface_program();
+  const Program& p = program ? *program : programs.surface();
   gl.UseProgram(p.id);
   set_matrix(gl, p.clip_from_world, clip);
   set_matrix(gl, p.shadow_from_world, shadow_from_world ? *shadow_from_world : Mat4<float>::Identity());
-  gl.Uniform1i(p.mode, 1);
-  gl.Uniform1i(p.shadow, shadow);
+  gl.Uniform1i(p.mode, static_cast<int>(SurfaceMode::Light));
   const scene::Light& l = scene.lights[light_index];
   const Vec4<float> h = light(light_index).cast<float>();
   gl.Uniform4f(p.light, h.x(), h.y(), h.z(), h.w());
@@ -346,7 +266,7 @@ Image8 Frame::read_stencil_mask(std::uint8_t value, bool value_is_lit) const {
 
 std::vector<Image8> Frame::facing_masks(const Mat4<float>& clip) const {
   std::vector<Image8> masks;
-  const Program& p = surface_program();
+  const Program& p = programs.surface();
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
     bind_target(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, static_cast<float>(outputs::kMaskNoSurface) / 255.0f);
     gl.Enable(GL_DEPTH_TEST);
@@ -356,8 +276,7 @@ std::vector<Image8> Frame::facing_masks(const Mat4<float>& clip) const {
     gl.UseProgram(p.id);
     set_matrix(gl, p.clip_from_world, clip);
     set_matrix(gl, p.shadow_from_world, Mat4<float>::Identity());
-    gl.Uniform1i(p.mode, 2);    // the 0/1 mask
-    gl.Uniform1i(p.shadow, 0);  // no map: the facing test alone
+    gl.Uniform1i(p.mode, static_cast<int>(SurfaceMode::Mask));  // no map: the facing test alone
     const Vec4<float> l = light(i).cast<float>();
     gl.Uniform4f(p.light, l.x(), l.y(), l.z(), l.w());
     for (const GpuMesh& m : objects) m.draw();
@@ -480,9 +399,9 @@ const Technique* find_technique(std::string_view name) {
 struct Renderer::Impl {
   std::unique_ptr<GlContext> context;
   GlFunctions gl;
-  Programs programs;
+  std::unique_ptr<Programs> programs;    // destroyed in ~Impl, while it has the context current
   GlInfo info;
-  std::unique_ptr<MapStoragePool> maps;  // destroyed first, while ~Impl has the context current
+  std::unique_ptr<MapStoragePool> maps;  // the same
 
   Impl(GlApi api, Driver driver) : context(create_gl_context(api, driver)), gl(*context) {
     maps = std::make_unique<MapStoragePool>(gl);
@@ -495,23 +414,12 @@ struct Renderer::Impl {
     info.vendor = str(GL_VENDOR);
     info.renderer = str(GL_RENDERER);
     info.version = str(GL_VERSION);
-    programs.flat = link(gl, {shaders::kFlatFragment}, "flat");
-    programs.surface = link(gl, {shaders::kVersion, shaders::kDepthPacking, shaders::kSurfaceFragmentBody}, "surface");
-    programs.surface_soft =
-        link(gl, {shaders::kVersion, shaders::kPcssDefine, shaders::kDepthPacking, shaders::kSurfaceFragmentBody}, "surface (pcss)");
-    programs.moments = link(gl, {shaders::kMomentsFragment}, "moments");
-    programs.distance = link(gl, {shaders::kDistanceFragment}, "distance");
-    programs.packed_depth =
-        link(gl, {shaders::kVersion, shaders::kDepthPacking, shaders::kPackedDepthFragmentBody}, "packed depth");
+    programs = std::make_unique<Programs>(gl);
   }
   ~Impl() {
     context->make_current();
-    gl.DeleteProgram(programs.flat.id);
-    gl.DeleteProgram(programs.surface.id);
-    gl.DeleteProgram(programs.surface_soft.id);
-    gl.DeleteProgram(programs.packed_depth.id);
-    gl.DeleteProgram(programs.moments.id);
-    gl.DeleteProgram(programs.distance.id);
+    maps.reset();
+    programs.reset();
   }
 };
 
@@ -620,7 +528,7 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_
     frame_result.faults = describe(options.faults);
     if (!frame_result.faults.empty())
       frame_result.notes.push_back("deliberately wrong: fault switches " + frame_result.faults + " (renderer/faults.hpp)");
-    Frame frame{gl, impl_->programs, *impl_->maps, prepared, scene, options, frame_result, objects, target.fbo};
+    Frame frame{gl, *impl_->programs, *impl_->maps, prepared, scene, options, frame_result, objects, target.fbo};
     const auto start = std::chrono::steady_clock::now();
     t->render(frame);
     gl.Finish();
@@ -634,60 +542,10 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_
       result.declaration.version = SHADOWREF_VERSION;
       result.declaration.convention = std::string(convention.name);
       result.declaration.shadow_map_size = prepared.options.shadow_map_size;
-      // The filtered techniques draw PCF's maps (soft ones for lights without an area) with PCF's
-      // factor: the largest slope bias of the render.
-      const outputs::TechniqueName* named = outputs::find_technique_name(t->name);
-      const bool filtered = named && (named->family == outputs::TechniqueFamily::ShadowMapPcf ||
-                                      named->family == outputs::TechniqueFamily::SoftShadow);
-      result.declaration.slope_bias_texels = filtered ? kPcfOffsetFactor : kShadowMapOffsetFactor;
-      result.declaration.depth_bias = double{kShadowMapOffsetUnits} * kWindowDepthPerUnit;
-      // A deliberately wrong render declares what it does, honestly: the judge must fail it all the same.
-      if (options.faults.shadow_map.no_polygon_offset) result.declaration.slope_bias_texels = result.declaration.depth_bias = 0;
-      if (options.faults.shadow_map.large_constant_offset) result.declaration.depth_bias = double{kPeterPanUnits} * kWindowDepthPerUnit;
-      if (options.faults.shadow_map.constant_offset_world > 0) {
-        result.declaration.depth_bias = 0;
-        result.declaration.constant_bias = options.faults.shadow_map.constant_offset_world;
-      }
-      if (filtered && options.random_taps > 0) {  // a rotated Vogel disk: its taps and its PCF radius
-        result.declaration.sampling = outputs::Sampling::Random;
-        result.declaration.light_taps = static_cast<int>(std::lround(std::sqrt(options.random_taps)));
-        result.declaration.filter_radius_texels = kRandomPcfRadiusTexels;
-      }
-      // The faces its depth pass draws on closed casters (shadow_map.cpp): the soft maps' first surfaces
-      // are drawn from both sides; the others as asked.
-      result.declaration.depth_faces = named && named->family == outputs::TechniqueFamily::SoftShadow
-                                           ? outputs::DepthFaces::Both
-                                           : options.depth_faces;
-      // The prepared scene's light fits are the pack's, unless turned or moved (RenderOptions).
+      // The prepared scene's light fits are the pack's, unless turned or moved (RenderOptions); the
+      // shadow-map techniques add what each light's map draws with.
       result.declaration.light_views_from_pack = options.view_turn_degrees == 0 && options.view_phase_texels == 0;
-      if (!(named && named->family == outputs::TechniqueFamily::SoftShadow))
-        result.declaration.normal_offset_texels = options.normal_offset_texels;
-      // Per light: a guard band makes each map an atlas tile around the view of its fit, and a
-      // distance cube stores distances over its range, with the offset's constant in those units
-      // (shadow_map.cpp).
-      const int g = options.guard_band_texels;
-      const bool maps = named && named->family != outputs::TechniqueFamily::ExactGeometry;
-      const auto distance = [&](std::size_t i) {
-        return maps && cube_holds_distance(options, t->name, scene.lights[i], prepared.light_fits[i].cube);
-      };
-      bool any_distance = false;
-      for (std::size_t i = 0; i < scene.lights.size(); ++i) any_distance = any_distance || distance(i);
-      if (maps && (g > 0 || any_distance))
-        for (std::size_t i = 0; i < scene.lights.size(); ++i) {
-          outputs::CandidateDeclaration light = result.declaration;
-          if (g > 0) {
-            const int size = (named->cascaded ? prepared.cascade_fits[i] : prepared.light_fits[i]).size;
-            light.atlas_tile_size = size + 2 * g;
-            light.atlas_guard_band = g;
-            light.shadow_map_size = size;
-          }
-          if (distance(i)) {
-            light.depth = outputs::StoredDepth::Distance;
-            light.depth_range = cube_distance_range(prepared, i);
-            light.depth_bias = double{kShadowMapOffsetUnits} / 16777215.0;  // kDistanceFragment's constant step
-          }
-          result.declaration.lights.push_back(light);
-        }
+      declare_shadow_map(t->name, prepared, options, result.declaration);
       result.declaration.defaulted.clear();
     }
     result.frame_ms.push_back(ms);

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "shadowref/reference/render.hpp"
 #include "shadowref/conform/judge.hpp"
@@ -292,6 +293,55 @@ TEST(Renderer, OwnViewsMoveTheStaircasesAndAreDeclaredOwn) {
     // texel moves the long shadows' staircases by pixels.
     EXPECT_GT(differ, 20u) << "turned " << turn << " degrees, moved half a texel";
   }
+}
+
+// Every shadow-map technique × every light type × the options that change a depth pass: each
+// light's candidate.json declaration says what its depth pass drew with, as read back from GL
+// (RenderResult::drawn_maps: the polygon offset or the depth shader's own, the faces kept on closed
+// casters, the map's texels, distances). The soft techniques draw lights without an area with PCF's
+// map (front faces culled, PCF's slope factor), their rect lights with the first surfaces and the
+// plain factor, and declare each as drawn.
+TEST(Renderer, EveryMapDeclarationSaysWhatItsDepthPassDrew) {
+  // One light each: directional, spot, point, rect; each scene has a closed caster (box or sphere).
+  const char* const scenes[] = {"directional_light", "spot_light", "ground_sphere", "soft_penumbra"};
+  std::vector<RenderOptions> variants(6);
+  for (RenderOptions& o : variants) o.shadow_map_size = 128;
+  variants[1].depth_faces = outputs::DepthFaces::Front;
+  variants[2].guard_band_texels = 3;
+  variants[3].cube_depth = outputs::StoredDepth::Distance;
+  variants[4].random_taps = 16;
+  variants[4].normal_offset_texels = 1.0;
+  variants[5].faults.shadow_map.no_polygon_offset = true;
+  // glPolygonOffset's unit is one step of the 24-bit depth (2^-24 of the window range, the
+  // declared unit); the shaders that add it by hand divide by 2^24 - 1 (a distance cube's declared
+  // unit is that): the two agree to 6e-8 relative.
+  constexpr double kWindowStep = 1.0 / 16777216.0, kShaderStep = 1.0 / 16777215.0;
+  int lights_checked = 0;
+  for (const outputs::TechniqueName& t : outputs::kTechniques) {
+    if (t.family == outputs::TechniqueFamily::ExactGeometry) continue;
+    for (const char* name : scenes) {
+      const scene::Scene s = load(name, 32);
+      for (std::size_t v = 0; v < variants.size(); ++v) {
+        SCOPED_TRACE(std::string(t.name) + " on " + name + ", options " + std::to_string(v));
+        const RenderResult r = renderer().render(s, t.name, variants[v]);
+        ASSERT_EQ(r.drawn_maps.size(), s.lights.size());
+        for (std::size_t i = 0; i < s.lights.size(); ++i) {
+          const outputs::CandidateDeclaration& d = r.declaration.for_light(i);
+          const DrawnMap& m = r.drawn_maps[i];
+          ASSERT_TRUE(m.closed_faces.has_value()) << "every scene here has a closed caster";
+          EXPECT_EQ(d.depth_faces, *m.closed_faces) << m.lookup;
+          EXPECT_EQ(d.slope_bias_texels, double{m.slope_factor}) << m.lookup;
+          EXPECT_EQ(d.depth == outputs::StoredDepth::Distance, m.distance) << m.lookup;
+          const double step = m.distance ? kShaderStep : kWindowStep;
+          EXPECT_NEAR(d.depth_bias, double{m.offset_units} * step, 1e-7 * d.depth_bias) << m.lookup;
+          const int texels = d.atlas_tile_size > 0 ? d.atlas_tile_size : d.shadow_map_size;
+          EXPECT_EQ(texels, m.texels) << m.lookup;
+          ++lights_checked;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(lights_checked, 7 * 4 * 6);
 }
 
 TEST(Renderer, UnknownTechniqueIsRefused) {

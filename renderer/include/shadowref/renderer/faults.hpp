@@ -74,7 +74,7 @@ enum class CubeFault {
   YFacesUpsideDown,  // the ±y faces sampled rotated by 180 degrees: their up vector taken wrong in the face table
 };
 
-// shadow_map.cpp
+// shadow_maps/light_map.cpp
 struct ShadowMapFaults {
   CompareFault compare = CompareFault::None;
   // The map (depth, and the packed colour of shadowmap-rgba8) cleared to 1 whatever the convention:

@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -86,6 +87,20 @@ struct RenderOptions {
   Faults faults;
 };
 
+// What one light's shadow-map depth pass drew with, read back from the GL state at its draw calls
+// (not from the options): the evidence that candidate.json declares what was drawn (renderer_test
+// holds each declared light against it).
+struct DrawnMap {
+  std::string lookup;         // the camera pass's lookup: "depth-compare", "pcf", "packed-rgba8", "pcss", "vsm"
+  int texels = 0;             // the map's texels per side (GL_TEXTURE_WIDTH), an atlas tile's guard band included
+  float slope_factor = 0.0f;  // the offset's slope factor: GL_POLYGON_OFFSET_FACTOR, or the depth shader's own
+                              // where GL's is off (a packed depth, a distance cube); a magnitude
+  float offset_units = 0.0f;  // its constant, in the same place; a magnitude
+  // The faces drawn on closed casters (from GL_CULL_FACE and its mode); nullopt when the pass drew none.
+  std::optional<outputs::DepthFaces> closed_faces;
+  bool distance = false;      // the layers hold distances (kDistanceFragment), not window depth
+};
+
 struct RenderResult {
   std::string technique;
   std::vector<Image8> masks;   // one per light (grey)
@@ -96,6 +111,7 @@ struct RenderResult {
   std::vector<double> frame_ms;  // the time of each frame, all passes to glFinish and read-back
   std::vector<std::string> notes;  // what the technique could not do on this scene, and why
   outputs::CandidateDeclaration declaration;  // what write_outputs puts in candidate.json
+  std::vector<DrawnMap> drawn_maps;           // shadow-map techniques: one per light, in order
   std::string faults;              // describe(options.faults): the fault switches on, "" in production
   double median_frame_ms() const;
 };

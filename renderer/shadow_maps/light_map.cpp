@@ -1,30 +1,15 @@
-// shadow_map.cpp — shadow mapping: Williams 1978, "Casting curved shadows on curved surfaces".
+// light_map.cpp — one light's shadow map, whatever its lookup (light_map.hpp): Williams 1978,
+// "Casting curved shadows on curved surfaces".
 //
-// Per light, the scene's depth is rendered from the light into a texture; each camera fragment
-// is then mapped through B · P_light · V_light (mathlib's shadow_bias_matrix, projections, look_at)
-// and compared with the stored depth. Seven techniques (csm and csm-pcf below):
-//   shadowmap        a GL_DEPTH_COMPONENT24 texture, GL_COMPARE_REF_TO_TEXTURE with GL_LEQUAL
-//                    through a sampler2DArrayShadow (one layer, or six for a cube), one nearest tap;
-//   shadowmap-pcf    percentage-closer filtering (Reeves, Salesin & Cook 1987): a 3 × 3 box of
-//                    nearest compares one texel apart, equal weights; the mask calls a pixel lit
-//                    when at least half of the 9 taps are (shaded.png keeps the fraction);
-//   shadowmap-rgba8  no depth texture: the light pass packs its depth into an RGBA8 colour target
-//                    (mathlib/depth_packing.hpp, mirrored in GLSL) and the camera pass unpacks and
-//                    compares 24-bit integers — the method of hardware without depth textures.
-//   pcss             percentage-closer soft shadows for rect lights (shaders.cpp: a blocker search,
-//                    the penumbra estimate, a filter over the light's rect, every tap compared with
-//                    the receiver's own plane), the map read raw and drawn with front faces (its
-//                    depths are the blockers'); other lights as shadowmap-pcf.
-//   vsm              variance shadow maps over PCSS's penumbra: the same depth map for the blocker
-//                    search, and beside it an RG32F map of the first two moments of the view depth
-//                    (the same pass, a second attachment), averaged over PCSS's filter region and
-//                    read through Chebyshev's bound (shaders.cpp); other lights as shadowmap-pcf.
-// shadowmap-pcf, pcss and vsm also write the lit fraction (visibility.png).
+// Per light, the scene's depth is rendered from the light into a texture; each camera fragment is
+// then mapped through B · P_light · V_light (mathlib's shadow_bias_matrix, projections, look_at)
+// and read by the lookup (lookup.hpp).
 // Bias: the depth pass culls front faces of closed casters (the map then holds back faces, so a
 // lit surface is never compared against itself; RenderOptions::depth_faces may draw the front faces
-// or both instead, as engines do) and uses glPolygonOffset(kOffsetFactor,
-// kOffsetUnits), PCF's maps kPcfOffsetFactor (frame.hpp: the kernel's reach); open meshes (a
-// ground quad, a leaf) are drawn two-sided, since culling would drop whichever side faces the light. The RGBA8 pass applies the same offset in its shader.
+// or both instead, as engines do, and a lookup that searches for blockers draws both) and uses
+// glPolygonOffset with the lookup's factor and units; open meshes (a ground quad, a leaf) are drawn
+// two-sided, since culling would drop whichever side faces the light. A packed depth applies the
+// same offset in its shader.
 // The light's views come from the prepared scene (mathlib's light_fit.hpp: one orthographic view
 // for a directional light, one perspective view or a cube of six for the others, with the map size),
 // one map layer each; a cube's six faces are layers of a 2D array texture, the face picked per
@@ -38,10 +23,10 @@
 // the "nearer" depth test and polygon offset of the convention's sign, compared with the
 // convention's "lit" compare (GL_LEQUAL; GL_GEQUAL under reversed-Z) through its bias matrix; its
 // border holds the far depth, so that nothing occludes outside it.
-// Cascaded (csm, csm-pcf): a directional light's map is the prepared scene's cascades
+// Cascaded fits (csm, csm-pcf): a directional light's map is the prepared scene's cascades
 // (mathlib/cascades.hpp: practical splits, a stable sphere per slice snapped to whole texels, the
 // whole scene's depth range), one layer each, the cascade picked per fragment by its camera depth
-// (light_view_of); other lights are drawn as by shadowmap / shadowmap-pcf.
+// (light_view_of).
 // A fragment outside the single map, or behind its light, counts as lit: the map knows of no
 // occluder there (directional maps hold the whole bounding sphere; a point light's single map
 // holds the whole box, so only geometry-free directions fall outside).
@@ -54,13 +39,14 @@
 // border-colour switch: every fit holds every vertex with a margin (light_fit.hpp; a cascade, its
 // slice with kCascadeMarginTexels), so no catalogue fragment maps outside its map or within a PCF tap
 // of its edge (conformance/README.md: a border at the near depth changes no pixel of the catalogue).
+#include "light_map.hpp"
+
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <numbers>
+#include <string>
+#include <utility>
 #include <vector>
 
-#include "frame.hpp"
 #include "shadowref/cascades.hpp"
 #include "shadowref/projection.hpp"
 #include "shadowref/scene/scene.hpp"
@@ -70,31 +56,22 @@
 namespace shadowref::renderer {
 namespace {
 
-// The depth pass's polygon offset: frame.hpp's kShadowMapOffsetFactor and kShadowMapOffsetUnits,
-// with the convention's sign (polygon_offset_sign): offset always pushes away from the light.
-constexpr float kOffsetFactor = kShadowMapOffsetFactor;
-constexpr float kOffsetUnits = kShadowMapOffsetUnits;
-
-enum class Variant { Depth, Pcf, Rgba8, Pcss, Vsm };
-
-// The soft variants: PCSS's blocker search and penumbra, a filter over the light's rect.
-bool soft(Variant v) { return v == Variant::Pcss || v == Variant::Vsm; }
-
-// PCSS and VSM need a light with an area: a point, spot or directional light is drawn with PCF.
-Variant variant_for_light(const scene::Light& light, Variant variant) {
-  return soft(variant) && light.type != scene::LightType::Rect ? Variant::Pcf : variant;
-}
-
-// RenderOptions::cube_depth: the depth-texture maps' cubes hold distances when asked to (RGBA8 packs
-// window depth; PCSS's and VSM's shaders read view depth).
-bool holds_distance(const RenderOptions& options, Variant v, bool cube) {
-  return options.cube_depth == outputs::StoredDepth::Distance && cube && (v == Variant::Depth || v == Variant::Pcf);
-}
-
-// Texture unit 2: the PCSS map read raw (frame.hpp's surface program binds u_depth_map there);
-// unit 3: VSM's moments (u_moment_map).
+// The texture units of the surface programs' samplers (programs.cpp binds the names to them): a
+// compared depth map on 0, a packed one on 1, a raw one on 2 and its moments on 3.
+constexpr GLenum kComparedUnit = GL_TEXTURE0;
+constexpr GLenum kPackedUnit = GL_TEXTURE1;
 constexpr GLenum kRawDepthUnit = GL_TEXTURE2;
 constexpr GLenum kMomentUnit = GL_TEXTURE3;
+
+GLenum texture_unit(MapStorage storage) {
+  switch (storage) {
+    case MapStorage::ComparedDepth: return kComparedUnit;
+    case MapStorage::PackedRgba8: return kPackedUnit;
+    case MapStorage::RawDepth:
+    case MapStorage::RawDepthAndMoments: return kRawDepthUnit;
+  }
+  return kComparedUnit;
+}
 
 // The compare that means "lit" in this render: the convention's (lit_when), unless a fault says otherwise.
 DepthCompare lit_compare(const RunConvention& conv, CompareFault fault) {
@@ -131,65 +108,6 @@ Mat4<double> fit_with_fault(const RunConvention& conv, const Mat4<double>& proje
   return remap * projection;
 }
 
-// One light's map: the texture (a 2D array, one layer per view) and the matrices that map world
-// points into it.
-struct LightMap {
-  MapStoragePool* pool = nullptr;  // where texture and moments go back
-  GLuint texture = 0;
-  GLuint moments = 0;             // vsm: the RG32F moments, the same layers
-  int size = 0;
-  int layout = 0;                 // the shader's u_layout: 0 one view, 1 a cube, 2 cascades
-  float distance_range = 0;       // > 0: a cube holding distance over this range (RenderOptions::cube_depth)
-  Vec3<float> light_position = Vec3<float>::Zero();  // the cube's centre, for its distances
-  Mat4<float> shadow_from_world;  // B · P_light · V_light (the single view)
-  std::vector<Mat4<float>> face_from_world;  // the same per cube face or cascade
-  // Cascades: the camera-depth row, and the depths each cascade is picked for (shader u_cascade_*).
-  Vec4<float> cascade_depth = Vec4<float>::Zero();
-  Vec4<float> cascade_begin = Vec4<float>::Constant(-3e38f), cascade_end = Vec4<float>::Constant(-3e38f);
-  // PCSS, VSM: the inverse of each face_from_world, and 1 / view depth = a · window depth + b per layer.
-  std::vector<Mat4<float>> world_from_face;
-  std::vector<float> inv_view_depth;  // (a, b) per layer
-  LightMap() = default;
-  LightMap(LightMap&& o) noexcept
-      : pool(o.pool), texture(o.texture), moments(o.moments), size(o.size), layout(o.layout), distance_range(o.distance_range),
-        light_position(o.light_position), shadow_from_world(o.shadow_from_world),
-        face_from_world(std::move(o.face_from_world)), cascade_depth(o.cascade_depth),
-        cascade_begin(o.cascade_begin), cascade_end(o.cascade_end), world_from_face(std::move(o.world_from_face)),
-        inv_view_depth(std::move(o.inv_view_depth)) {
-    o.texture = 0;
-    o.moments = 0;
-  }
-  LightMap(const LightMap&) = delete;
-  LightMap& operator=(const LightMap&) = delete;
-  LightMap& operator=(LightMap&&) = delete;
-  ~LightMap() {
-    if (texture) pool->give_back(texture, true);
-    if (moments) pool->give_back(moments, true);
-  }
-};
-
-// The cascades of the directional light `i` for csm and csm-pcf: the prepared ones, or, when a
-// CascadeFaults switch changes how they are fitted, a refit (into `refit`) with that one change.
-const LightFit& cascade_fit(const Frame& frame, std::size_t i, LightFit& refit) {
-  const LightFit& prepared = frame.prepared.cascade_fits[i];
-  const CascadeFaults& f = frame.faults().cascade;
-  if (prepared.cascade_splits.empty() || (!f.slice_depth_range && !f.no_snapping && !f.frustum_behind_camera))
-    return prepared;
-  CascadeOptions o;
-  o.count = static_cast<int>(prepared.views.size());
-  o.map_size = prepared.size;
-  o.snap = !f.no_snapping;                        // FAULT: the windows follow the camera continuously
-  o.scene_depth_range = !f.slice_depth_range;     // FAULT: casters outside the slice's sphere clipped
-  CascadeCamera camera = scene::cascade_camera(frame.scene);
-  if (f.frustum_behind_camera) camera.forward = -camera.forward;  // FAULT: the other handedness's axis
-  refit = fit_cascades(frame.convention(), frame.light(i).head<3>(), frame.prepared.bounds, camera, o).value();
-  if (f.frustum_behind_camera) {  // the selection is the shader's own, from the true view depth
-    refit.cascade_splits = prepared.cascade_splits;
-    refit.cascade_depth_from_scene = prepared.cascade_depth_from_scene;
-  }
-  return refit;
-}
-
 // The bound 2D array texture read with nearest taps and `wrap` at its edges.
 void read_nearest(const GlFunctions& gl, GLint wrap) {
   gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -198,13 +116,9 @@ void read_nearest(const GlFunctions& gl, GLint wrap) {
   gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, wrap);
 }
 
-// The light map's phases, in order: which cascade a pixel reads (cascaded fits), the matrices
-// from the world to each view's texels, the textures and framebuffer, the depth pass's state, and
-// the depth pass itself.
-
 // Cascaded fits: each cascade's range of camera depth (the shader picks among at most 4).
 void select_cascades(const Frame& frame, const LightFit& lc, LightMap& map) {
-  if (map.layout != 2) return;
+  if (map.layout != MapLayout::Cascades) return;
   const std::vector<double>& s = lc.cascade_splits;
   const std::size_t n = s.size() - 1;
   if (n > 4) throw GlError("the shader picks among at most 4 cascades");
@@ -278,12 +192,12 @@ std::vector<Mat4<double>> light_matrices(const Frame& frame, const LightFit& lc,
 
 // The map's textures (depth, or RGBA8 with a depth renderbuffer; VSM's moments beside) and the
 // framebuffer the depth pass draws into, bound as `fbo`. Returns the depth renderbuffer (0: none).
-GLuint allocate_targets(const Frame& frame, LightMap& map, GLsizei layers, Variant variant, GLuint& fbo) {
+GLuint allocate_targets(const Frame& frame, LightMap& map, GLsizei layers, const MapLookup& lookup, GLuint& fbo) {
   const GlFunctions& gl = frame.gl;
   const RunConvention& conv = frame.convention();
   const int size = map.size;
   map.pool = &frame.maps;
-  if (variant == Variant::Rgba8)
+  if (lookup.storage == MapStorage::PackedRgba8)
     map.texture = frame.maps.texture(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, size, layers);
   else if (conv.float_depth)
     map.texture = frame.maps.texture(GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, size, layers);
@@ -299,19 +213,20 @@ GLuint allocate_targets(const Frame& frame, LightMap& map, GLsizei layers, Varia
   GLuint depth_rb = 0;
   gl.GenFramebuffers(1, &fbo);
   gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
-  if (variant == Variant::Rgba8) {
+  if (lookup.storage == MapStorage::PackedRgba8) {
     // A plain depth buffer still picks the nearest surface; only the colour target is sampled.
     depth_rb = frame.maps.renderbuffer(GL_DEPTH_COMPONENT24, size);
     gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_rb);
     gl.DrawBuffer(GL_COLOR_ATTACHMENT0);
   } else {
-    // PCSS reads the stored depths themselves (its blocker search averages them).
-    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_MODE, soft(variant) ? GL_NONE : GL_COMPARE_REF_TO_TEXTURE);
+    // A raw depth map is read as it is (PCSS's blocker search averages the stored depths).
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_MODE,
+                     lookup.storage == MapStorage::ComparedDepth ? GL_COMPARE_REF_TO_TEXTURE : GL_NONE);
     const DepthCompare lit = map.distance_range > 0 ? DepthCompare::LessEqual : lit_compare(conv, frame.faults().shadow_map.compare);
     gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_FUNC, static_cast<GLint>(gl_compare(lit)));
     gl.DrawBuffer(GL_NONE);
   }
-  if (variant == Variant::Vsm) {
+  if (lookup.storage == MapStorage::RawDepthAndMoments) {
     // Read at texel centres like every other map (the filter is the shader's taps); (0, 0) where
     // nothing is drawn, which no surface writes (its view depth is beyond the near plane).
     map.moments = frame.maps.texture(GL_RG32F, GL_RG, GL_FLOAT, size, layers);
@@ -324,8 +239,8 @@ GLuint allocate_targets(const Frame& frame, LightMap& map, GLsizei layers, Varia
 }
 
 // The depth pass's state: viewport, clear values, depth test, the program and its polygon offset
-// (the convention's sign, the variant's factor; the teeth's offset faults). Returns the program.
-const Program& set_depth_pass_state(const Frame& frame, const LightFit& lc, const LightMap& map, Variant variant) {
+// (the convention's sign, the lookup's factor; the teeth's offset faults). Returns the program.
+const Program& set_depth_pass_state(const Frame& frame, const LightFit& lc, const LightMap& map, const MapLookup& lookup) {
   const GlFunctions& gl = frame.gl;
   const RunConvention& conv = frame.convention();
   const ShadowMapFaults& faults = frame.faults().shadow_map;
@@ -345,10 +260,10 @@ const Program& set_depth_pass_state(const Frame& frame, const LightFit& lc, cons
     gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     const Program& p = frame.programs.distance;
     gl.UseProgram(p.id);
-    gl.Uniform3f(p.light_position, map.light_position.x(), map.light_position.y(), map.light_position.z());
-    gl.Uniform1f(p.distance_range, map.distance_range);
-    gl.Uniform1f(p.offset_factor, variant == Variant::Pcf ? kPcfOffsetFactor : kOffsetFactor);
-    gl.Uniform1f(p.offset_units, kOffsetUnits);
+    gl.Uniform3f(p.at(gl, "u_light_position"), map.light_position.x(), map.light_position.y(), map.light_position.z());
+    gl.Uniform1f(p.at(gl, "u_distance_range"), map.distance_range);
+    gl.Uniform1f(p.at(gl, "u_offset_factor"), lookup.offset_factor);
+    gl.Uniform1f(p.at(gl, "u_offset_units"), lookup.offset_units);
     return p;
   }
   gl.DepthMask(GL_TRUE);
@@ -359,12 +274,11 @@ const Program& set_depth_pass_state(const Frame& frame, const LightFit& lc, cons
   gl.DepthFunc(frame.depth_nearer());
   gl.Disable(GL_STENCIL_TEST);
   gl.Disable(GL_BLEND);
-  const Program& p = variant == Variant::Rgba8 ? frame.programs.packed_depth
-                     : variant == Variant::Vsm ? frame.programs.moments
-                                               : frame.programs.flat;
+  const Program& p = lookup.storage == MapStorage::PackedRgba8          ? frame.programs.packed_depth
+                     : lookup.storage == MapStorage::RawDepthAndMoments ? frame.programs.moments
+                                                                        : frame.programs.flat;
   gl.UseProgram(p.id);
-  float sign = polygon_offset_sign(conv), factor = variant == Variant::Pcf ? kPcfOffsetFactor : kOffsetFactor,
-        units = kOffsetUnits;
+  float sign = polygon_offset_sign(conv), factor = lookup.offset_factor, units = lookup.offset_units;
   if (faults.offset_sign_ignored) sign = 1.0f;  // FAULT: + whatever the convention
   if (faults.no_polygon_offset) factor = units = 0.0f;  // FAULT: acne
   if (faults.large_constant_offset) units = kPeterPanUnits;  // FAULT: peter-panning
@@ -377,18 +291,19 @@ const Program& set_depth_pass_state(const Frame& frame, const LightFit& lc, cons
     const double per_world = std::abs(projection(2, 2)) * (conv.clip.depth == DepthRange::NegOneToOne ? 0.5 : 1.0);
     units = static_cast<float>(faults.constant_offset_world * per_world / kWindowDepthPerUnit);
   }
-  // The offset in the shader: RGBA8's whole offset; VSM's moments only its constant part, the bias
-  // VSM needs against the float tie of a receiver with its own moments (without it the Cornell box's
-  // tall block, edge-on to the light, reads its own face as an occluder); the slope term would push a
-  // steep face behind the ground it stands on, and the filter would read that contact as lit.
-  if (variant == Variant::Rgba8 || variant == Variant::Vsm) {
-    gl.Uniform1f(p.offset_factor, variant == Variant::Vsm ? 0.0f : sign * factor);
-    gl.Uniform1f(p.offset_units, sign * units);
+  // The offset in the shader: a packed depth's whole offset; the moments' only its constant part,
+  // the bias VSM needs against the float tie of a receiver with its own moments (without it the
+  // Cornell box's tall block, edge-on to the light, reads its own face as an occluder); the slope
+  // term would push a steep face behind the ground it stands on, and the filter would read that
+  // contact as lit.
+  if (lookup.shader_offset != ShaderOffset::None) {
+    gl.Uniform1f(p.at(gl, "u_offset_factor"), lookup.shader_offset == ShaderOffset::ConstantOnly ? 0.0f : sign * factor);
+    gl.Uniform1f(p.at(gl, "u_offset_units"), sign * units);
   }
-  if (variant == Variant::Rgba8) {
+  if (lookup.shader_offset == ShaderOffset::Whole) {
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   } else {
-    const GLboolean colour = variant == Variant::Vsm ? GL_TRUE : GL_FALSE;
+    const GLboolean colour = lookup.storage == MapStorage::RawDepthAndMoments ? GL_TRUE : GL_FALSE;
     gl.ColorMask(colour, colour, colour, colour);
     gl.Enable(GL_POLYGON_OFFSET_FILL);
     gl.PolygonOffset(sign * factor, sign * units);
@@ -397,39 +312,56 @@ const Program& set_depth_pass_state(const Frame& frame, const LightFit& lc, cons
   return p;
 }
 
-// The depth pass: every view into its layer, casters culled as the fit says, front faces culled on
-// closed casters (but for the soft techniques, whose blocker search reads the first surfaces).
+// What the depth pass draws with at this moment, as GL holds it: the offset (GL's, or the depth
+// shader's own where GL's is off: a packed depth, a distance), and the faces a closed caster keeps.
+void record_drawn_state(const GlFunctions& gl, const Program& p, DrawnMap& drawn) {
+  if (gl.IsEnabled(GL_POLYGON_OFFSET_FILL)) {
+    gl.GetFloatv(GL_POLYGON_OFFSET_FACTOR, &drawn.slope_factor);
+    gl.GetFloatv(GL_POLYGON_OFFSET_UNITS, &drawn.offset_units);
+  } else if (const GLint f = p.at(gl, "u_offset_factor"); f >= 0) {
+    gl.GetUniformfv(p.id, f, &drawn.slope_factor);
+    gl.GetUniformfv(p.id, p.at(gl, "u_offset_units"), &drawn.offset_units);
+  }
+  drawn.slope_factor = std::abs(drawn.slope_factor);
+  drawn.offset_units = std::abs(drawn.offset_units);
+  GLint mode = 0;
+  gl.GetIntegerv(GL_CULL_FACE_MODE, &mode);
+  drawn.closed_faces = !gl.IsEnabled(GL_CULL_FACE) ? outputs::DepthFaces::Both
+                       : mode == GL_FRONT          ? outputs::DepthFaces::Back
+                                                   : outputs::DepthFaces::Front;
+}
+
+// The depth pass: every view into its layer, casters culled as the fit says, closed casters drawn
+// with the faces RenderOptions::depth_faces asks (both for a lookup that draws the first surfaces).
+// Records what it drew with in `drawn`, read back from GL at a closed caster's draw call.
 void draw_depth_pass(const Frame& frame, const LightFit& lc, const std::vector<Mat4<double>>& projections,
-                     const LightMap& map, Variant variant, const Program& p) {
+                     const LightMap& map, const MapLookup& lookup, const Program& p, DrawnMap& drawn) {
   const GlFunctions& gl = frame.gl;
   const ShadowMapFaults& faults = frame.faults().shadow_map;
   const auto layers = static_cast<GLsizei>(lc.views.size());
-  // RenderOptions::depth_faces: the faces culled on closed casters (none for `both`).
-  const outputs::DepthFaces faces = frame.options.depth_faces;
+  const outputs::DepthFaces faces = lookup.draws_first_surfaces ? outputs::DepthFaces::Both : frame.options.depth_faces;
   gl.CullFace(faces == outputs::DepthFaces::Front ? GL_BACK : GL_FRONT);
-  // PCSS averages the depths of the first surfaces toward the light (the blockers), so its map keeps
-  // front faces; its receiver-plane compare stands in for the culling's protection from self-shadowing.
-  // (VSM's moments are those of the same first surfaces.)
-  const bool cull = !soft(variant) && faces != outputs::DepthFaces::Both;
+  const bool cull = faces != outputs::DepthFaces::Both;
+  const bool colour = lookup.storage == MapStorage::PackedRgba8 || lookup.storage == MapStorage::RawDepthAndMoments;
   for (GLsizei face = 0; face < layers; ++face) {
     const auto k = static_cast<std::size_t>(face);
     const LightView& view = lc.views[k];
     GLint layer = face;
     // FAULT: the +z and −z views rendered into each other's layers (a left-handed cube's order).
     if (lc.cube && faults.cube == CubeFault::ZFacesSwapped && face >= 4) layer = 9 - face;
-    gl.FramebufferTextureLayer(GL_FRAMEBUFFER, variant == Variant::Rgba8 ? GL_COLOR_ATTACHMENT0 : GL_DEPTH_ATTACHMENT,
+    gl.FramebufferTextureLayer(GL_FRAMEBUFFER,
+                               lookup.storage == MapStorage::PackedRgba8 ? GL_COLOR_ATTACHMENT0 : GL_DEPTH_ATTACHMENT,
                                map.texture, 0, layer);
-    if (variant == Variant::Vsm) {
+    if (lookup.storage == MapStorage::RawDepthAndMoments) {
       gl.FramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, map.moments, 0, layer);
       gl.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
     }
     if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw GlError("the shadow-map framebuffer is incomplete");
-    gl.Clear(variant == Variant::Depth || variant == Variant::Pcf || variant == Variant::Pcss
-                 ? GL_DEPTH_BUFFER_BIT
-                 : GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    gl.Clear(colour ? GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT : GL_DEPTH_BUFFER_BIT);
     if (view.empty) continue;
-    if (variant == Variant::Vsm) gl.Uniform2f(p.layer_inv_view_depth, map.inv_view_depth[2 * k], map.inv_view_depth[2 * k + 1]);
+    if (lookup.storage == MapStorage::RawDepthAndMoments)
+      gl.Uniform2f(p.at(gl, "u_layer_inv_view_depth"), map.inv_view_depth[2 * k], map.inv_view_depth[2 * k + 1]);
     Mat4<double> clip = projections[k] * view.view;
     // FAULT: the ±y faces rendered with their up vector negated (the picture turned by 180 degrees:
     // NDC x and y negated), while they are sampled as the face table says.
@@ -442,155 +374,53 @@ void draw_depth_pass(const Frame& frame, const LightFit& lc, const std::vector<M
       if (faults.cull_casters_outside_view && frame.outside_camera_view(i)) continue;
       if (cull && frame.closed(i)) gl.Enable(GL_CULL_FACE);
       else gl.Disable(GL_CULL_FACE);
+      if (frame.closed(i) && !drawn.closed_faces) record_drawn_state(gl, p, drawn);
       frame.objects[i].draw();
     }
   }
 }
 
-LightMap render_light_map(const Frame& frame, std::size_t light, const LightFit& lc, Variant variant) {
-  const GlFunctions& gl = frame.gl;
-  LightMap map;
-  map.size = lc.size + 2 * frame.options.guard_band_texels;
-  if (holds_distance(frame.options, variant, lc.cube)) {
-    map.distance_range = static_cast<float>(cube_distance_range(frame.prepared, light));
-    const Vec4<double> l = frame.light(light);
-    map.light_position = (l.head<3>() / l.w()).cast<float>();
-  }
-  map.layout = lc.cube ? 1 : lc.cascade_splits.empty() ? 0 : 2;
-  select_cascades(frame, lc, map);
-  const std::vector<Mat4<double>> projections = light_matrices(frame, lc, map);
-  GLuint fbo = 0;
-  const GLuint depth_rb = allocate_targets(frame, map, static_cast<GLsizei>(lc.views.size()), variant, fbo);
-  const Program& p = set_depth_pass_state(frame, lc, map, variant);
-  draw_depth_pass(frame, lc, projections, map, variant, p);
-  gl.Disable(GL_CULL_FACE);
-  gl.CullFace(GL_BACK);
-  gl.Disable(GL_POLYGON_OFFSET_FILL);
-  gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
-  gl.DeleteFramebuffers(1, &fbo);
-  if (depth_rb) frame.maps.give_back(depth_rb, false);
-  return map;
-}
-
-void bind_map(const Frame& frame, const LightMap& map, Variant variant) {
-  const GlFunctions& gl = frame.gl;
-  gl.ActiveTexture(variant == Variant::Rgba8 ? GL_TEXTURE1 : soft(variant) ? kRawDepthUnit : GL_TEXTURE0);
-  gl.BindTexture(GL_TEXTURE_2D_ARRAY, map.texture);
-  if (variant == Variant::Vsm) {
-    gl.ActiveTexture(kMomentUnit);
-    gl.BindTexture(GL_TEXTURE_2D_ARRAY, map.moments);
-  }
-  gl.ActiveTexture(GL_TEXTURE0);
-  const Program& p = frame.surface_program();
-  gl.UseProgram(p.id);
-  const float texel = 1.0f / static_cast<float>(map.size);
-  gl.Uniform2f(p.texel, texel, texel);
-  gl.Uniform1i(p.layout, map.layout);
-  gl.Uniform1i(p.random_taps, frame.options.random_taps);
-  gl.Uniform1f(p.random_pcf_radius, static_cast<float>(kRandomPcfRadiusTexels));
-  gl.Uniform1i(p.reversed, frame.convention().clip.order == DepthOrder::Reversed ? 1 : 0);
-  const DepthCompare lit = lit_compare(frame.convention(), frame.faults().shadow_map.compare);
-  gl.Uniform1i(p.lit_greater, lit == DepthCompare::GreaterEqual ? 1 : 0);
-  static_assert(!Mat4<float>::IsRowMajor);
-  const auto matrices = [&](GLint location, const std::vector<Mat4<float>>& all) {
-    std::vector<float> m;
-    for (const Mat4<float>& f : all) m.insert(m.end(), f.data(), f.data() + 16);
-    gl.UniformMatrix4fv(location, static_cast<GLsizei>(all.size()), GL_FALSE, m.data());
-  };
-  gl.Uniform1f(p.normal_offset_texels, static_cast<float>(frame.options.normal_offset_texels));
-  gl.Uniform1f(p.distance_range, map.distance_range);
-  if (soft(variant) || frame.options.normal_offset_texels > 0) {
-    matrices(p.layer_from_world, map.face_from_world);
-    matrices(p.world_from_layer, map.world_from_face);
-    gl.Uniform2fv(p.inv_view_depth, static_cast<GLsizei>(map.inv_view_depth.size() / 2), map.inv_view_depth.data());
-  }
-  if (map.layout != 0) {
-    matrices(p.layer_from_world, map.face_from_world);
-    gl.Uniform4f(p.cascade_depth, map.cascade_depth.x(), map.cascade_depth.y(), map.cascade_depth.z(), map.cascade_depth.w());
-    gl.Uniform4f(p.cascade_begin, map.cascade_begin.x(), map.cascade_begin.y(), map.cascade_begin.z(), map.cascade_begin.w());
-    gl.Uniform4f(p.cascade_end, map.cascade_end.x(), map.cascade_end.y(), map.cascade_end.z(), map.cascade_end.w());
-  }
-}
-
-// PCSS's and VSM's light: the rect's edges (scaled by the light-size fault) and the blocker fault.
-void set_light_uniforms(const Frame& frame, std::size_t i, Variant variant) {
-  if (!soft(variant)) return;
-  const GlFunctions& gl = frame.gl;
-  const Program& p = frame.surface_program();
-  const scene::Light& light = frame.scene.lights[i];
-  const SoftShadowFaults& f = frame.faults().soft;
-  const Vec3<float> u = (f.light_size_scale * light.edge_u).cast<float>();  // FAULT when the scale is not 1
-  const Vec3<float> v = (f.light_size_scale * light.edge_v).cast<float>();
-  gl.Uniform3f(p.rect_u, u.x(), u.y(), u.z());
-  gl.Uniform3f(p.rect_v, v.x(), v.y(), v.z());
-  gl.Uniform1i(p.blocker_at_receiver, f.blocker_depth_from_receiver ? 1 : 0);
-  gl.Uniform1i(p.taps_in_own_face, f.taps_stay_in_face ? 1 : 0);
-}
-
-void unbind_maps(const GlFunctions& gl) {
-  gl.ActiveTexture(kMomentUnit);
-  gl.BindTexture(GL_TEXTURE_2D_ARRAY, 0);
-  gl.ActiveTexture(kRawDepthUnit);
-  gl.BindTexture(GL_TEXTURE_2D_ARRAY, 0);
-  gl.ActiveTexture(GL_TEXTURE1);
-  gl.BindTexture(GL_TEXTURE_2D_ARRAY, 0);
-  gl.ActiveTexture(GL_TEXTURE0);
-  gl.BindTexture(GL_TEXTURE_2D_ARRAY, 0);
-}
-
-int shader_mode(Variant v) {
-  switch (v) {
-    case Variant::Depth: return 1;
-    case Variant::Pcf: return 2;
-    case Variant::Rgba8: return 3;
-    case Variant::Pcss: return 4;
-    case Variant::Vsm: return 5;
-  }
-  return 1;
-}
-
-
-void render_variant(Frame& frame, Variant variant, bool cascaded) {
-  const GlFunctions& gl = frame.gl;
-  // PCSS's and VSM's code lives in its own program; every other variant draws with the plain one.
-  if (soft(variant)) frame.surface = &frame.programs.surface_soft;
-  const Mat4<float> clip = frame.camera_clip(CameraDepth::Scene);
-  std::vector<LightMap> maps;
-  std::vector<Variant> variants;
-  for (std::size_t i = 0; i < frame.scene.lights.size(); ++i) {
-    LightFit refit;
-    variants.push_back(variant_for_light(frame.scene.lights[i], variant));
-    maps.push_back(
-        render_light_map(frame, i, cascaded ? cascade_fit(frame, i, refit) : frame.prepared.light_fits[i], variants[i]));
-  }
-
-  // The picture, the masks and the lit fractions in one camera pass per light: ambient_pass lays
-  // down the nearest surfaces' depth and colour, and each light's pass (GL_EQUAL: every visible
-  // pixel shaded once) adds its light there and writes its mask, and for the filtered variants its
-  // lit fraction (visibility.png), into the mask attachment (Frame::light_pass).
-  const bool filtered = variant == Variant::Pcf || soft(variant);
-  frame.ambient_pass(clip);
-  for (std::size_t i = 0; i < maps.size(); ++i) {
-    bind_map(frame, maps[i], variants[i]);
-    set_light_uniforms(frame, i, variants[i]);
-    frame.light_pass(clip, i, shader_mode(variants[i]), &maps[i].shadow_from_world, /*masks=*/true);
-    frame.result.masks.push_back(frame.read_grey(GL_GREEN, Frame::kMaskAttachment));
-    if (filtered) frame.result.visibility.push_back(frame.read_grey(GL_RED, Frame::kMaskAttachment));
-  }
-  unbind_maps(gl);
-  frame.result.shaded = frame.read_rgb();
-}
-
 }  // namespace
 
-bool cube_holds_distance(const RenderOptions& options, std::string_view technique, const scene::Light& light, bool cube) {
-  const Variant v = technique == "shadowmap" || technique == "csm"           ? Variant::Depth
-                    : technique == "shadowmap-pcf" || technique == "csm-pcf" ? Variant::Pcf
-                    : technique == "pcss"                                    ? Variant::Pcss
-                    : technique == "vsm"                                     ? Variant::Vsm
-                                                                             : Variant::Rgba8;  // and the non-maps: none
-  return holds_distance(options, variant_for_light(light, v), cube);
+LightMap::LightMap(LightMap&& o) noexcept
+    : pool(o.pool), texture(o.texture), moments(o.moments), size(o.size), layout(o.layout),
+      distance_range(o.distance_range), light_position(o.light_position), shadow_from_world(o.shadow_from_world),
+      face_from_world(std::move(o.face_from_world)), cascade_depth(o.cascade_depth), cascade_begin(o.cascade_begin),
+      cascade_end(o.cascade_end), world_from_face(std::move(o.world_from_face)),
+      inv_view_depth(std::move(o.inv_view_depth)) {
+  o.texture = 0;
+  o.moments = 0;
+}
+
+LightMap::~LightMap() {
+  if (texture) pool->give_back(texture, true);
+  if (moments) pool->give_back(moments, true);
+}
+
+// The cascades of the directional light `i` for csm and csm-pcf: the prepared ones, or, when a
+// CascadeFaults switch changes how they are fitted, a refit (into `refit`) with that one change.
+const LightFit& cascade_fit(const Frame& frame, std::size_t i, LightFit& refit) {
+  const LightFit& prepared = frame.prepared.cascade_fits[i];
+  const CascadeFaults& f = frame.faults().cascade;
+  if (prepared.cascade_splits.empty() || (!f.slice_depth_range && !f.no_snapping && !f.frustum_behind_camera))
+    return prepared;
+  CascadeOptions o;
+  o.count = static_cast<int>(prepared.views.size());
+  o.map_size = prepared.size;
+  o.snap = !f.no_snapping;                        // FAULT: the windows follow the camera continuously
+  o.scene_depth_range = !f.slice_depth_range;     // FAULT: casters outside the slice's sphere clipped
+  CascadeCamera camera = scene::cascade_camera(frame.scene);
+  if (f.frustum_behind_camera) camera.forward = -camera.forward;  // FAULT: the other handedness's axis
+  refit = fit_cascades(frame.convention(), frame.light(i).head<3>(), frame.prepared.bounds, camera, o).value();
+  if (f.frustum_behind_camera) {  // the selection is the shader's own, from the true view depth
+    refit.cascade_splits = prepared.cascade_splits;
+    refit.cascade_depth_from_scene = prepared.cascade_depth_from_scene;
+  }
+  return refit;
+}
+
+bool holds_distance(const RenderOptions& options, const MapLookup& lookup, bool cube) {
+  return options.cube_depth == outputs::StoredDepth::Distance && cube && lookup.may_store_distance;
 }
 
 double cube_distance_range(const scene::PreparedScene& prepared, std::size_t light) {
@@ -606,13 +436,82 @@ double cube_distance_range(const scene::PreparedScene& prepared, std::size_t lig
   return 1.01 * range;
 }
 
-void render_shadowmap(Frame& frame) { render_variant(frame, Variant::Depth, false); }
-void render_shadowmap_pcf(Frame& frame) { render_variant(frame, Variant::Pcf, false); }
-void render_shadowmap_rgba8(Frame& frame) { render_variant(frame, Variant::Rgba8, false); }
-void render_csm(Frame& frame) { render_variant(frame, Variant::Depth, true); }
-void render_csm_pcf(Frame& frame) { render_variant(frame, Variant::Pcf, true); }
-void render_pcss(Frame& frame) { render_variant(frame, Variant::Pcss, false); }
-void render_vsm(Frame& frame) { render_variant(frame, Variant::Vsm, false); }
+LightMap draw_light_map(Frame& frame, std::size_t light, const LightFit& lc, const MapLookup& lookup) {
+  const GlFunctions& gl = frame.gl;
+  LightMap map;
+  map.size = lc.size + 2 * frame.options.guard_band_texels;
+  if (holds_distance(frame.options, lookup, lc.cube)) {
+    map.distance_range = static_cast<float>(cube_distance_range(frame.prepared, light));
+    const Vec4<double> l = frame.light(light);
+    map.light_position = (l.head<3>() / l.w()).cast<float>();
+  }
+  map.layout = lc.cube ? MapLayout::Cube : lc.cascade_splits.empty() ? MapLayout::Single : MapLayout::Cascades;
+  select_cascades(frame, lc, map);
+  const std::vector<Mat4<double>> projections = light_matrices(frame, lc, map);
+  GLuint fbo = 0;
+  const GLuint depth_rb = allocate_targets(frame, map, static_cast<GLsizei>(lc.views.size()), lookup, fbo);
+  const Program& p = set_depth_pass_state(frame, lc, map, lookup);
+  DrawnMap drawn;
+  drawn.lookup = std::string(lookup_name(lookup.id));
+  drawn.distance = map.distance_range > 0;
+  gl.GetTexLevelParameteriv(GL_TEXTURE_2D_ARRAY, 0, GL_TEXTURE_WIDTH, &drawn.texels);
+  draw_depth_pass(frame, lc, projections, map, lookup, p, drawn);
+  frame.result.drawn_maps.push_back(std::move(drawn));
+  gl.Disable(GL_CULL_FACE);
+  gl.CullFace(GL_BACK);
+  gl.Disable(GL_POLYGON_OFFSET_FILL);
+  gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl.DeleteFramebuffers(1, &fbo);
+  if (depth_rb) frame.maps.give_back(depth_rb, false);
+  return map;
+}
+
+void bind_light_map(const Frame& frame, std::size_t light, const LightMap& map, const MapLookup& lookup,
+                    const Program& p) {
+  const GlFunctions& gl = frame.gl;
+  gl.ActiveTexture(texture_unit(lookup.storage));
+  gl.BindTexture(GL_TEXTURE_2D_ARRAY, map.texture);
+  if (lookup.storage == MapStorage::RawDepthAndMoments) {
+    gl.ActiveTexture(kMomentUnit);
+    gl.BindTexture(GL_TEXTURE_2D_ARRAY, map.moments);
+  }
+  gl.ActiveTexture(GL_TEXTURE0);
+  gl.UseProgram(p.id);
+  const float texel = 1.0f / static_cast<float>(map.size);
+  gl.Uniform2f(p.at(gl, "u_texel"), texel, texel);
+  gl.Uniform1i(p.at(gl, "u_layout"), static_cast<int>(map.layout));
+  gl.Uniform1i(p.at(gl, "u_random_taps"), frame.options.random_taps);
+  gl.Uniform1f(p.at(gl, "u_random_pcf_radius"), static_cast<float>(kRandomPcfRadiusTexels));
+  gl.Uniform1i(p.at(gl, "u_reversed"), frame.convention().clip.order == DepthOrder::Reversed ? 1 : 0);
+  const DepthCompare lit = lit_compare(frame.convention(), frame.faults().shadow_map.compare);
+  gl.Uniform1i(p.at(gl, "u_lit_greater"), lit == DepthCompare::GreaterEqual ? 1 : 0);
+  static_assert(!Mat4<float>::IsRowMajor);
+  const auto matrices = [&](const char* name, const std::vector<Mat4<float>>& all) {
+    std::vector<float> m;
+    for (const Mat4<float>& f : all) m.insert(m.end(), f.data(), f.data() + 16);
+    gl.UniformMatrix4fv(p.at(gl, name), static_cast<GLsizei>(all.size()), GL_FALSE, m.data());
+  };
+  gl.Uniform1f(p.at(gl, "u_normal_offset_texels"), static_cast<float>(frame.options.normal_offset_texels));
+  gl.Uniform1f(p.at(gl, "u_distance_range"), map.distance_range);
+  matrices("u_layer_from_world[0]", map.face_from_world);
+  matrices("u_world_from_layer[0]", map.world_from_face);
+  gl.Uniform2fv(p.at(gl, "u_inv_view_depth[0]"), static_cast<GLsizei>(map.inv_view_depth.size() / 2),
+                map.inv_view_depth.data());
+  if (map.layout == MapLayout::Cascades) {
+    gl.Uniform4f(p.at(gl, "u_cascade_depth"), map.cascade_depth.x(), map.cascade_depth.y(), map.cascade_depth.z(), map.cascade_depth.w());
+    gl.Uniform4f(p.at(gl, "u_cascade_begin"), map.cascade_begin.x(), map.cascade_begin.y(), map.cascade_begin.z(), map.cascade_begin.w());
+    gl.Uniform4f(p.at(gl, "u_cascade_end"), map.cascade_end.x(), map.cascade_end.y(), map.cascade_end.z(), map.cascade_end.w());
+  }
+  if (lookup.set_light_uniforms) lookup.set_light_uniforms(frame, p, light);
+}
+
+void unbind_light_maps(const GlFunctions& gl) {
+  for (const GLenum unit : {kMomentUnit, kRawDepthUnit, kPackedUnit, kComparedUnit}) {
+    gl.ActiveTexture(unit);
+    gl.BindTexture(GL_TEXTURE_2D_ARRAY, 0);
+  }
+}
 
 MapStoragePool::~MapStoragePool() {
   for (const Entry& e : entries_) {

@@ -1,0 +1,89 @@
+// programs.cpp — the renderer's GLSL programs: compiled, linked, their samplers bound to the units
+// the light maps use (shadow_maps/light_map.cpp), and each lookup's surface program on first use.
+#include <string>
+#include <vector>
+
+#include "frame.hpp"
+#include "shaders.hpp"
+#include "shadow_maps/lookup.hpp"
+
+namespace shadowref::renderer {
+namespace {
+
+GLuint compile(const GlFunctions& gl, GLenum type, const std::vector<std::string>& sources, const char* what) {
+  std::vector<const char*> strings;
+  for (const std::string& s : sources) strings.push_back(s.c_str());
+  const GLuint s = gl.CreateShader(type);
+  gl.ShaderSource(s, static_cast<GLsizei>(strings.size()), strings.data(), nullptr);
+  gl.CompileShader(s);
+  GLint ok = 0;
+  gl.GetShaderiv(s, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[4096] = {};
+    gl.GetShaderInfoLog(s, sizeof log, nullptr, log);
+    gl.DeleteShader(s);
+    throw GlError(std::string("shader ") + what + " does not compile: " + log);
+  }
+  return s;
+}
+
+Program link(const GlFunctions& gl, const std::vector<std::string>& fragment, const std::string& what) {
+  const GLuint vs = compile(gl, GL_VERTEX_SHADER, {shaders::kSceneVertex}, "scene vertex");
+  const GLuint fs = compile(gl, GL_FRAGMENT_SHADER, fragment, what.c_str());
+  Program p;
+  p.id = gl.CreateProgram();
+  gl.AttachShader(p.id, vs);
+  gl.AttachShader(p.id, fs);
+  gl.LinkProgram(p.id);
+  gl.DeleteShader(vs);
+  gl.DeleteShader(fs);
+  GLint ok = 0;
+  gl.GetProgramiv(p.id, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[4096] = {};
+    gl.GetProgramInfoLog(p.id, sizeof log, nullptr, log);
+    throw GlError("program " + what + " does not link: " + log);
+  }
+  const auto loc = [&](const char* name) { return gl.GetUniformLocation(p.id, name); };
+  p.clip_from_world = loc("u_clip_from_world");
+  p.shadow_from_world = loc("u_shadow_from_world");
+  p.colour = loc("u_colour");
+  p.mode = loc("u_mode");
+  p.albedo = loc("u_albedo");
+  p.ambient = loc("u_ambient");
+  p.light = loc("u_light");
+  p.light_intensity = loc("u_light_intensity");
+  p.spot = loc("u_spot");
+  // The samplers' texture units (light_map.cpp's texture_unit); a program has at most one of them
+  // and its moments.
+  gl.UseProgram(p.id);
+  const std::pair<const char*, GLint> units[] = {{"u_shadow_map", 0}, {"u_packed_map", 1}, {"u_depth_map", 2}, {"u_moment_map", 3}};
+  for (const auto& [name, unit] : units)
+    if (const GLint l = loc(name); l >= 0) gl.Uniform1i(l, unit);
+  gl.UseProgram(0);
+  return p;
+}
+
+}  // namespace
+
+Programs::Programs(const GlFunctions& gl) : gl_(gl) {
+  flat = link(gl, {shaders::kFlatFragment}, "flat");
+  moments = link(gl, {shaders::kMomentsFragment}, "moments");
+  distance = link(gl, {shaders::kDistanceFragment}, "distance");
+  packed_depth = link(gl, {shaders::kVersion, shaders::kDepthPacking, shaders::kPackedDepthFragmentBody}, "packed depth");
+  surface();
+}
+
+Programs::~Programs() {
+  for (const Program* p : {&flat, &moments, &distance, &packed_depth}) gl_.DeleteProgram(p->id);
+  for (const Program& p : surface_)
+    if (p.id) gl_.DeleteProgram(p.id);
+}
+
+const Program& Programs::surface(Lookup lookup) const {
+  Program& p = surface_[static_cast<std::size_t>(lookup)];
+  if (!p.id) p = link(gl_, shaders::surface_fragment(map_lookup(lookup)), "surface (" + std::string(lookup_name(lookup)) + ")");
+  return p;
+}
+
+}  // namespace shadowref::renderer
