@@ -98,8 +98,9 @@ std::vector<json> gather_cases(const std::vector<Shard>& shards, std::vector<std
   std::map<std::pair<std::string, std::string>, std::pair<json, const Shard*>> at;
   std::set<std::string> skipped, present_shards;
   for (const Shard& s : shards) {
+    // A shard given twice is said once (check_one_run), not once more per case.
+    if (!present_shards.insert(std::to_string(s.index)).second) continue;
     for (const json& k : s.report.value("skipped", json::array())) skipped.insert(k.get<std::string>());
-    present_shards.insert(std::to_string(s.index));
     for (json c : s.report["cases"]) {
       const std::string scene = text_of(c, "scene"), technique = text_of(c, "technique");
       const std::string name = case_name(scene, technique, convention);

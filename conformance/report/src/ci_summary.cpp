@@ -44,10 +44,10 @@ std::string outcome(const json& c) {
   return c["expectation"].value("outcome", "");
 }
 
-// "FAIL, expected by fails.txt:3": what the expectations file said of the case.
+// "FAIL at fails.txt:3": what the expectations files said of the case ("green": no line).
 std::string expected_by(const json& c) {
   const json& e = c["expectation"];
-  return e.value("status", "green") + (e.contains("line") ? ", expected by " + e.value("line", "") : "");
+  return e.value("status", "green") + (e.contains("line") ? " at " + e.value("line", "") : "");
 }
 
 void write_file(const std::string& content, const std::filesystem::path& file) {
@@ -79,9 +79,9 @@ std::string render_junit(const json& report) {
       << "\" time=\"" << c.value("seconds", 0.0) << "\">";
     const std::string o = outcome(c);
     if ((o == "expected" || o == "flake") && st != "PASS" && st != "XFAIL")
-      x << "<skipped message=\"" << escape_html((o == "flake" ? "flaky: " + st : "known failure: " + st + " (" + expected_by(c) + ")") + ": " + reasons(c)) << "\"/>";
+      x << "<skipped message=\"" << escape_html((o == "flake" ? "flaky: " + st : "known failure: " + expected_by(c)) + ": " + reasons(c)) << "\"/>";
     else if (o == "improvement")
-      x << "<system-out>" << escape_html("improvement: " + st + " where " + expected_by(c) + ": remove the line from the expectations file") << "</system-out>";
+      x << "<system-out>" << escape_html("improvement: " + st + " where the expectations say " + expected_by(c) + ": remove that line") << "</system-out>";
     else if (st == "FAIL" || st == "XPASS")
       x << "<failure message=\"" << escape_html((o == "new-failure" ? "new failure: " : "") + st + ": " + reasons(c)) << "\">" << escape_html(text(c, "why")) << "</failure>";
     else if (st == "ERROR")
@@ -114,7 +114,8 @@ std::string render_markdown(const json& report) {
   if (report.contains("expectations")) {
     const json& e = report["expectations"];
     m << "\nAgainst the expectations files:";
-    for (const auto& [k, v] : e.value("counts", json::object()).items()) m << " " << v.dump() << " " << k << ",";
+    const json counts = e.value("counts", json::object());
+    for (const auto& [k, v] : counts.items()) m << " " << v.dump() << " " << k << ",";
     m << " " << e.value("stale", json::array()).size() << " stale line(s); the next file: `expectations-update.txt`\n";
     for (const json& st : e.value("stale", json::array()))
       m << "- **stale** " << cell(st.value("line", "")) << ": `" << cell(st.value("text", "")) << "` names no case of this run\n";

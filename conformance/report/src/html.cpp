@@ -354,7 +354,8 @@ void expectations_section(std::ostringstream& h, const json& r, const json& case
   if (!r.contains("expectations") || !r["expectations"].is_object()) return;
   const json& e = r["expectations"];
   h << "<section id=\"expectations\"><h2>Against the expectations files</h2><div class=\"counts\">";
-  for (const auto& [k, v] : e.value("counts", json::object()).items())
+  const json counts = e.value("counts", json::object());
+  for (const auto& [k, v] : counts.items())
     h << "<span style=\"background:#eef1f6\">" << escape_html(k) << " " << v.dump() << "</span>";
   h << "<span style=\"background:#eef1f6\">stale " << e.value("stale", json::array()).size() << "</span></div><ul>";
   for (const json& c : cases) {
