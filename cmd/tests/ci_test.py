@@ -4,7 +4,8 @@
   shards        four shards as separate processes, once by --shard and once by each CI's environment
                 protocol (Bazel TEST_*, GoogleTest GTEST_*, GitLab CI_NODE_*), each merged: the merged
                 report.json's cases (status, metrics, images byte for byte) equal an unsplit run's, time
-                and provenance aside; the shard status file is touched and XML_OUTPUT_FILE written.
+                and provenance aside; the shard status file is touched and XML_OUTPUT_FILE written; two
+                shards balanced by the unsplit run's times (--shard-weights) merge to the same.
   refusals      `shadowref merge` refuses a missing shard, a duplicate shard, a case seen twice and a
                 mixed suite version, each with one line on stderr, exit 4, and nothing written.
   expectations  an expectations file of the candidate's known FAILs: exit 0; one PASSing scene's mask
@@ -159,6 +160,15 @@ def part_shards(exe, work):
             if not (work / f"{name}-merged" / f).is_file():
                 fail(f"{name}: the merge wrote no {f}")
         print(f"{name}: 4 shards merged equal the unsplit run ({len(merged)} cases)")
+    # Balanced by the unsplit run's recorded times: two shards, the plan says so, the merge is the same.
+    for k in range(2):
+        conform(exe, work, f"weighed-{k + 1}", "--shard", f"{k + 1}/2", "--shard-weights", work / "whole" / "report.json")
+        plan = json.loads((work / f"weighed-{k + 1}" / "report.json").read_text())["plan"]
+        if plan["assignment"] != "weights" or sorted({p["shard"] for p in plan["scenes"]}) != [1, 2]:
+            fail(f"--shard-weights: plan {plan}")
+    run([exe, "merge", work / "weighed-1", work / "weighed-2", "--out", work / "weighed-merged"], expect=0)
+    if cases_of(work / "weighed-merged")[0] != whole:
+        fail("--shard-weights: the merged cases differ from the unsplit run's")
     for k in range(4):
         for f in (f"bazel-status-{k}", f"gtest-status-{k}", f"bazel-{k}.xml"):
             if not (work / f).is_file():

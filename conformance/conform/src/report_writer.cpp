@@ -240,8 +240,11 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
   std::set<std::string> scenes_copied;
   for (const CaseResult& c : r.cases) cases.push_back(case_json(c, staged, scenes_copied, r, with_expectations));
   j["cases"] = cases;
-  if (r.control) {
-    json control = {{"scene", r.control->scene}, {"technique", r.control->technique}, {"status", to_string(r.control->status)}};
+  if (o.shard) {
+    // The control case (none only when a [skips] regex left it out).
+    const json control = r.control ? json{{"scene", r.control->scene}, {"technique", r.control->technique},
+                                          {"status", to_string(r.control->status)}}
+                                   : json::object();
     j["shard"] = {{"index", o.shard->index + 1}, {"total", o.shard->total}, {"source", o.shard->source},
                   {"scenes", r.scenes}, {"control", control}};
   }
