@@ -16,7 +16,9 @@ void add_expectations_option(CLI::App& cmd, std::vector<std::string>& files) {
                  "an engine team's known failures (repeatable): lines 'scene@technique[@convention],STATUS' (WARN, FAIL, "
                  "XPASS, ERROR), '#' comments, [flakes] and [skips] sections of regexes over 'scene@technique@convention'. "
                  "A case as expected is no failure; a new failure exits 2, an improvement 1; the next file is written as "
-                 "OUT/expectations-update.txt (docs/ci.md)");
+                 "OUT/expectations-update.txt (docs/ci.md)")
+      // One file per --expectations, so that `merge --expectations F DIR...` does not read the shards as files.
+      ->allow_extra_args(false);
 }
 
 conform::Expectations read_expectations_option(const std::vector<std::string>& files) {
