@@ -5,7 +5,8 @@
                 protocol (Bazel TEST_*, GoogleTest GTEST_*, GitLab CI_NODE_*), each merged: the merged
                 report.json's cases (status, metrics, images byte for byte) equal an unsplit run's, time
                 and provenance aside; the shard status file is touched and XML_OUTPUT_FILE written; two
-                shards balanced by the unsplit run's times (--shard-weights) merge to the same.
+                shards balanced by the unsplit run's times (--shard-weights) merge to the same; a scene added
+                to the catalogue changes the recorded plan for that scene alone.
   refusals      `shadowref merge` refuses a missing shard, a duplicate shard, a case seen twice and a
                 mixed suite version, each with one line on stderr, exit 4, and nothing written.
   expectations  an expectations file of the candidate's known FAILs: exit 0; one PASSing scene's mask
@@ -169,6 +170,24 @@ def part_shards(exe, work):
     run([exe, "merge", work / "weighed-1", work / "weighed-2", "--out", work / "weighed-merged"], expect=0)
     if cases_of(work / "weighed-merged")[0] != whole:
         fail("--shard-weights: the merged cases differ from the unsplit run's")
+    # A scene added to the catalogue moves only itself: the plan every shard records, before and after.
+    source = pathlib.Path(__file__).resolve().parents[2] / "conformance" / "scenes"
+    for name, extra in (("before", []), ("after", ["added_scene"])):
+        cat = work / f"catalogue-{name}"
+        cat.mkdir()
+        for scene in SCENES.split(","):
+            shutil.copy(source / f"{scene}.json", cat / f"{scene}.json")
+        for scene in extra:
+            text = json.loads((source / "ground_sphere.json").read_text())
+            text["name"] = scene
+            (cat / f"{scene}.json").write_text(json.dumps(text))
+        run([exe, "conform", "--catalogue", cat, "--techniques", "planar", "--out", work / f"plan-{name}", "--cache",
+             work / "cache", "--jobs", "1", "--quiet", "--shard", "1/4"], expect=0)
+    plans = [{p["scene"]: p["shard"] for p in json.loads((work / f"plan-{n}" / "report.json").read_text())["plan"]["scenes"]}
+             for n in ("before", "after")]
+    moved = {s for s in plans[1] if plans[0].get(s) != plans[1][s]}
+    if moved != {"added_scene"}:
+        fail(f"adding a scene changed the shard of {sorted(moved)}: {plans}")
     for k in range(4):
         for f in (f"bazel-status-{k}", f"gtest-status-{k}", f"bazel-{k}.xml"):
             if not (work / f).is_file():
