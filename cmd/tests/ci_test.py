@@ -7,8 +7,9 @@
                 and provenance aside; the shard status file is touched and XML_OUTPUT_FILE written; two
                 shards balanced by the unsplit run's times (--shard-weights) merge to the same; a scene added
                 to the catalogue changes the recorded plan for that scene alone.
-  refusals      `shadowref merge` refuses a missing shard, a duplicate shard, a case seen twice and a
-                mixed suite version, each with one line on stderr, exit 4, and nothing written.
+  refusals      `shadowref merge` refuses a missing shard, a duplicate shard, a case seen twice, a mixed
+                suite version, convention and declaration, each with one line on stderr, exit 4, and
+                nothing written.
   expectations  an expectations file of the candidate's known FAILs: exit 0; one PASSing scene's mask
                 inverted: exit 2 and that case named a new failure; the known FAIL's mask replaced by our
                 correct render: named an improvement (exit 1); expectations-update.txt makes the next
@@ -224,6 +225,10 @@ def part_refusals(exe, work):
     r2["version"] = "0.0.9"
     (mixed / "report.json").write_text(json.dumps(r2))
     refused("mixed-version", [shards[0], mixed, shards[2], shards[3]], "suite version 0.0.9")
+    conform(exe, work, "s2-d3d", "--shard", "2/4", "--convention", "d3d")
+    refused("mixed-convention", [shards[0], work / "s2-d3d", shards[2], shards[3]], "convention d3d")
+    conform(exe, work, "s2-map", "--shard", "2/4", "--shadow-map-size", "512")
+    refused("mixed-declarations", [shards[0], work / "s2-map", shards[2], shards[3]], "declarations")
 
 
 def part_expectations(exe, work, three_pack):

@@ -54,18 +54,32 @@ Shard read_shard(const fs::path& dir) {
 // shard index once and none missing.
 void check_one_run(const std::vector<Shard>& shards, std::vector<std::string>& problems) {
   const Shard& first = shards.front();
+  // One line per shard and cause: the first of these that differs says it (another convention
+  // also makes another plan, which is not said again).
+  const auto text = [](const json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); };
   const auto differs = [&](const Shard& s, const std::string& what, const json& a, const json& b) {
-    if (a != b)
-      problems.push_back(s.dir.string() + ": " + what + " " + (a.is_string() ? a.get<std::string>() : a.dump()) + ", but " +
-                         first.dir.string() + " has " + (b.is_string() ? b.get<std::string>() : b.dump()));
+    if (a == b) return false;
+    if (a.is_object() && b.is_object()) {  // the declarations: only the keys that differ
+      std::string mine, theirs;
+      for (const auto& [k, v] : a.items())
+        if (!b.contains(k) || b[k] != v) {
+          mine += (mine.empty() ? "" : ", ") + k + " " + text(v);
+          theirs += (theirs.empty() ? "" : ", ") + k + " " + (b.contains(k) ? text(b[k]) : "(none)");
+        }
+      problems.push_back(s.dir.string() + ": " + what + " " + mine + ", but " + first.dir.string() + " has " + theirs);
+      return true;
+    }
+    problems.push_back(s.dir.string() + ": " + what + " " + text(a) + ", but " + first.dir.string() + " has " + text(b));
+    return true;
   };
   for (std::size_t i = 1; i < shards.size(); ++i) {
     const json &r = shards[i].report, &f = first.report;
-    differs(shards[i], "suite version", r.value("version", json()), f.value("version", json()));
-    differs(shards[i], "catalogue", r["plan"].value("catalogue", json()), f["plan"].value("catalogue", json()));
-    differs(shards[i], "convention", r.value("convention", json()), f.value("convention", json()));
-    differs(shards[i], "declarations", r.value("declarations", json()), f.value("declarations", json()));
-    if (r["plan"] != f["plan"] && r["plan"].value("catalogue", json()) == f["plan"].value("catalogue", json()))
+    if (differs(shards[i], "suite version", r.value("version", json()), f.value("version", json())) ||
+        differs(shards[i], "catalogue", r["plan"].value("catalogue", json()), f["plan"].value("catalogue", json())) ||
+        differs(shards[i], "convention", r.value("convention", json()), f.value("convention", json())) ||
+        differs(shards[i], "declarations", r.value("declarations", json()), f.value("declarations", json())))
+      continue;
+    if (r["plan"] != f["plan"])
       problems.push_back(shards[i].dir.string() + ": another plan than " + first.dir.string() +
                          "'s (other scenes, techniques, shard count or weights)");
   }
