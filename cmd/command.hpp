@@ -3,8 +3,10 @@
 #pragma once
 
 #include <exception>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace CLI {
 class App;
@@ -16,6 +18,11 @@ struct RunConvention;
 }
 namespace shadowref::renderer {
 struct RenderOptions;
+}
+namespace shadowref::conform {
+struct Expectations;
+struct ConformResult;
+struct ConformOptions;
 }
 
 namespace shadowref::cli {
@@ -76,6 +83,25 @@ void add_render_variant_options(CLI::App& cmd, RenderVariantArgs& args);
 // `shadow_map_size` texels larger than the limit.
 void apply_render_variants(const RenderVariantArgs& args, int shadow_map_size, renderer::RenderOptions& options);
 
+// `--expectations FILE` (repeatable) in conform, compare and merge (expectations_option.cpp); the
+// files read (BadInput naming the file and line); the terminal's lines for each new failure, new
+// warning, improvement, stale line and skipped case, and the counts.
+void add_expectations_option(CLI::App& cmd, std::vector<std::string>& files);
+conform::Expectations read_expectations_option(const std::vector<std::string>& files);
+void print_expectation_lines(const conform::ConformResult& r, const conform::Expectations& e);
+
+// `conform`'s --shard K/N and --shard-weights FILE (shard_option.cpp); applying them sets the
+// options' shard from the flag, else from a CI system's environment, reads the weights (BadInput
+// naming the flag or the variables) and touches the runner's shard status file.
+struct ShardArgs {
+  std::string shard;
+  std::string weights;
+};
+void add_shard_options(CLI::App& cmd, ShardArgs& args);
+void apply_shard_options(const ShardArgs& args, conform::ConformOptions& options);
+// Copies `junit` to $XML_OUTPUT_FILE when the test runner (Bazel) set it.
+void write_xml_output_file(const std::filesystem::path& junit);
+
 // Adds one subcommand to `app`. Its callback stores the exit code in `exit_code`.
 using RegisterCommand = void (*)(CLI::App& app, int& exit_code);
 
@@ -88,5 +114,6 @@ void register_compare_command(CLI::App& app, int& exit_code);
 void register_conform_command(CLI::App& app, int& exit_code);
 void register_export_command(CLI::App& app, int& exit_code);
 void register_goldens_command(CLI::App& app, int& exit_code);
+void register_merge_command(CLI::App& app, int& exit_code);
 
 }  // namespace shadowref::cli

@@ -23,7 +23,9 @@
 
 #include "command.hpp"
 #include "shadowref/compare/compare.hpp"
+#include "shadowref/conform/expectations.hpp"
 #include "shadowref/conform/judge.hpp"
+#include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/outputs/image_io.hpp"
 #include "shadowref/outputs/json_text.hpp"
@@ -43,7 +45,30 @@ struct CompareArgs {
   std::string scene;              // the scene both folders show: enables the cause model
   std::string convention = "gl";  // the run convention the scene is prepared in
   bool json = false;
+  std::vector<std::string> expectations;
 };
+
+// The case against the expectations files (expectations.hpp): its outcome, the exit code that gives,
+// and, with --out, the next file.
+struct CaseAgainstFiles {
+  conform::Outcome outcome = conform::Outcome::Green;
+  const conform::ExpectationLine* line = nullptr;
+  std::string name;
+};
+
+CaseAgainstFiles against_files(const conform::Expectations& e, const std::string& scene, const conform::CaseJudgement& j,
+                               const CompareArgs& a) {
+  CaseAgainstFiles f;
+  f.name = conform::case_name(scene, j.technique, a.convention);
+  f.line = e.line_for(scene, j.technique, a.convention);
+  f.outcome = conform::outcome_of(j.status, j.expectation.warn, f.line, e.flaky(f.name));
+  if (!a.out.empty()) {
+    const std::vector<conform::CaseOutcome> cases = {{scene, j.technique, j.status, f.outcome}};
+    outputs::write_file_atomically(std::filesystem::path(a.out) / "expectations-update.txt",
+                                   conform::expectations_update_text(e, cases, {}, a.convention));
+  }
+  return f;
+}
 
 void print_metrics(const std::string& name, const compare::MaskMetrics& m) {
   std::printf("  %-12s %dx%d, %zu decided pixels with a surface: wrong %zu (%.4g %%) = %zu false shadow + %zu false light + "
@@ -88,6 +113,9 @@ struct ScratchFolder {
 };
 
 int run_compare(const CompareArgs& a) {
+  const conform::Expectations expectations = read_expectations_option(a.expectations);
+  if (!expectations.empty() && a.scene.empty())
+    throw BadInput("--expectations needs --scene: a case is named scene@technique[@convention] in the files");
   if (!a.technique.empty() && !outputs::find_technique_name(a.technique)) {
     std::string known;
     for (const auto& t : outputs::kTechniques) known += (known.empty() ? "" : ", ") + std::string(t.name);
@@ -95,8 +123,10 @@ int run_compare(const CompareArgs& a) {
   }
   conform::CaseJudgement j;
   ScratchFolder scratch;
+  std::string scene_name;
   try {
     const std::unique_ptr<KnownScene> known = load_known_scene(a);
+    if (known) scene_name = known->file.name;
     conform::Judge judge;
     const std::filesystem::path models = a.out.empty() ? scratch.path : std::filesystem::path(a.out) / "model";
     j = judge.judge(known ? &*known->prepared : nullptr, {a.reference, a.candidate, a.technique, false, models});
@@ -121,7 +151,13 @@ int run_compare(const CompareArgs& a) {
   }
   // With the scene, the exit code is the case's status under its expectation, as conform's: an
   // expected failure seen as predicted (XFAIL) or an expected quality warning exits 0.
-  const int code = !a.scene.empty() ? conform::exit_code({j.status}, {j.expectation.warn})
+  std::optional<CaseAgainstFiles> files;
+  if (!expectations.empty()) {
+    if (!a.out.empty()) std::filesystem::create_directories(a.out);
+    files = against_files(expectations, scene_name, j, a);
+  }
+  const int code = files ? conform::exit_code(std::vector<conform::Outcome>{files->outcome})
+                   : !a.scene.empty() ? conform::exit_code({j.status}, {j.expectation.warn})
                    : c.judgement.verdict == compare::Verdict::Pass             ? kExitPass
                    : c.judgement.verdict == compare::Verdict::QualityWarning ? kExitWarnings
                                                                              : kExitFailures;
@@ -136,6 +172,10 @@ int run_compare(const CompareArgs& a) {
       out["status"] = conform::to_string(j.status);
       out["signature"] = j.signature;
       out["unmet_expectation"] = j.unmet_expectation;
+    }
+    if (files) {
+      out["expectation"] = {{"outcome", conform::to_string(files->outcome)}, {"case", files->name}};
+      if (files->line) out["expectation"].update({{"status", conform::to_string(files->line->status)}, {"line", files->line->where}});
     }
     out["error_images"] = errors;
     out["exit_code"] = code;
@@ -166,6 +206,10 @@ int run_compare(const CompareArgs& a) {
                 j.signature.empty() ? "" : ": ", j.signature.c_str());
     if (!j.unmet_expectation.empty()) std::printf("  %s\n", j.unmet_expectation.c_str());
   }
+  if (files)
+    std::printf("against the expectations files: %s is %s%s%s%s\n", files->name.c_str(), conform::to_string(files->outcome),
+                files->line ? " (" : "", files->line ? (files->line->where + " expects " + conform::to_string(files->line->status)).c_str() : "",
+                files->line ? ")" : "");
   return code;
 }
 
@@ -190,11 +234,13 @@ void register_compare_command(CLI::App& app, int& exit_code) {
                   "exactly as conform does; without it nothing explains a wrong pixel, and soft techniques are refused");
   add_convention_option(*cmd, args->convention);
   cmd->add_flag("--json", args->json, "print one JSON object instead of text");
+  add_expectations_option(*cmd, args->expectations);
   cmd->footer(
       "Error image: red = false shadow (reference lit), blue = false light (reference shadowed), magenta = "
       "coverage (surface vs no surface), green = undecided (not judged), grey = the dimmed reference.\n"
       "Exit: 0 pass, 1 quality warning, 2 fail, 3 size mismatch, 4 bad input; with --scene, the case's status under the "
-      "scene's expectation as conform gives it (an XFAIL or an expected WARN exits 0, an XPASS 2).");
+      "scene's expectation as conform gives it (an XFAIL or an expected WARN exits 0, an XPASS 2); with --expectations (needs\n"
+      "--scene), the case against those files: 0 as expected, 1 an improvement or a new warning, 2 a new failure.");
   cmd->callback([args, &exit_code] { exit_code = run_compare(*args); });
 }
 

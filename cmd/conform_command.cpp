@@ -15,6 +15,7 @@
 #include "numbers.hpp"
 #include "shadowref/conform/catalogue.hpp"
 #include "shadowref/conform/conform.hpp"
+#include "shadowref/conform/expectations.hpp"
 #include "shadowref/outputs/limits.hpp"
 #include "shadowref/renderer/gl_context.hpp"
 #include "shadowref/scene/load_scene.hpp"
@@ -41,8 +42,55 @@ struct ConformArgs {
   int spp = 16;
   bool references_only = false;
   bool quiet = false;
+  std::vector<std::string> expectations;
+  ShardArgs shard;
   std::vector<std::string> argv;
 };
+
+// What a shard of a split run judged, so that a log shows each shard ran its share.
+void print_shard(const conform::ConformResult& r, const conform::ConformOptions& o) {
+  if (!o.shard) return;
+  std::string scenes;
+  for (const std::string& s : r.scenes) scenes += (scenes.empty() ? "" : ", ") + s;
+  std::printf("shard %d/%d (%s, by %s): %zu of %zu scenes: %s\n", o.shard->index + 1, o.shard->total, o.shard->source.c_str(),
+              r.plan.assignment.c_str(), r.scenes.size(), r.plan.scenes.size(), scenes.empty() ? "none" : scenes.c_str());
+  if (r.control)
+    std::printf("control case %s: %s\n", conform::case_name(r.control->scene, r.control->technique, r.convention).c_str(),
+                conform::to_string(r.control->status));
+}
+
+// Expected failures and failures with their why, so the table is never read without it.
+void print_case_lines(const conform::ConformResult& r) {
+  for (const conform::CaseResult& c : r.cases) {
+    if (c.status == conform::Status::Pass) {
+      // An expectation the verdict did not meet is said, not hidden behind the PASS (status.hpp).
+      if (!c.unmet_expectation.empty())
+        std::printf("PASS   %s x %s: %s\n", c.scene.c_str(), c.technique.c_str(), c.unmet_expectation.c_str());
+      continue;
+    }
+    std::printf("%-6s %s x %s", conform::to_string(c.status), c.scene.c_str(), c.technique.c_str());
+    if (c.status == conform::Status::XFail || c.status == conform::Status::XPass) std::printf(": expected to fail: %s", c.why.c_str());
+    if (c.status == conform::Status::Warn && c.expected_warning) std::printf(": expected quality warning: %s", c.why.c_str());
+    if (c.comparison && c.status == conform::Status::XFail)
+      std::printf(" (wrong %.3g %%, unexplained %zu px = %.3g %% of edges, core %zu px)", c.comparison->total.wrong_percent(),
+                  c.comparison->total.unexplained, 100 * c.comparison->total.unexplained_ratio(), c.comparison->total.unexplained_core);
+    if (c.comparison && c.comparison->visibility_total && c.status == conform::Status::XFail) {
+      const compare::VisibilityMetrics& v = *c.comparison->visibility_total;
+      std::printf(" (lit fraction: mean error %.3f over the penumbra, unexplained %zu px = %.3g %% of it, core %zu px)",
+                  v.mean_penumbra_error(), v.unexplained, 100 * v.unexplained_ratio(), v.unexplained_core);
+    }
+    if (c.comparison && !c.comparison->judgement.reasons.empty() && c.status != conform::Status::XFail) {
+      std::string reasons;
+      for (const std::string& reason : c.comparison->judgement.reasons) reasons += (reasons.empty() ? "" : "; ") + reason;
+      std::printf("%s%s", c.status == conform::Status::XPass ? "; but only " : ": ", reasons.c_str());
+    }
+    if (c.comparison && c.status == conform::Status::XPass && c.comparison->judgement.reasons.empty())
+      std::printf("; but it passed (wrong %.3g %%)", c.comparison->total.wrong_percent());
+    if (!c.signature.empty()) std::printf("; %s", c.signature.c_str());
+    if (!c.error.empty()) std::printf(": %s", c.error.c_str());
+    std::printf("\n");
+  }
+}
 
 int run_conform_command(const ConformArgs& a) {
   conform::ConformOptions o;
@@ -82,6 +130,8 @@ int run_conform_command(const ConformArgs& a) {
     o.candidate_dir = a.candidate_dir;
   }
   for (const std::string& s : a.argv) o.command_line += (o.command_line.empty() ? "" : " ") + s;
+  o.expectations = read_expectations_option(a.expectations);
+  apply_shard_options(a.shard, o);
 
   const bool tty = ::isatty(2);
   const auto progress = [&](std::size_t done, std::size_t total, const conform::CaseResult& c) {
@@ -117,37 +167,8 @@ int run_conform_command(const ConformArgs& a) {
                 r.reference_seconds);
     return kExitPass;
   }
-  std::printf("\n%s\n", conform::table_text(r).c_str());
-  // Expected failures and failures with their why, so the table is never read without it.
-  for (const conform::CaseResult& c : r.cases) {
-    if (c.status == conform::Status::Pass) {
-      // An expectation the verdict did not meet is said, not hidden behind the PASS (status.hpp).
-      if (!c.unmet_expectation.empty())
-        std::printf("PASS   %s x %s: %s\n", c.scene.c_str(), c.technique.c_str(), c.unmet_expectation.c_str());
-      continue;
-    }
-    std::printf("%-6s %s x %s", conform::to_string(c.status), c.scene.c_str(), c.technique.c_str());
-    if (c.status == conform::Status::XFail || c.status == conform::Status::XPass) std::printf(": expected to fail: %s", c.why.c_str());
-    if (c.status == conform::Status::Warn && c.expected_warning) std::printf(": expected quality warning: %s", c.why.c_str());
-    if (c.comparison && c.status == conform::Status::XFail)
-      std::printf(" (wrong %.3g %%, unexplained %zu px = %.3g %% of edges, core %zu px)", c.comparison->total.wrong_percent(),
-                  c.comparison->total.unexplained, 100 * c.comparison->total.unexplained_ratio(), c.comparison->total.unexplained_core);
-    if (c.comparison && c.comparison->visibility_total && c.status == conform::Status::XFail) {
-      const compare::VisibilityMetrics& v = *c.comparison->visibility_total;
-      std::printf(" (lit fraction: mean error %.3f over the penumbra, unexplained %zu px = %.3g %% of it, core %zu px)",
-                  v.mean_penumbra_error(), v.unexplained, 100 * v.unexplained_ratio(), v.unexplained_core);
-    }
-    if (c.comparison && !c.comparison->judgement.reasons.empty() && c.status != conform::Status::XFail) {
-      std::string reasons;
-      for (const std::string& reason : c.comparison->judgement.reasons) reasons += (reasons.empty() ? "" : "; ") + reason;
-      std::printf("%s%s", c.status == conform::Status::XPass ? "; but only " : ": ", reasons.c_str());
-    }
-    if (c.comparison && c.status == conform::Status::XPass && c.comparison->judgement.reasons.empty())
-      std::printf("; but it passed (wrong %.3g %%)", c.comparison->total.wrong_percent());
-    if (!c.signature.empty()) std::printf("; %s", c.signature.c_str());
-    if (!c.error.empty()) std::printf(": %s", c.error.c_str());
-    std::printf("\n");
-  }
+  std::printf("\n%s\n", conform::table_text(r, !o.expectations.empty()).c_str());
+  print_case_lines(r);
   std::printf("\n%zu cases: %zu PASS, %zu XFAIL, %zu FAIL, %zu XPASS, %zu WARN, %zu ERROR in %.1f s (references %.1f s, "
               "drawing %.1f s, writing %.1f s, judging %.1f s, error images %.1f s)%s%s\n",
               r.cases.size(), r.count(conform::Status::Pass), r.count(conform::Status::XFail),
@@ -160,7 +181,10 @@ int run_conform_command(const ConformArgs& a) {
   if (linked)
     std::printf("note: %zu candidate file(s) were read through symbolic links that leave --candidate-dir "
                 "(report.json: read_through_links)\n", linked);
+  print_expectation_lines(r, o.expectations);
+  print_shard(r, o);
   std::printf("report: %s\n        %s\n", r.report_html.string().c_str(), r.report_json.string().c_str());
+  write_xml_output_file(r.report_json.parent_path() / "report.junit.xml");
   return r.exit_code();
 }
 
@@ -200,10 +224,14 @@ void register_conform_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--spp", args->spp, "reference samples per pixel (a square number)")->capture_default_str();
   cmd->add_flag("--references-only", args->references_only, "compute the references into the cache and stop");
   cmd->add_flag("--quiet", args->quiet, "no progress lines");
+  add_expectations_option(*cmd, args->expectations);
+  add_shard_options(*cmd, args->shard);
   cmd->footer(
       "Status: PASS, WARN (quality warning), FAIL, XFAIL (an expected failure that failed: the catalogue's why),\n"
       "XPASS (an expected failure that passed: a broken expectation, counted as a failure), ERROR.\n"
-      "Exit: 0 when every case is PASS, XFAIL or an expected WARN, 1 with other warnings, 2 with any FAIL, XPASS or ERROR, 4 bad input.");
+      "Exit: 0 when every case is PASS, XFAIL or an expected WARN, 1 with other warnings, 2 with any FAIL, XPASS or ERROR, 4 bad input.\n"
+      "With --expectations: a case as its line expects is no failure; 2 with a new failure, 1 with a new warning or an\n"
+      "improvement (remove its line: OUT/expectations-update.txt is the next file), else 0.");
   cmd->callback([args, &exit_code] {
     // The effective command line, for report.json.
     ConformArgs& a = *args;
@@ -212,6 +240,8 @@ void register_conform_command(CLI::App& app, int& exit_code) {
     if (!a.techniques.empty()) a.argv.insert(a.argv.end(), {"--techniques", a.techniques});
     if (!a.technique.empty()) a.argv.insert(a.argv.end(), {"--technique", a.technique});
     if (!a.candidate_dir.empty()) a.argv.insert(a.argv.end(), {"--candidate-dir", a.candidate_dir});
+    for (const std::string& e : a.expectations) a.argv.insert(a.argv.end(), {"--expectations", e});
+    if (!a.shard.shard.empty()) a.argv.insert(a.argv.end(), {"--shard", a.shard.shard});
     exit_code = run_conform_command(a);
   });
 }

@@ -633,7 +633,8 @@ std::string readme(const json& manifest) {
       "gets the strictest) and the catalogue's expectations (a scene where the technique is known to fail expects a\n"
       "FAIL: see `manifest.json`). The table, `my-verdict/report.json` and `my-verdict/report/index.html` (reference,\n"
       "your mask and the error image side by side) follow. Exit code: 0 every case PASS or XFAIL, 1 quality warnings,\n"
-      "2 failures.\n\n";
+      "2 failures.\n\n"
+      "In CI (known failures in an expectations file, shards, one merged report): shadowref's docs/ci.md.\n\n";
   t += "## Which technique name is my engine?\n\n"
        "`--technique` and `candidate.json`'s `technique` pick the thresholds and the catalogue's expectations:\n\n"
        "| your engine's shadows | technique |\n| --- | --- |\n"

@@ -26,6 +26,7 @@ constexpr RegisterCommand kCommands[] = {
     shadowref::cli::register_reference_command,
     shadowref::cli::register_compare_command,
     shadowref::cli::register_conform_command,
+    shadowref::cli::register_merge_command,
     shadowref::cli::register_export_command,
     shadowref::cli::register_goldens_command,
 };

@@ -402,6 +402,37 @@ std::vector<Case> make_cases() {
   cases.push_back({"missing_candidate_dir_conform", good_catalogue, with(conform, {"--candidate-dir", "@/nowhere"}), 4,
                    "@/nowhere"});
 
+  // conform, compare, merge: an engine team's expectations files and shards (docs/ci.md).
+  const auto expectations = [good](const std::string& text) {
+    return [good, text](const fs::path& dir) {
+      write_text(dir / "cat" / "scene.json", good);
+      write_text(dir / "fails.txt", text);
+    };
+  };
+  cases.push_back({"bad_status_expectations_conform", expectations("# bug 1\nscene@planar,BROKEN\n"),
+                   with(conform, {"--expectations", "@/fails.txt"}), 4, "@/fails.txt:2: unknown status 'BROKEN'"});
+  cases.push_back({"bad_line_expectations_conform", expectations("scene@planar\n"), with(conform, {"--expectations", "@/fails.txt"}),
+                   4, "@/fails.txt:1"});
+  cases.push_back({"bad_regex_expectations_conform", expectations("[flakes]\n(scene\n"),
+                   with(conform, {"--expectations", "@/fails.txt"}), 4, "@/fails.txt:2: bad regex"});
+  cases.push_back({"missing_expectations_conform", good_catalogue, with(conform, {"--expectations", "@/nowhere.txt"}), 4,
+                   "@/nowhere.txt"});
+  cases.push_back({"expectations_without_scene_compare",
+                   [ref_ok](const fs::path& dir) {
+                     ref_ok(dir);
+                     write_mask_folder(dir / "cand", 16, 16, false);
+                     write_text(dir / "fails.txt", "scene@planar,FAIL\n");
+                   },
+                   with(compare, {"--expectations", "@/fails.txt"}), 4, "--scene"});
+  cases.push_back({"bad_shard_conform", good_catalogue, with(conform, {"--shard", "5/4"}), 4, "--shard '5/4'"});
+  cases.push_back({"bad_shard_weights_conform",
+                   [good](const fs::path& dir) {
+                     write_text(dir / "cat" / "scene.json", good);
+                     write_text(dir / "weights.json", "{\"cases\": [{\"scene\": 1}]}");
+                   },
+                   with(conform, {"--shard", "1/2", "--shard-weights", "@/weights.json"}), 4, "@/weights.json: $.cases[0]"});
+  cases.push_back({"missing_shard_merge", nullptr, {"merge", "@/shard-1", "--out", "@/out"}, 4, "@/shard-1/report.json"});
+
   // export / goldens: arguments.
   cases.push_back({"unknown_scene_export", good_catalogue, {"export", "--catalogue", "@/cat", "--out", "@/out", "--scenes", "nope"}, 4, "nope"});
   cases.push_back({"jobs_negative_export", good_catalogue, {"export", "--catalogue", "@/cat", "--out", "@/out", "--jobs", "-1"}, 4, "--jobs"});

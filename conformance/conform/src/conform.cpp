@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <cstdlib>
 #include <map>
 #include <memory>
@@ -58,6 +61,9 @@ struct Run {
   std::filesystem::path cache;
   int threads = 1;  // --jobs, or the cores spare when the run starts (before our own threads load them)
   std::unique_ptr<renderer::Renderer> gl;  // null: an engine team's candidates are judged
+  // The index in `scenes` of the control case's scene when it is not this shard's own (judged for
+  // the control alone), else none.
+  std::optional<std::size_t> control_only;
   Judge judge;
   void say(const std::string& s) const {
     if (log) log(s);
@@ -100,19 +106,62 @@ void check_sizes(const ConformOptions& o) {
   if (!o.convention) throw std::invalid_argument("no run convention");
 }
 
-// Prepare: every scene at the run's resolution, and everything that depends on the scene alone.
-void prepare(Run& run) {
+// The catalogue's identity: FNV-1a 64 over every planned scene's name and file bytes, so that shards
+// of one run can be checked to have judged the same scenes (the merge refuses others).
+std::string catalogue_id(const std::vector<scene::Scene>& all) {
+  std::string bytes;
+  for (const scene::Scene& s : all) {
+    std::ifstream in(s.file, std::ios::binary);
+    bytes += s.name + '\0' + std::string(std::istreambuf_iterator<char>(in), {}) + '\0';
+  }
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "fnv1a64:%016llx", static_cast<unsigned long long>(stable_hash(bytes)));
+  return buf;
+}
+
+// Plan: every selected scene and its shard; this process keeps its shard's scenes and, when the run
+// is split, the control case's scene: the plan's smallest (pixels x lights, then name), judged by
+// every shard so that each proves it ran the judge, on the same case as the others.
+void plan_scenes(Run& run) {
   const ConformOptions& o = run.o;
   if (o.scenes.empty()) throw std::invalid_argument("no scenes selected");
-  for (const auto& f : o.scenes) {
-    scene::Scene& s = run.scenes.emplace_back(scene::load_scene(f));
+  std::vector<scene::Scene> all;
+  for (const auto& f : o.scenes) all.push_back(scene::load_scene(f));
+  RunPlan& plan = run.result.plan;
+  for (const scene::Scene& s : all) plan.scenes.push_back(s.name);
+  plan.shards = o.shard ? o.shard->total : 1;
+  plan.assignment = o.shard_weights.empty() ? "hash" : "weights";
+  plan.shard_of = assign_shards(plan.scenes, plan.shards, o.shard_weights);
+  plan.catalogue_id = catalogue_id(all);
+  const scene::Scene* control = nullptr;
+  if (o.shard) {
+    const auto cost = [](const scene::Scene& s) { return static_cast<double>(s.width) * s.height * static_cast<double>(s.lights.size()); };
+    for (const scene::Scene& s : all)
+      if (!control || cost(s) < cost(*control) || (cost(s) == cost(*control) && s.name < control->name)) control = &s;
+    plan.control = control->name;
+  }
+  run.scenes.reserve(all.size());
+  for (scene::Scene& s : all) {
+    const bool mine = !o.shard || plan.shard_of.at(s.name) == o.shard->index;
+    if (!mine && &s != control) continue;
+    if (!mine) run.control_only = run.scenes.size();
+    run.scenes.push_back(std::move(s));
+  }
+}
+
+// Prepare: every scene of this process at the run's resolution, and everything that depends on the
+// scene alone.
+void prepare(Run& run) {
+  const ConformOptions& o = run.o;
+  for (std::size_t i = 0; i < run.scenes.size(); ++i) {
+    scene::Scene& s = run.scenes[i];
     if (o.width) {
       s.width = o.width;
       s.height = o.height;
     }
     s.width = std::clamp(static_cast<int>(std::lround(s.width * o.resolution_scale)), 1, outputs::kMaxResolution);
     s.height = std::clamp(static_cast<int>(std::lround(s.height * o.resolution_scale)), 1, outputs::kMaxResolution);
-    run.result.scenes.push_back(s.name);
+    if (run.control_only != i) run.result.scenes.push_back(s.name);
   }
   scene::PrepareOptions prepare;
   prepare.shadow_map_size = o.shadow_map_size;
@@ -227,14 +276,60 @@ std::size_t ConformResult::count(Status s) const {
 }
 
 int ConformResult::exit_code() const {
-  std::vector<Status> statuses;
-  std::vector<bool> expected_warnings;
-  for (const CaseResult& c : cases) {
-    statuses.push_back(c.status);
-    expected_warnings.push_back(c.expected_warning);
-  }
-  return conform::exit_code(statuses, expected_warnings);
+  std::vector<Outcome> outcomes;
+  for (const CaseResult& c : cases) outcomes.push_back(c.outcome);
+  if (control) outcomes.push_back(control->outcome);
+  return conform::exit_code(outcomes);
 }
+
+namespace {
+
+// A judged case against the team's expectations files (expectations.hpp).
+void classify(CaseResult& c, const Expectations& e, const std::string& convention) {
+  const ExpectationLine* line = e.line_for(c.scene, c.technique, convention);
+  c.outcome = outcome_of(c.status, c.expected_warning, line, e.flaky(case_name(c.scene, c.technique, convention)));
+  if (line) {
+    c.expected_status = to_string(line->status);
+    c.expected_line = line->where;
+  }
+}
+
+// Judge: every case of this process's scenes, then (split runs) the control case.
+void run_cases(Run& run, const Progress& progress) {
+  const ConformOptions& o = run.o;
+  ConformResult& result = run.result;
+  std::size_t total = 0;
+  for (std::size_t si = 0; si < run.scenes.size(); ++si)
+    if (run.control_only != si) total += result.techniques.size();
+  for (std::size_t si = 0; si < run.scenes.size(); ++si) {
+    if (run.control_only == si) continue;
+    for (const std::string& technique : result.techniques) {
+      outputs::throw_if_interrupted();
+      const std::string name = case_name(run.scenes[si].name, technique, result.convention);
+      if (o.expectations.skipped(name)) {
+        result.skipped.push_back(name);
+        continue;
+      }
+      const auto case_start = Clock::now();
+      result.cases.push_back(run_case(run, si, technique));
+      result.cases.back().seconds = since(case_start);
+      classify(result.cases.back(), o.expectations, result.convention);
+      if (progress) progress(result.cases.size(), total, result.cases.back());
+    }
+  }
+  if (result.plan.control.empty()) return;
+  const std::string& technique = result.techniques.front();
+  for (const CaseResult& c : result.cases)
+    if (c.scene == result.plan.control && c.technique == technique) result.control = c;
+  if (!result.control && run.control_only) {
+    const auto case_start = Clock::now();
+    result.control = run_case(run, *run.control_only, technique);
+    result.control->seconds = since(case_start);
+    classify(*result.control, o.expectations, result.convention);
+  }
+}
+
+}  // namespace
 
 ConformResult run_conform(const ConformOptions& o, const Progress& progress, const Log& log) {
   const auto start = Clock::now();
@@ -244,19 +339,13 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
   result.convention = std::string(o.convention->name);
   Run run(o, log, result);
   run.threads = thread_count(o.jobs);
+  plan_scenes(run);
   prepare(run);
   compute_references(run);
   if (!o.references_only) {
     open_renderer(run);
-    const std::size_t total = run.scenes.size() * result.techniques.size();
-    for (std::size_t si = 0; si < run.scenes.size(); ++si)
-      for (const std::string& technique : result.techniques) {
-        outputs::throw_if_interrupted();
-        const auto case_start = Clock::now();
-        result.cases.push_back(run_case(run, si, technique));
-        result.cases.back().seconds = since(case_start);
-        if (progress) progress(result.cases.size(), total, result.cases.back());
-      }
+    run_cases(run, progress);
+    result.stale = stale_lines(o.expectations, result.plan.scenes, result.techniques, result.convention);
   }
   result.seconds = since(start);
   if (o.write_report && !o.references_only) {
@@ -267,13 +356,27 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
   return result;
 }
 
-std::string table_text(const ConformResult& r) {
+std::string table_cell(Status status, Outcome outcome, bool with_expectations) {
+  std::string cell = to_string(status);
+  if (!with_expectations) return cell;
+  switch (outcome) {
+    case Outcome::Expected: return cell + " known";
+    case Outcome::NewFailure:
+    case Outcome::NewWarning: return cell + " new";
+    case Outcome::Improvement: return cell + " improved";
+    case Outcome::Flake: return cell + " flaky";
+    case Outcome::Green: return cell;
+  }
+  return cell;
+}
+
+std::string table_text(const ConformResult& r, bool with_expectations) {
   std::size_t name_w = 5;
   for (const auto& s : r.scenes) name_w = std::max(name_w, s.size());
   std::map<std::pair<std::string, std::string>, const CaseResult*> at;
   for (const CaseResult& c : r.cases) at[{c.scene, c.technique}] = &c;
   std::vector<std::size_t> col_w;
-  for (const auto& t : r.techniques) col_w.push_back(std::max<std::size_t>(t.size(), 5));
+  for (const auto& t : r.techniques) col_w.push_back(std::max<std::size_t>(t.size(), with_expectations ? 14 : 5));
   std::string out;
   const auto pad = [](std::string s, std::size_t w) {
     if (s.size() < w) s += std::string(w - s.size(), ' ');
@@ -286,7 +389,9 @@ std::string table_text(const ConformResult& r) {
     out += pad(s, name_w);
     for (std::size_t i = 0; i < r.techniques.size(); ++i) {
       const auto it = at.find({s, r.techniques[i]});
-      out += "  " + pad(it == at.end() ? "-" : to_string(it->second->status), col_w[i]);
+      const bool skipped = std::find(r.skipped.begin(), r.skipped.end(), case_name(s, r.techniques[i], r.convention)) != r.skipped.end();
+      out += "  " + pad(it != at.end() ? table_cell(it->second->status, it->second->outcome, with_expectations) : skipped ? "SKIP" : "-",
+                        col_w[i]);
     }
     out += "\n";
   }

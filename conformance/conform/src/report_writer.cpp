@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <system_error>
+#include <unistd.h>
 
 #include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/errors.hpp"
@@ -48,20 +49,164 @@ std::string copy_in(const fs::path& from, const outputs::StagedFolder& report, c
   return rel;
 }
 
+// The machine a result came from (each case of a merged report says which).
+std::string host_name() {
+  char buf[256] = {};
+  if (::gethostname(buf, sizeof buf - 1) != 0) return "";
+  return buf;
+}
+
+json expectation_json(const CaseResult& c) {
+  json e = {{"outcome", to_string(c.outcome)}};
+  if (!c.expected_status.empty()) e["status"] = c.expected_status;
+  if (!c.expected_line.empty()) e["line"] = c.expected_line;
+  return e;
+}
+
+// One case as report.json holds it, its images copied into the staged report folder.
+json case_json(const CaseResult& c, const outputs::StagedFolder& staged, std::set<std::string>& scenes_copied,
+               const ConformResult& r, bool with_expectations) {
+  std::error_code ec;
+  json k;
+  k["scene"] = c.scene;
+  k["scene_file"] = fs::absolute(c.scene_file).string();
+  k["technique"] = c.technique;
+  k["status"] = to_string(c.status);
+  k["expected"] = !c.expected_pass ? "fail" : c.expected_warning ? "warn" : "pass";
+  k["why"] = c.why;
+  if (!c.signature.empty()) k["signature"] = c.signature;
+  k["reference_dir"] = c.reference_dir.string();
+  k["candidate_dir"] = c.candidate_dir.string();
+  k["frame_ms"] = c.frame_ms;
+  k["seconds"] = c.seconds;
+  k["notes"] = c.notes;
+  k["causes"] = c.causes;
+  k["host"] = host_name();
+  if (r.plan.shards > 1) k["shard"] = r.plan.shard_of.at(c.scene) + 1;
+  if (with_expectations) k["expectation"] = expectation_json(c);
+  if (!c.unmet_expectation.empty()) k["unmet_expectation"] = c.unmet_expectation;
+  if (!c.error.empty()) k["error"] = c.error;
+  if (!c.read_through_links.empty()) {
+    json links = json::array();
+    for (const auto& [file, target] : c.read_through_links) links.push_back({{"file", file}, {"resolves_to", target}});
+    k["read_through_links"] = links;
+  }
+  k["candidate"] = json::parse(outputs::declaration_text(c.declaration));
+  k["candidate"]["defaulted"] = c.declaration.defaulted;
+  if (!c.comparison) return k;
+  k["comparison"] = report::to_json(*c.comparison);
+  // The images the page shows, per light: reference mask, candidate mask, error, candidate shaded.
+  const std::string base = "img/" + c.scene + "/" + c.technique + "/";
+  json lights = json::array();
+  for (std::size_t i = 0; i < c.comparison->masks.size(); ++i) {
+    const std::string& m = c.comparison->masks[i];
+    json l;
+    l["mask"] = m;
+    l["reference"] = copy_in(c.reference_dir / m, staged, "img/" + c.scene + "/reference_" + m);
+    const std::string d = outputs::decided_name(i, c.comparison->masks.size());
+    l["decided"] = copy_in(c.reference_dir / d, staged, "img/" + c.scene + "/reference_" + d);
+    l["candidate"] = copy_in(c.candidate_dir / m, staged, base + "candidate_" + m);
+    const fs::path err = fs::path(c.error_images[i]).is_absolute() ? fs::path(c.error_images[i])
+                                                                   : c.candidate_dir / c.error_images[i];
+    l["error"] = copy_in(err, staged, base + fs::path(c.error_images[i]).filename().string());
+    l["metrics"] = report::to_json(c.comparison->per_light[i].metrics);
+    if (i < c.comparison->visibility.size() && c.comparison->visibility[i]) {
+      // Soft shadows: the candidate's lit fraction and its error in visibility units.
+      const std::size_t n = c.comparison->masks.size();
+      const std::string vis = outputs::visibility_name(i, n);
+      const std::string vis_err = outputs::per_light_name("visibility_error", "png", i, n);
+      l["candidate_visibility"] = copy_in(c.candidate_dir / vis, staged, base + "candidate_" + vis);
+      l["visibility_error"] = copy_in(err.parent_path() / vis_err, staged, base + vis_err);
+      l["visibility"] = report::to_json(c.comparison->visibility[i]->metrics);
+    }
+    lights.push_back(l);
+  }
+  k["lights"] = lights;
+  k["shaded"] = copy_in(c.candidate_dir / "shaded.png", staged, base + "shaded.png");
+  if (!scenes_copied.count(c.scene)) {
+    copy_in(c.reference_dir / "shaded.png", staged, "img/" + c.scene + "/reference_shaded.png");
+    scenes_copied.insert(c.scene);
+  }
+  k["reference_shaded"] = fs::is_regular_file(staged.path() / ("img/" + c.scene + "/reference_shaded.png"), ec)
+                              ? json("img/" + c.scene + "/reference_shaded.png")
+                              : json("");
+  return k;
+}
+
+// What every shard of one run must share (the merge refuses shards that differ): the whole plan,
+// the catalogue's identity and the run's declarations.
+json plan_json(const ConformResult& r, const ConformOptions& o) {
+  json scenes = json::array();
+  for (const std::string& s : r.plan.scenes) scenes.push_back({{"scene", s}, {"shard", r.plan.shard_of.at(s) + 1}});
+  json p = {{"scenes", scenes},           {"shards", r.plan.shards},        {"assignment", r.plan.assignment},
+            {"techniques", r.techniques}, {"convention", r.convention},     {"catalogue", r.plan.catalogue_id},
+            {"control", r.plan.control}};
+  if (!o.shard_weights_file.empty()) p["weights_file"] = fs::absolute(o.shard_weights_file).string();
+  return p;
+}
+
+json declarations_json(const ConformOptions& o) {
+  const renderer::RenderOptions& v = o.variants;
+  return {{"mode", o.candidate_dir ? "candidate-dir" : "render"},
+          {"backend", o.candidate_dir ? json() : json(renderer::to_string(o.backend))},
+          {"shadow_map_size", o.shadow_map_size},
+          {"resolution_scale", o.resolution_scale},
+          {"resolution", {o.width, o.height}},
+          {"samples_per_axis", o.reference.samples_per_axis},
+          {"random_taps", v.random_taps},
+          {"depth_faces", outputs::to_string(v.depth_faces)},
+          {"guard_band_texels", v.guard_band_texels},
+          {"view_turn_degrees", v.view_turn_degrees},
+          {"view_phase_texels", v.view_phase_texels},
+          {"normal_offset_texels", v.normal_offset_texels},
+          {"cube_depth", outputs::to_string(v.cube_depth)}};
+}
+
 }  // namespace
+
+json summary_json(std::size_t cases, std::size_t pass, std::size_t warn, std::size_t fail, std::size_t xfail, std::size_t xpass,
+                  std::size_t error, int exit_code) {
+  return {{"cases", cases}, {"pass", pass},   {"warn", warn},   {"fail", fail},
+          {"xfail", xfail}, {"xpass", xpass}, {"error", error}, {"exit_code", exit_code}};
+}
+
+json expectations_json(const Expectations& e, const std::vector<const ExpectationLine*>& stale, const json& cases) {
+  json files = json::array();
+  for (const auto& f : e.files) files.push_back(fs::absolute(f).string());
+  json counts = json::object();
+  for (Outcome o : {Outcome::Expected, Outcome::NewFailure, Outcome::NewWarning, Outcome::Improvement, Outcome::Flake}) {
+    std::size_t n = 0;
+    for (const json& c : cases) n += c.contains("expectation") && c["expectation"].value("outcome", "") == to_string(o);
+    counts[to_string(o)] = n;
+  }
+  json st = json::array();
+  for (const ExpectationLine* l : stale) st.push_back({{"line", l->where}, {"text", l->text}});
+  return {{"files", files}, {"counts", counts}, {"stale", st}, {"update", "expectations-update.txt"}};
+}
+
+void publish_reports(const json& j, outputs::StagedFolder& staged, const fs::path& report_json, const std::string& update) {
+  report::write_html(j, staged.path() / "index.html");
+  staged.commit();
+  // For CI: a JUnit XML file and a Markdown summary beside report.json.
+  report::write_junit(j, report_json.parent_path() / "report.junit.xml");
+  report::write_markdown(j, report_json.parent_path() / "summary.md");
+  if (!update.empty()) outputs::write_file_atomically(report_json.parent_path() / "expectations-update.txt", update);
+  outputs::write_file_atomically(report_json, outputs::json_text(j, 2) + "\n");
+}
 
 void write_reports(const ConformResult& r, const ConformOptions& o, const fs::path& cache) {
   std::error_code ec;
   fs::remove(r.report_json, ec);
   if (ec) throw outputs::FileError(r.report_json, "remove the previous report", ec.value());
   outputs::StagedFolder staged(r.report_html.parent_path());
-  const fs::path& report_dir = staged.path();
+  const bool with_expectations = !o.expectations.empty();
 
   json j;
   j["tool"] = "shadowref";
   j["version"] = SHADOWREF_VERSION;
   j["generated"] = now_utc();
   j["command"] = o.command_line;
+  j["host"] = host_name();
   j["mode"] = o.candidate_dir ? "candidate-dir" : "render";
   if (o.candidate_dir) {
     j["candidate_dir"] = fs::absolute(*o.candidate_dir).string();
@@ -85,87 +230,32 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
   j["thresholds"] = thresholds;
   j["scenes"] = r.scenes;
   j["techniques"] = r.techniques;
-  j["summary"] = {{"cases", r.cases.size()},         {"pass", r.count(Status::Pass)},   {"warn", r.count(Status::Warn)},
-                  {"fail", r.count(Status::Fail)},   {"xfail", r.count(Status::XFail)}, {"xpass", r.count(Status::XPass)},
-                  {"error", r.count(Status::Error)}, {"exit_code", r.exit_code()}};
+  j["plan"] = plan_json(r, o);
+  j["declarations"] = declarations_json(o);
+  j["skipped"] = r.skipped;
+  j["summary"] = summary_json(r.cases.size(), r.count(Status::Pass), r.count(Status::Warn), r.count(Status::Fail),
+                              r.count(Status::XFail), r.count(Status::XPass), r.count(Status::Error), r.exit_code());
 
   json cases = json::array();
   std::set<std::string> scenes_copied;
-  for (const CaseResult& c : r.cases) {
-    json k;
-    k["scene"] = c.scene;
-    k["scene_file"] = fs::absolute(c.scene_file).string();
-    k["technique"] = c.technique;
-    k["status"] = to_string(c.status);
-    k["expected"] = !c.expected_pass ? "fail" : c.expected_warning ? "warn" : "pass";
-    k["why"] = c.why;
-    if (!c.signature.empty()) k["signature"] = c.signature;
-    k["reference_dir"] = c.reference_dir.string();
-    k["candidate_dir"] = c.candidate_dir.string();
-    k["frame_ms"] = c.frame_ms;
-    k["seconds"] = c.seconds;
-    k["notes"] = c.notes;
-    k["causes"] = c.causes;
-    if (!c.unmet_expectation.empty()) k["unmet_expectation"] = c.unmet_expectation;
-    if (!c.error.empty()) k["error"] = c.error;
-    if (!c.read_through_links.empty()) {
-      json links = json::array();
-      for (const auto& [file, target] : c.read_through_links) links.push_back({{"file", file}, {"resolves_to", target}});
-      k["read_through_links"] = links;
-    }
-    {
-      const outputs::CandidateDeclaration& d = c.declaration;
-      k["candidate"] = json::parse(outputs::declaration_text(d));
-      k["candidate"]["defaulted"] = d.defaulted;
-    }
-    if (c.comparison) {
-      k["comparison"] = report::to_json(*c.comparison);
-      // The images the page shows, per light: reference mask, candidate mask, error, candidate shaded.
-      const std::string base = "img/" + c.scene + "/" + c.technique + "/";
-      json lights = json::array();
-      for (std::size_t i = 0; i < c.comparison->masks.size(); ++i) {
-        const std::string& m = c.comparison->masks[i];
-        json l;
-        l["mask"] = m;
-        l["reference"] = copy_in(c.reference_dir / m, staged, "img/" + c.scene + "/reference_" + m);
-        const std::string d = outputs::decided_name(i, c.comparison->masks.size());
-        l["decided"] = copy_in(c.reference_dir / d, staged, "img/" + c.scene + "/reference_" + d);
-        l["candidate"] = copy_in(c.candidate_dir / m, staged, base + "candidate_" + m);
-        const fs::path err = fs::path(c.error_images[i]).is_absolute() ? fs::path(c.error_images[i])
-                                                                       : c.candidate_dir / c.error_images[i];
-        l["error"] = copy_in(err, staged, base + fs::path(c.error_images[i]).filename().string());
-        l["metrics"] = report::to_json(c.comparison->per_light[i].metrics);
-        if (i < c.comparison->visibility.size() && c.comparison->visibility[i]) {
-          // Soft shadows: the candidate's lit fraction and its error in visibility units.
-          const std::size_t n = c.comparison->masks.size();
-          const std::string vis = outputs::visibility_name(i, n);
-          const std::string vis_err = outputs::per_light_name("visibility_error", "png", i, n);
-          l["candidate_visibility"] = copy_in(c.candidate_dir / vis, staged, base + "candidate_" + vis);
-          l["visibility_error"] = copy_in(err.parent_path() / vis_err, staged, base + vis_err);
-          l["visibility"] = report::to_json(c.comparison->visibility[i]->metrics);
-        }
-        lights.push_back(l);
-      }
-      k["lights"] = lights;
-      k["shaded"] = copy_in(c.candidate_dir / "shaded.png", staged, base + "shaded.png");
-      if (!scenes_copied.count(c.scene)) {
-        copy_in(c.reference_dir / "shaded.png", staged, "img/" + c.scene + "/reference_shaded.png");
-        scenes_copied.insert(c.scene);
-      }
-      k["reference_shaded"] = fs::is_regular_file(report_dir / ("img/" + c.scene + "/reference_shaded.png"), ec)
-                                  ? json("img/" + c.scene + "/reference_shaded.png")
-                                  : json("");
-    }
-    cases.push_back(k);
-  }
+  for (const CaseResult& c : r.cases) cases.push_back(case_json(c, staged, scenes_copied, r, with_expectations));
   j["cases"] = cases;
-
-  report::write_html(j, report_dir / r.report_html.filename());
-  staged.commit();
-  // For CI: a JUnit XML file and a Markdown summary beside report.json.
-  report::write_junit(j, r.report_json.parent_path() / "report.junit.xml");
-  report::write_markdown(j, r.report_json.parent_path() / "summary.md");
-  outputs::write_file_atomically(r.report_json, outputs::json_text(j, 2) + "\n");
+  if (o.shard) {
+    // The control case (none only when a [skips] regex left it out).
+    const json control = r.control ? json{{"scene", r.control->scene}, {"technique", r.control->technique},
+                                          {"status", to_string(r.control->status)}}
+                                   : json::object();
+    j["shard"] = {{"index", o.shard->index + 1}, {"total", o.shard->total}, {"source", o.shard->source},
+                  {"scenes", r.scenes}, {"control", control}};
+  }
+  std::string update;
+  if (with_expectations) {
+    j["expectations"] = expectations_json(o.expectations, r.stale, cases);
+    std::vector<CaseOutcome> outcomes;
+    for (const CaseResult& c : r.cases) outcomes.push_back({c.scene, c.technique, c.status, c.outcome});
+    update = expectations_update_text(o.expectations, outcomes, r.stale, r.convention);
+  }
+  publish_reports(j, staged, r.report_json, update);
 }
 
 }  // namespace shadowref::conform

@@ -1,6 +1,8 @@
 // status.cpp — the status rules of a judged case and the run's exit code (status.hpp).
 #include "shadowref/conform/status.hpp"
 
+#include "shadowref/conform/expectations.hpp"
+
 #include <algorithm>
 #include <cstdio>
 
@@ -16,6 +18,12 @@ const char* to_string(Status s) {
     case Status::Error: return "ERROR";
   }
   return "?";
+}
+
+std::optional<Status> status_from_string(std::string_view name) {
+  for (Status s : {Status::Pass, Status::Warn, Status::Fail, Status::XFail, Status::XPass, Status::Error})
+    if (name == to_string(s)) return s;
+  return std::nullopt;
 }
 
 bool is_failure(Status s) { return s == Status::Fail || s == Status::XPass || s == Status::Error; }
@@ -40,10 +48,12 @@ std::string unmet_expectation(const scene::Expectation& expected, Status status)
 }
 
 int exit_code(const std::vector<Status>& statuses, const std::vector<bool>& expected_warnings) {
-  if (std::any_of(statuses.begin(), statuses.end(), is_failure)) return 2;
+  // The one rule is the expectations' (expectations.hpp): without a file, a failure is a new
+  // failure and an unexpected WARN a new warning.
+  std::vector<Outcome> outcomes;
   for (std::size_t i = 0; i < statuses.size(); ++i)
-    if (statuses[i] == Status::Warn && !(i < expected_warnings.size() && expected_warnings[i])) return 1;
-  return 0;
+    outcomes.push_back(outcome_of(statuses[i], i < expected_warnings.size() && expected_warnings[i], nullptr, false));
+  return exit_code(outcomes);
 }
 
 std::string unpredicted_errors(const compare::FolderComparison& c, scene::PredictedErrors predicted, std::string& seen) {

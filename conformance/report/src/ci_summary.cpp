@@ -37,6 +37,19 @@ std::string cell(std::string s) {
   return s;
 }
 
+// The case's outcome against an engine team's expectations files ("expected", "new-failure",
+// "improvement", "flake", ...), or "" when the run had none.
+std::string outcome(const json& c) {
+  if (!c.contains("expectation") || !c["expectation"].is_object()) return "";
+  return c["expectation"].value("outcome", "");
+}
+
+// "FAIL at fails.txt:3": what the expectations files said of the case ("green": no line).
+std::string expected_by(const json& c) {
+  const json& e = c["expectation"];
+  return e.value("status", "green") + (e.contains("line") ? " at " + e.value("line", "") : "");
+}
+
 void write_file(const std::string& content, const std::filesystem::path& file) {
   std::filesystem::create_directories(file.parent_path());
   outputs::write_file_atomically(file, content);
@@ -46,21 +59,31 @@ void write_file(const std::string& content, const std::filesystem::path& file) {
 
 std::string render_junit(const json& report) {
   const json cases = report.value("cases", json::array());
-  std::size_t failures = 0, errors = 0;
+  std::size_t failures = 0, errors = 0, skipped = 0;
   for (const json& c : cases) {
-    const std::string st = text(c, "status");
+    const std::string st = text(c, "status"), o = outcome(c);
+    // A known failure or a flake is not a failure of this run: JUnit readers show it as skipped.
+    if (o == "expected" || o == "flake") {
+      skipped += st != "PASS" && st != "XFAIL";
+      continue;
+    }
     failures += st == "FAIL" || st == "XPASS";
     errors += st == "ERROR";
   }
   std::ostringstream x;
   x << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites>\n<testsuite name=\"shadowref conform\" tests=\""
-    << cases.size() << "\" failures=\"" << failures << "\" errors=\"" << errors << "\" skipped=\"0\">\n";
+    << cases.size() << "\" failures=\"" << failures << "\" errors=\"" << errors << "\" skipped=\"" << skipped << "\">\n";
   for (const json& c : cases) {
     const std::string st = text(c, "status");
     x << "  <testcase classname=\"" << escape_html(text(c, "scene")) << "\" name=\"" << escape_html(text(c, "technique"))
       << "\" time=\"" << c.value("seconds", 0.0) << "\">";
-    if (st == "FAIL" || st == "XPASS")
-      x << "<failure message=\"" << escape_html(st + ": " + reasons(c)) << "\">" << escape_html(text(c, "why")) << "</failure>";
+    const std::string o = outcome(c);
+    if ((o == "expected" || o == "flake") && st != "PASS" && st != "XFAIL")
+      x << "<skipped message=\"" << escape_html((o == "flake" ? "flaky: " + st : "known failure: " + expected_by(c)) + ": " + reasons(c)) << "\"/>";
+    else if (o == "improvement")
+      x << "<system-out>" << escape_html("improvement: " + st + " where the expectations say " + expected_by(c) + ": remove that line") << "</system-out>";
+    else if (st == "FAIL" || st == "XPASS")
+      x << "<failure message=\"" << escape_html((o == "new-failure" ? "new failure: " : "") + st + ": " + reasons(c)) << "\">" << escape_html(text(c, "why")) << "</failure>";
     else if (st == "ERROR")
       x << "<error message=\"" << escape_html(text(c, "error")) << "\"/>";
     else if (st == "XFAIL" || st == "WARN")
@@ -87,7 +110,20 @@ std::string render_markdown(const json& report) {
   m << "## shadowref conform\n\n" << cases.size() << " cases:";
   for (const char* st : {"PASS", "XFAIL", "WARN", "FAIL", "XPASS", "ERROR"}) m << " " << counts[st] << " " << st << ",";
   m.seekp(-1, std::ios_base::cur);
-  m << " (convention " << cell(text(report, "convention")) << ")\n\n| scene |";
+  m << " (convention " << cell(text(report, "convention")) << ")\n";
+  if (report.contains("expectations")) {
+    const json& e = report["expectations"];
+    m << "\nAgainst the expectations files:";
+    const json counts = e.value("counts", json::object());
+    for (const auto& [k, v] : counts.items()) m << " " << v.dump() << " " << k << ",";
+    m << " " << e.value("stale", json::array()).size() << " stale line(s); the next file: `expectations-update.txt`\n";
+    for (const json& st : e.value("stale", json::array()))
+      m << "- **stale** " << cell(st.value("line", "")) << ": `" << cell(st.value("text", "")) << "` names no case of this run\n";
+  }
+  if (report.contains("shard") && report["shard"].is_object())
+    m << "\nShard " << report["shard"].value("index", 0) << "/" << report["shard"].value("total", 0) << " ("
+      << cell(report["shard"].value("source", "")) << ")\n";
+  m << "\n| scene |";
   for (const auto& t : techniques) m << " " << cell(t) << " |";
   m << "\n| --- |";
   for (std::size_t i = 0; i < techniques.size(); ++i) m << " --- |";
@@ -97,17 +133,24 @@ std::string render_markdown(const json& report) {
     for (const auto& t : techniques) {
       const auto it = at.find({s, t});
       const std::string st = it == at.end() ? "-" : it->second;
-      m << " " << (st == "FAIL" || st == "XPASS" || st == "ERROR" ? "**" + st + "**" : st) << " |";
+      const json* c = nullptr;
+      for (const json& k : cases)
+        if (text(k, "scene") == s && text(k, "technique") == t) c = &k;
+      const std::string o = c ? outcome(*c) : "";
+      const bool bad = (st == "FAIL" || st == "XPASS" || st == "ERROR") && o != "expected" && o != "flake";
+      m << " " << (bad ? "**" + st + "**" : st) << (o.empty() || o == "green" ? "" : " (" + o + ")") << " |";
     }
     m << "\n";
   }
   bool any = false;
   for (const json& c : cases) {
     const std::string st = text(c, "status");
-    if (st == "PASS") continue;
+    if (st == "PASS" && outcome(c) != "improvement") continue;
     if (!any) m << "\n";
     any = true;
-    m << "- **" << st << "** " << cell(text(c, "scene")) << " × " << cell(text(c, "technique"));
+    const std::string o = outcome(c);
+    m << "- **" << st << "**" << (o.empty() || o == "green" ? "" : " (" + o + (c["expectation"].contains("status") ? ": " + expected_by(c) : "") + ")")
+      << " " << cell(text(c, "scene")) << " × " << cell(text(c, "technique"));
     if (st == "XFAIL" || st == "XPASS") m << ": expected to fail: " << cell(text(c, "why"));
     const std::string r = reasons(c);
     if (!r.empty() && st != "XFAIL") m << (st == "XPASS" ? "; but only: " : ": ") << cell(r);

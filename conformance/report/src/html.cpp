@@ -45,6 +45,18 @@ std::string anchor(const std::string& scene, const std::string& technique) {
   return a;
 }
 
+// A case's outcome against the expectations files in words ("known failure", "new failure",
+// "improvement", "flaky"), or "" when there were no files or the case is green.
+std::string outcome_word(const json& c) {
+  if (!c.contains("expectation") || !c["expectation"].is_object()) return "";
+  const std::string o = c["expectation"].value("outcome", "");
+  if (o == "expected") return "known failure";
+  if (o == "new-failure") return "new failure";
+  if (o == "new-warning") return "new warning";
+  if (o == "flake") return "flaky";
+  return o == "green" ? "" : o;
+}
+
 std::string status_class(const std::string& s) {
   std::string c = "st-";
   for (char ch : s) c += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
@@ -272,6 +284,7 @@ std::string escape_html(const std::string& text) {
 }
 
 // The page's parts, in the order render_html writes them.
+void expectations_section(std::ostringstream& h, const json& r, const json& cases);
 void header_section(std::ostringstream& h, const json& r) {
   const json gl = r.value("gl", json::object());
   h << "<header><h1>shadowref conformance</h1><div class=\"meta\">";
@@ -325,12 +338,41 @@ void summary_section(std::ostringstream& h, const json& r, const json& cases) {
       h << "<td class=\"" << status_class(st) << "\" title=\"" << escape_html(tip) << "\"><a href=\"#"
         << anchor(s, t) << "\">" << escape_html(st) << "</a>"
         << (cmp.contains("total") ? "<small>" + short_percent(cmp["total"]) + " %</small>" : std::string())
+        << (outcome_word(it->second).empty() ? std::string() : "<small>" + escape_html(outcome_word(it->second)) + "</small>")
         << "</td>";
     }
     h << "</tr>\n";
   }
   h << "</tbody></table></section>\n";
+  expectations_section(h, r, cases);
 
+}
+
+// Against an engine team's expectations files: each outcome's count, the cases that are new or
+// improved, and the stale lines (expectations.hpp's words).
+void expectations_section(std::ostringstream& h, const json& r, const json& cases) {
+  if (!r.contains("expectations") || !r["expectations"].is_object()) return;
+  const json& e = r["expectations"];
+  h << "<section id=\"expectations\"><h2>Against the expectations files</h2><div class=\"counts\">";
+  const json counts = e.value("counts", json::object());
+  for (const auto& [k, v] : counts.items())
+    h << "<span style=\"background:#eef1f6\">" << escape_html(k) << " " << v.dump() << "</span>";
+  h << "<span style=\"background:#eef1f6\">stale " << e.value("stale", json::array()).size() << "</span></div><ul>";
+  for (const json& c : cases) {
+    const std::string o = outcome_word(c);
+    if (o != "new failure" && o != "new warning" && o != "improvement") continue;
+    const json& x = c["expectation"];
+    h << "<li class=\"outcome\" data-outcome=\"" << escape_html(x.value("outcome", "")) << "\"><a href=\"#"
+      << anchor(str(c, "scene"), str(c, "technique")) << "\">" << escape_html(str(c, "scene") + " · " + str(c, "technique"))
+      << "</a>: " << escape_html(o) << ", " << escape_html(str(c, "status")) << " where the files expect "
+      << escape_html(x.value("status", "green")) << (x.contains("line") ? " (" + escape_html(x.value("line", "")) + ")" : "")
+      << (o == "improvement" ? ": remove the line" : "") << "</li>";
+  }
+  for (const json& st : e.value("stale", json::array()))
+    h << "<li class=\"outcome\" data-outcome=\"stale\">stale " << escape_html(st.value("line", "")) << ": <code>"
+      << escape_html(st.value("text", "")) << "</code> names no case of this run</li>";
+  h << "</ul><p class=\"notes\">The next file, <code>" << escape_html(e.value("update", "")) << "</code>, lies beside "
+       "report.json.</p></section>\n";
 }
 
 // How to read the images: the mask values and the error colours (compare.hpp's one definition).
@@ -368,6 +410,13 @@ void case_info(std::ostringstream& h, const json& c) {
     << escape_html(st) << "</span> <span class=\"notes\">expected " << escape_html(str(c, "expected"))
     << (cmp.contains("threshold") ? ", threshold " + escape_html(str(cmp["threshold"], "name")) : std::string())
     << "</span>";
+  if (!outcome_word(c).empty())
+    h << "<div class=\"why\"><b>expectations file:</b> " << escape_html(outcome_word(c)) << " (expected "
+      << escape_html(c["expectation"].value("status", "green"))
+      << (c["expectation"].contains("line") ? ", " + escape_html(c["expectation"].value("line", "")) : std::string()) << ")</div>";
+  if (c.contains("shard") || c.contains("host"))
+    h << "<div class=\"notes\">judged on " << escape_html(str(c, "host", "?"))
+      << (c.contains("shard") ? ", shard " + escape_html(str(c, "shard")) : std::string()) << "</div>";
   if (!str(c, "why", "").empty()) h << "<div class=\"why\"><b>why it is expected to fail:</b> " << escape_html(str(c, "why")) << "</div>";
   if (!str(c, "signature", "").empty()) h << "<div class=\"why\"><b>signature:</b> " << escape_html(str(c, "signature")) << "</div>";
   if (!str(c, "unmet_expectation", "").empty())

@@ -38,5 +38,27 @@ TEST(CiSummary, MarkdownHasTheCountsTheTableAndTheProblems) {
   EXPECT_NE(m.find("- **XFAIL** cornell_box × planar: expected to fail: walls & ceiling"), std::string::npos) << m;
 }
 
+// With an engine team's expectations files: a known failure is skipped, not failed; a new failure
+// says so; an improvement passes with a note to remove its line; the summary counts each and names
+// the stale lines.
+TEST(CiSummary, ExpectationsOutcomes) {
+  using nlohmann::json;
+  json r = sample();
+  r["cases"][1]["expectation"] = {{"outcome", "new-failure"}};
+  r["cases"][3]["expectation"] = {{"outcome", "expected"}, {"status", "ERROR"}, {"line", "fails.txt:4"}};
+  r["cases"][0]["expectation"] = {{"outcome", "improvement"}, {"status", "FAIL"}, {"line", "fails.txt:2"}};
+  r["expectations"] = {{"counts", {{"expected", 1}, {"new-failure", 1}, {"improvement", 1}}},
+                       {"stale", {{{"line", "fails.txt:9"}, {"text", "gone@planar,FAIL"}}}}};
+  const std::string x = render_junit(r);
+  EXPECT_NE(x.find("failures=\"1\" errors=\"0\" skipped=\"1\""), std::string::npos) << x;
+  EXPECT_NE(x.find("<failure message=\"new failure: FAIL"), std::string::npos) << x;
+  EXPECT_NE(x.find("<skipped message=\"known failure: ERROR at fails.txt:4"), std::string::npos) << x;
+  EXPECT_NE(x.find("improvement: PASS where the expectations say FAIL at fails.txt:2: remove that line"), std::string::npos) << x;
+  const std::string m = render_markdown(r);
+  EXPECT_NE(m.find("| ground_sphere | PASS (improvement) | **FAIL** (new-failure) |"), std::string::npos) << m;
+  EXPECT_NE(m.find("ERROR (expected) |"), std::string::npos) << m;  // not in bold: not a failure of the run
+  EXPECT_NE(m.find("- **stale** fails.txt:9: `gone@planar,FAIL`"), std::string::npos) << m;
+}
+
 }  // namespace
 }  // namespace shadowref::report

@@ -8,12 +8,15 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "shadowref/compare/compare.hpp"
+#include "shadowref/conform/expectations.hpp"
+#include "shadowref/conform/shard_plan.hpp"
 #include "shadowref/conform/status.hpp"
 #include "shadowref/convention.hpp"
 #include "shadowref/outputs/candidate.hpp"
@@ -62,6 +65,13 @@ struct ConformOptions {
   std::vector<ExtraTechnique> extra_techniques; // selectable by name in `techniques`
   bool write_report = true;                     // report.json and report/index.html
   std::string command_line;                     // recorded in report.json
+  // One shard of a split run (shard_plan.hpp): only the scenes the plan gives it, plus the control
+  // case; none: the whole selection. `shard_weights` (scene -> seconds) balances the plan.
+  std::optional<ShardSpec> shard;
+  std::map<std::string, double> shard_weights;
+  std::filesystem::path shard_weights_file;     // recorded in report.json
+  // An engine team's known failures (expectations.hpp); empty: the catalogue's expectations alone.
+  Expectations expectations;
 };
 
 struct CaseResult {
@@ -87,6 +97,10 @@ struct CaseResult {
   std::vector<std::pair<std::string, std::string>> read_through_links;
   double frame_ms = 0;
   double seconds = 0;
+  // Against the expectations files (expectations.hpp); `expected_line` names the line ("file:line")
+  // and `expected_status` its status, when the case has one.
+  Outcome outcome = Outcome::Green;
+  std::string expected_status, expected_line;
 };
 
 // Where a run's time went, in seconds of wall time summed over the cases (bench/README.md reports
@@ -97,9 +111,23 @@ struct PhaseSeconds {
   double render = 0, write = 0, judge = 0, error_images = 0;
 };
 
+// What a run was asked to do, the same in every shard of it: the merge checks that shards agree.
+struct RunPlan {
+  std::vector<std::string> scenes;              // every selected scene, in table order (not only this shard's)
+  std::map<std::string, int> shard_of;          // scene -> shard, 0-based (all 0 when not split)
+  int shards = 1;
+  std::string assignment = "hash";              // "hash" or "weights"
+  std::string catalogue_id;                     // FNV-1a 64 of every planned scene's name and file bytes
+  std::string control;                          // the control case's scene (split runs), or ""
+};
+
 struct ConformResult {
   std::vector<CaseResult> cases;
-  std::vector<std::string> scenes, techniques;  // table order
+  std::vector<std::string> scenes, techniques;  // table order (this shard's scenes)
+  RunPlan plan;
+  std::optional<CaseResult> control;            // split runs: the control case every shard judges
+  std::vector<std::string> skipped;             // cases a [skips] regex left out, by case_name()
+  std::vector<const ExpectationLine*> stale;    // expectation lines for no planned case (into options.expectations)
   std::string gl_vendor, gl_renderer, gl_version;
   std::string convention;
   double seconds = 0, reference_seconds = 0;
@@ -119,7 +147,12 @@ using Log = std::function<void(const std::string&)>;
 // a failure inside one case is that case's ERROR, not an exception.
 ConformResult run_conform(const ConformOptions& options, const Progress& progress = {}, const Log& log = {});
 
-// The scene × technique table as text (one row per scene, one column per technique).
-std::string table_text(const ConformResult& result);
+// The scene × technique table as text (one row per scene, one column per technique); with
+// expectations files, each cell that is not green says what it is against them ("FAIL known",
+// "FAIL new", "PASS improved", "FAIL flaky"), and a skipped case is "SKIP".
+std::string table_text(const ConformResult& result, bool with_expectations = false);
+
+// The cell's text for a case's status and outcome (table_text, and the merge's table).
+std::string table_cell(Status status, Outcome outcome, bool with_expectations);
 
 }  // namespace shadowref::conform

@@ -14,7 +14,9 @@
 // does not expect ("result": "warn"); else 0.
 #pragma once
 
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "shadowref/compare/compare.hpp"
@@ -24,6 +26,7 @@ namespace shadowref::conform {
 
 enum class Status { Pass, Warn, Fail, XFail, XPass, Error };
 const char* to_string(Status s);  // "PASS", "WARN", ...
+std::optional<Status> status_from_string(std::string_view name);  // to_string's inverse; nullopt otherwise
 bool is_failure(Status s);         // FAIL, XPASS, ERROR
 
 // The status of a verdict under an expectation (expected_pass false: an expected failure).

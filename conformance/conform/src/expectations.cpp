@@ -1,0 +1,216 @@
+// expectations.cpp — reading an engine team's expectations files, each case's outcome against them,
+// and the next file to check in (expectations.hpp).
+#include "shadowref/conform/expectations.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "shadowref/convention.hpp"
+#include "shadowref/scene/identifier.hpp"
+
+namespace shadowref::conform {
+namespace {
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(" \t\r");
+  return s.substr(b, e - b + 1);
+}
+
+[[noreturn]] void refuse(const std::string& where, const std::string& what) { throw std::invalid_argument(where + ": " + what); }
+
+// The statuses a line may name: the ones that are not green. An unlisted case is expected green.
+Status line_status(const std::string& word, const std::string& where) {
+  for (Status s : {Status::Warn, Status::Fail, Status::XPass, Status::Error})
+    if (word == to_string(s)) return s;
+  if (word == to_string(Status::Pass) || word == to_string(Status::XFail))
+    refuse(where, "status " + word + " is what an unlisted case is expected to be: remove the line");
+  refuse(where, "unknown status '" + word + "' (expected WARN, FAIL, XPASS or ERROR)");
+}
+
+ExpectationLine parse_case_line(const std::string& body, const std::string& where) {
+  const auto comma = body.rfind(',');
+  if (comma == std::string::npos) refuse(where, "'" + body + "': expected scene@technique[@convention],STATUS");
+  ExpectationLine l;
+  l.where = where;
+  l.status = line_status(trim(body.substr(comma + 1)), where);
+  std::vector<std::string> parts;
+  std::stringstream name(trim(body.substr(0, comma)));
+  for (std::string p; std::getline(name, p, '@');) parts.push_back(trim(p));
+  if (parts.size() < 2 || parts.size() > 3)
+    refuse(where, "'" + body.substr(0, comma) + "': expected scene@technique[@convention]");
+  l.scene = parts[0];
+  l.technique = parts[1];
+  for (const std::string* id : {&l.scene, &l.technique})
+    if (const auto problem = scene::identifier_problem(*id)) refuse(where, "'" + *id + "': " + *problem);
+  if (parts.size() == 3) {
+    l.convention = parts[2];
+    if (!find_run_convention(l.convention)) {
+      std::string known;
+      for (const RunConvention& c : kRunConventions) known += (known.empty() ? "" : ", ") + std::string(c.name);
+      refuse(where, "unknown convention '" + l.convention + "' (expected one of " + known + ")");
+    }
+  }
+  return l;
+}
+
+ExpectationRegex parse_regex(const std::string& body, const std::string& where) {
+  ExpectationRegex r;
+  r.pattern = body;
+  r.where = where;
+  try {
+    r.regex = std::regex(body, std::regex::ECMAScript);
+  } catch (const std::regex_error& e) {
+    refuse(where, "bad regex '" + body + "': " + e.what());
+  }
+  return r;
+}
+
+void read_file(const std::filesystem::path& file, Expectations& e) {
+  std::ifstream in(file);
+  std::error_code ec;
+  if (!in || std::filesystem::is_directory(file, ec)) refuse(file.string(), "cannot read the expectations file");
+  enum class Section { Baseline, Flakes, Skips } section = Section::Baseline;
+  std::string raw;
+  for (int n = 1; std::getline(in, raw); ++n) {
+    const std::string where = file.string() + ":" + std::to_string(n);
+    const std::string body = trim(raw.substr(0, raw.find('#')));
+    if (body.empty()) continue;
+    if (body.front() == '[') {
+      if (body == "[flakes]") section = Section::Flakes;
+      else if (body == "[skips]") section = Section::Skips;
+      else if (body == "[baseline]") section = Section::Baseline;
+      else refuse(where, "unknown section '" + body + "' (expected [flakes], [skips] or [baseline])");
+      continue;
+    }
+    if (section == Section::Baseline) {
+      ExpectationLine l = parse_case_line(body, where);
+      l.text = trim(raw);
+      e.lines.push_back(std::move(l));
+    } else {
+      ExpectationRegex r = parse_regex(body, where);
+      r.text = trim(raw);
+      (section == Section::Flakes ? e.flakes : e.skips).push_back(std::move(r));
+    }
+  }
+  if (in.bad()) refuse(file.string(), "cannot read the expectations file");
+}
+
+}  // namespace
+
+std::string case_name(const std::string& scene, const std::string& technique, const std::string& convention) {
+  return scene + "@" + technique + "@" + convention;
+}
+
+bool ExpectationLine::applies_to(const std::string& s, const std::string& t, const std::string& c) const {
+  return s == scene && t == technique && (convention.empty() || convention == c);
+}
+
+const ExpectationLine* Expectations::line_for(const std::string& s, const std::string& t, const std::string& c) const {
+  for (const ExpectationLine& l : lines)
+    if (l.applies_to(s, t, c)) return &l;
+  return nullptr;
+}
+
+bool Expectations::flaky(const std::string& name) const {
+  return std::any_of(flakes.begin(), flakes.end(), [&](const ExpectationRegex& r) { return std::regex_search(name, r.regex); });
+}
+
+bool Expectations::skipped(const std::string& name) const {
+  return std::any_of(skips.begin(), skips.end(), [&](const ExpectationRegex& r) { return std::regex_search(name, r.regex); });
+}
+
+Expectations read_expectations(const std::vector<std::filesystem::path>& files) {
+  Expectations e;
+  e.files = files;
+  for (const auto& f : files) read_file(f, e);
+  // The same case twice (in one file or two) would make the outcome depend on the order: refused.
+  // A line for every convention and one for a single convention overlap in that convention.
+  for (std::size_t i = 0; i < e.lines.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j) {
+      const ExpectationLine &a = e.lines[j], &b = e.lines[i];
+      if (a.scene == b.scene && a.technique == b.technique &&
+          (a.convention.empty() || b.convention.empty() || a.convention == b.convention))
+        refuse(b.where, "case " + b.scene + "@" + b.technique + " is listed already at " + a.where);
+    }
+  return e;
+}
+
+const char* to_string(Outcome o) {
+  switch (o) {
+    case Outcome::Green: return "green";
+    case Outcome::Expected: return "expected";
+    case Outcome::NewFailure: return "new-failure";
+    case Outcome::NewWarning: return "new-warning";
+    case Outcome::Improvement: return "improvement";
+    case Outcome::Flake: return "flake";
+  }
+  return "?";
+}
+
+Outcome outcome_of(Status s, bool expected_warning, const ExpectationLine* line, bool flaky) {
+  // 0 green, 1 a warning of the run, 2 a failure: what "better" and "worse" compare.
+  const auto rank = [&](Status st, bool catalogue_warn) { return is_failure(st) ? 2 : st == Status::Warn && !catalogue_warn ? 1 : 0; };
+  const int seen = rank(s, expected_warning);
+  if (flaky) return seen == 0 ? Outcome::Green : Outcome::Flake;
+  if (!line) return seen == 2 ? Outcome::NewFailure : seen == 1 ? Outcome::NewWarning : Outcome::Green;
+  if (s == line->status) return Outcome::Expected;
+  const int expected = rank(line->status, false);
+  if (seen < expected) return Outcome::Improvement;
+  return seen == 2 ? Outcome::NewFailure : Outcome::NewWarning;
+}
+
+int exit_code(const std::vector<Outcome>& outcomes) {
+  const auto any = [&](Outcome o) { return std::find(outcomes.begin(), outcomes.end(), o) != outcomes.end(); };
+  if (any(Outcome::NewFailure)) return 2;
+  if (any(Outcome::NewWarning) || any(Outcome::Improvement)) return 1;
+  return 0;
+}
+
+std::vector<const ExpectationLine*> stale_lines(const Expectations& e, const std::vector<std::string>& scenes,
+                                                const std::vector<std::string>& techniques, const std::string& convention) {
+  std::vector<const ExpectationLine*> out;
+  for (const ExpectationLine& l : e.lines) {
+    if (!l.convention.empty() && l.convention != convention) continue;  // another convention's run has it
+    const bool planned = std::find(scenes.begin(), scenes.end(), l.scene) != scenes.end() &&
+                         std::find(techniques.begin(), techniques.end(), l.technique) != techniques.end();
+    if (!planned && !e.skipped(case_name(l.scene, l.technique, convention))) out.push_back(&l);
+  }
+  return out;
+}
+
+std::string expectations_update_text(const Expectations& e, const std::vector<CaseOutcome>& cases,
+                                     const std::vector<const ExpectationLine*>& stale, const std::string& convention) {
+  std::ostringstream t;
+  t << "# The expectations that make the next run of these cases green (shadowref, docs/ci.md): the lines\n"
+       "# still met, one line per new failure or warning, no line for an improvement or a stale case.\n";
+  std::set<const ExpectationLine*> gone(stale.begin(), stale.end());
+  std::vector<std::string> added;
+  for (const CaseOutcome& c : cases) {
+    const ExpectationLine* l = e.line_for(c.scene, c.technique, convention);
+    if (c.outcome == Outcome::Improvement || c.outcome == Outcome::NewFailure || c.outcome == Outcome::NewWarning) {
+      if (l) gone.insert(l);
+      if (c.outcome != Outcome::Improvement)
+        added.push_back(case_name(c.scene, c.technique, convention) + "," + to_string(c.status) + "  # new in this run");
+    }
+  }
+  for (const ExpectationLine& l : e.lines)
+    if (!gone.count(&l)) t << l.text << "\n";
+  for (const std::string& a : added) t << a << "\n";
+  if (!e.flakes.empty()) {
+    t << "[flakes]\n";
+    for (const ExpectationRegex& r : e.flakes) t << r.text << "\n";
+  }
+  if (!e.skips.empty()) {
+    t << "[skips]\n";
+    for (const ExpectationRegex& r : e.skips) t << r.text << "\n";
+  }
+  return t.str();
+}
+
+}  // namespace shadowref::conform
