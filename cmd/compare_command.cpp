@@ -24,6 +24,7 @@
 #include "command.hpp"
 #include "shadowref/compare/compare.hpp"
 #include "shadowref/conform/judge.hpp"
+#include "shadowref/outputs/cause.hpp"
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/outputs/image_io.hpp"
 #include "shadowref/outputs/json_text.hpp"
@@ -191,8 +192,7 @@ void register_compare_command(CLI::App& app, int& exit_code) {
   add_convention_option(*cmd, args->convention);
   cmd->add_flag("--json", args->json, "print one JSON object instead of text");
   cmd->footer(
-      "Error image: red = false shadow (reference lit), blue = false light (reference shadowed), magenta = "
-      "coverage (surface vs no surface), green = undecided (not judged), grey = the dimmed reference.\n"
+      "Error image: " + outputs::error_colours_line() + ".\n"
       "Exit: 0 pass, 1 quality warning, 2 fail, 3 size mismatch, 4 bad input; with --scene, the case's status under the "
       "scene's expectation as conform gives it (an XFAIL or an expected WARN exits 0, an XPASS 2).");
   cmd->callback([args, &exit_code] { exit_code = run_compare(*args); });

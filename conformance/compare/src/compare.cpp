@@ -4,6 +4,7 @@
 #include "shadowref/outputs/file_names.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -15,13 +16,14 @@
 namespace shadowref::compare {
 namespace {
 
-enum Class : std::uint8_t { kShadowed = 0, kNoSurface = 1, kLit = 2 };
-
-// Nearest of 0 / 128 / 255: 0, 1 or 2 thresholds passed (branchless, so that loops over it vectorise).
-inline Class classify(std::uint8_t v) {
-  return static_cast<Class>((v >= outputs::kMaskNoSurfaceFrom) + (v >= outputs::kMaskLitFrom));
-}
+// A mask value's class (outputs/image.hpp's one reading).
+using Class = std::uint8_t;
+constexpr Class kShadowed = outputs::kClassShadowed, kNoSurface = outputs::kClassNoSurface, kLit = outputs::kClassLit;
+inline Class classify(std::uint8_t v) { return outputs::mask_class(v); }
 inline bool exact(std::uint8_t v) { return outputs::is_mask_value(v); }
+
+// A colour as the 4 bytes the row loop stores (the last one overwritten by the next pixel).
+constexpr std::array<std::uint8_t, 4> four(const outputs::Rgb& c) { return {c[0], c[1], c[2], 0}; }
 
 // Wrong-pixel codes in the scratch image.
 enum Wrong : std::uint8_t { kRight = 0, kFalseShadow = 1, kFalseLight = 2, kCoverage = 3 };
@@ -199,9 +201,8 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
   // The dimmed reference under the error colours, by class (shadowed, no surface, lit), and the
   // undecided colour: each as 4 bytes, so that a pixel's colour is one 4-byte store whose last byte
   // the next pixel overwrites.
-  static constexpr std::uint8_t kColour[4][4] = {{55, 55, 55, 0}, {28, 28, 42, 0}, {150, 150, 150, 0},
-                                                 {kErrorColours.undecided[0], kErrorColours.undecided[1],
-                                                  kErrorColours.undecided[2], 0}};
+  static constexpr std::array<std::uint8_t, 4> kColour[4] = {four(outputs::kDimmedShadowed), four(outputs::kDimmedNoSurface),
+                                                             four(outputs::kDimmedLit), four(error_colour(ErrorClass::Undecided))};
   static_assert(kShadowed == 0 && kNoSurface == 1 && kLit == 2);
   const std::size_t stride = static_cast<std::size_t>(w);
   const std::uint8_t invariant = options.no_cast_shadow_invariant ? 1 : 0;
@@ -233,7 +234,7 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
     std::uint32_t row_off = 0, row_decided = 0, row_surface = 0, row_invariant = 0, row_wrong = 0;
     for (int x = 0; x < w; ++x) {
       const std::uint8_t r = rc[x], c = classify(cv[x]);
-      const std::uint8_t d = dv[x] >> 7;  // >= 128
+      const std::uint8_t d = outputs::flag_bit(dv[x]);
       // Judged although undecided: the scene's invariant (no cast shadow) and a false shadow.
       const std::uint8_t inv = static_cast<std::uint8_t>((d ^ 1) & invariant & (r == kLit) & (c == kShadowed));
       const std::uint8_t judged = d | inv;
@@ -250,8 +251,8 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
     decided_surface += row_surface;
     invariant_pixels += row_invariant;
     std::uint8_t* e = err + 3 * first;
-    for (int x = 0; x + 1 < w || (x + 1 == w && y + 1 < h); ++x) std::memcpy(e + 3 * x, kColour[col[x]], 4);
-    if (y + 1 == h) std::memcpy(e + 3 * static_cast<std::size_t>(w - 1), kColour[col[w - 1]], 3);  // the image's last pixel
+    for (int x = 0; x + 1 < w || (x + 1 == w && y + 1 < h); ++x) std::memcpy(e + 3 * x, kColour[col[x]].data(), 4);
+    if (y + 1 == h) std::memcpy(e + 3 * static_cast<std::size_t>(w - 1), kColour[col[w - 1]].data(), 3);  // the image's last pixel
     if (row_wrong)
       for (int x = 0; x < w; ++x)
         if (wr[x]) wrong.push_back(first + static_cast<std::size_t>(x));
@@ -271,19 +272,19 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
     const Class r = classify(ref[i]), c = classify(cand[i]);
     const int x = static_cast<int>(i % stride), y = static_cast<int>(i / stride);
     std::uint8_t code;
-    const unsigned char* paint;
+    const outputs::Rgb* paint;
     if (r == kNoSurface || c == kNoSurface) {
       code = kCoverage;
       ++m.coverage;
-      paint = kErrorColours.coverage;
+      paint = &error_colour(ErrorClass::Coverage);
     } else if (r == kLit) {
       code = kFalseShadow;
       ++m.false_shadow;
-      paint = kErrorColours.false_shadow;
+      paint = &error_colour(ErrorClass::FalseShadow);
     } else {
       code = kFalseLight;
       ++m.false_light;
-      paint = kErrorColours.false_light;
+      paint = &error_colour(ErrorClass::FalseLight);
     }
     codes[i] = code;
     ++m.wrong;
@@ -292,10 +293,10 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
     if (code != kCoverage && options.explain) cause = (*options.explain)(light, x, y, c == kLit);
     if (cause == Cause::TexelFootprint) {
       ++m.explained_texel;
-      paint = kErrorColours.texel;
+      paint = &error_colour(ErrorClass::Texel);
     } else if (cause == Cause::DepthBias) {
       ++m.explained_bias;
-      paint = kErrorColours.bias;
+      paint = &error_colour(ErrorClass::Bias);
     } else {
       ++m.unexplained;
       if (code == kFalseLight) {
@@ -304,12 +305,12 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
       }
       if (cause == Cause::Acne) {
         ++m.unexplained_acne;
-        paint = kErrorColours.acne;
+        paint = &error_colour(ErrorClass::Acne);
       }
       flagged[i] = 1;
       unexplained.push_back(i);
     }
-    std::memcpy(err + 3 * i, paint, 3);
+    std::memcpy(err + 3 * i, paint->data(), 3);
   }
   if (!wrong.empty()) {
     m.unexplained_core = count_cores_listed(flagged.get(), unexplained, w, h);

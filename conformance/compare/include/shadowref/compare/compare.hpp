@@ -8,10 +8,11 @@
 // and the first such pixel): the contract rounds nothing.
 //
 // Wrong kinds on a decided pixel:
-//   false shadow  reference lit, candidate shadowed        (red in the error image)
-//   false light   reference shadowed, candidate lit        (blue)
-//   coverage      surface in one, no surface in the other  (magenta: the candidate's camera or
-//                 geometry differs, which no shadow technique explains)
+//   false shadow  reference lit, candidate shadowed
+//   false light   reference shadowed, candidate lit
+//   coverage      surface in one, no surface in the other (the candidate's camera or geometry
+//                 differs, which no shadow technique explains)
+// (their colours, and the causes', in outputs::kErrorClasses).
 // `largest_region` is the largest 8-connected set of wrong pixels: resolution error is thin and
 // scattered along shadow boundaries, a real bug is a blob (thresholds.hpp caps it).
 //
@@ -95,21 +96,13 @@ std::size_t count_cores(const std::vector<std::uint8_t>& flagged, int w, int h, 
 struct MaskComparison {
   MaskMetrics metrics;
   Displacement displacement;  // looked for where options.displacement_up_to allows (metrics.displaced: its count)
-  Image8 error;  // RGB: wrong pixels by kind over the dimmed reference (colours in kErrorColours)
+  Image8 error;  // RGB: wrong pixels by kind or cause over the dimmed reference (outputs::kErrorClasses)
 };
 
-// Error-image colours (RGB), for the report's legend.
-// Unexplained errors by kind (false shadow, false light, coverage); explained ones by cause.
-struct ErrorColours {
-  unsigned char false_shadow[3] = {235, 50, 50};
-  unsigned char false_light[3] = {40, 120, 255};
-  unsigned char coverage[3] = {230, 40, 230};
-  unsigned char texel[3] = {240, 170, 20};      // explained: texel footprint
-  unsigned char bias[3] = {30, 200, 200};       // explained: depth bias
-  unsigned char acne[3] = {255, 235, 40};       // unexplained: self-shadowing (acne), a false shadow of its own kind
-  unsigned char undecided[3] = {70, 105, 70};   // not judged: the reference's undecided pixels
-};
-inline constexpr ErrorColours kErrorColours{};
+// The error image's colours and their meaning: outputs::kErrorClasses (outputs/cause.hpp), the one
+// table the painter, the report, the pack's README and `compare --help` read.
+using outputs::ErrorClass;
+using outputs::error_colour;
 
 // The causes a wrong decided pixel may have (the reference's cause model computes them).
 using outputs::Cause;
