@@ -69,6 +69,26 @@ TEST(CompareMask, ValuesOtherThanTheThreeAreRefusedNotRounded) {
   }
 }
 
+// The refusal comes first: a mask off the contract is refused before any wrong pixel is explained
+// (the cause model is the costly part of a comparison).
+TEST(CompareMask, OffContractValuesAreRefusedBeforeAnyCauseIsAsked) {
+  const Image8 ref = grey(4, 4, 255);
+  Image8 cand = grey(4, 4, 0);  // every pixel a false shadow...
+  set(cand, 3, 3, 7);            // ...and one value off the contract
+  int asked = 0;
+  const Explainer explain = [&](std::size_t, int, int, bool) {
+    ++asked;
+    return Cause::TexelFootprint;
+  };
+  CompareOptions o;
+  o.explain = &explain;
+  EXPECT_THROW((void)compare_mask(ref, grey(4, 4, 255), cand, "cand/mask.png", 0, o), CompareError);
+  EXPECT_EQ(asked, 0);
+  set(cand, 3, 3, 0);
+  EXPECT_EQ(compare_mask(ref, grey(4, 4, 255), cand, "cand/mask.png", 0, o).metrics.explained_texel, 16u);
+  EXPECT_EQ(asked, 16);
+}
+
 TEST(CompareMask, RegionsAreEightConnected) {
   const Image8 ref = grey(20, 20, 255);
   Image8 cand = ref;

@@ -54,7 +54,7 @@ struct MaskMetrics {
   std::size_t false_shadow = 0;
   std::size_t false_light = 0;
   std::size_t coverage = 0;
-  std::size_t off_values = 0;       // candidate values other than 0, 128, 255 (always 0: refused)
+  std::size_t off_values = 0;       // candidate values other than 0, 128, 255: always 0 (refused first, compare_mask)
   std::size_t regions = 0;          // 8-connected regions of wrong pixels
   std::size_t largest_region = 0;   // pixels in the largest one
   // The tolerance model (docs/tolerance-model.md): wrong pixels by cause, and the scale they are
@@ -122,13 +122,15 @@ struct CompareOptions {
   const VisibilityExplainer* explain_visibility = nullptr;
   const VisibilityTexelShift* visibility_texel_shift = nullptr;  // null: the means get no texel shift
   // Displaced shadows (displacement.hpp) are looked for where the unexplained pixels are at most
-  // this share of the edge pixels (a mask wrong beyond it FAILs anyway); negative: never.
-  // compare_folders sets 1.
-  double displacement_up_to = -1;
+  // this share of the edge pixels; negative: never. The judge's 1: looked for per light up to as many
+  // unexplained pixels as edge pixels, since past its own fail bound a light may still sum to a total
+  // below it beside a light with more edges (a mask wrong beyond that FAILs anyway).
+  double displacement_up_to = 1.0;
 };
 
 // Compares one mask. All three images are 1-channel and of the same size; throws
-// CompareError(SizeMismatch) naming both sizes otherwise (`what` names the files in messages).
+// CompareError(SizeMismatch) naming both sizes otherwise (`what` names the files in messages), and
+// CompareError(BadInput) for a candidate value other than the three, before anything is judged.
 MaskComparison compare_mask(const Image8& reference, const Image8& decided, const Image8& candidate,
                             const std::string& what = "mask", std::size_t light = 0, const CompareOptions& options = {});
 
