@@ -21,7 +21,8 @@
 //   BM_ReferenceRender    a whole reference render; its counter ray_work_over_embree is the tiles'
 //                         whole ray work (primary rays, surfaces, shadow rays with the decided
 //                         test's nudges) over the time inside Embree's calls on those very rays
-//                         (reference::Stats). Goal: <= 1.3.
+//                         (reference::Stats; occlude_shadow_rays' read-back of the answers, a byte a
+//                         ray, counts as Embree's). Goal: <= 1.3.
 // The surface points are the pixel-centre hits of the scene's camera at 1024 × 1024, the light its
 // first light's homogeneous point, the offset the scene's epsilon: the pixel-centre rays a render
 // traces. The bare loops trace under the reference's own FlushDenormalsGuard (flush_denormals.hpp).
