@@ -1,11 +1,13 @@
 // reference_bench.cpp — the reference's shadow rays against a bare Embree loop over the same rays,
 // in the same run, on one thread and on all threads; the BVH build; a whole reference render.
 //
-//   BM_ShadowRays_Ours    the reference's path (what render()'s tiles run): from surface points and
-//                         normals (rounded to float, structure of arrays) to lit answers —
-//                         build_shadow_rays over 4096 queries at a time into a RayStream reused per
-//                         thread (attached ones left inactive in it), rtcOccludedNp, one lit byte per
-//                         query read from tfar.
+//   BM_ShadowRays_Ours    the reference's own shadow-ray stage, the functions render()'s tiles call
+//                         (shadow_ray.hpp): from surface points and normals (rounded to float,
+//                         structure of arrays) to lit answers — build_shadow_rays over 4096 queries
+//                         at a time into a RayStream reused per thread (attached ones left inactive
+//                         in it), then occlude_shadow_rays (rtcOccludedNp under flush-to-zero, one lit
+//                         byte per query). Not render() itself: its tiles interleave primary rays,
+//                         surfaces and the gather (BM_ReferenceRender times all of it).
 //   BM_ShadowRays_Bare    rtcOccluded1M over the very rays Ours traces, already built (only tfar,
 //                         which Embree overwrites on a hit, is restored before each call): the
 //                         ceiling. Goal: Bare time / Ours time >= 0.95. Both sides pinned alike:
@@ -14,14 +16,16 @@
 //   BM_ShadowRays_BareNp  rtcOccludedNp over the same rays as Bare, already built in a structure of
 //                         arrays (tfar restored before each call): the ceiling of the API Ours calls
 //                         (Embree's SoA stream path skips the transposition its AoS one does).
-//   BM_ShadowRays_Build   Ours without the tracing: where the gap between the two goes (build_shadow_rays,
-//                         in float, vectorised: a square root and a division per ray).
+//   BM_ShadowRays_Build   Ours without occlude_shadow_rays: where the gap between the two goes
+//                         (build_shadow_rays, in float, vectorised: a square root and a division per ray).
 //   BM_ReferenceRender    a whole reference render; its counter ray_work_over_embree is the tiles'
 //                         whole ray work (primary rays, surfaces, shadow rays with the decided
 //                         test's nudges) over the time inside Embree's calls on those very rays
-//                         (reference::Stats). Goal: <= 1.3.
+//                         (reference::Stats; occlude_shadow_rays' read-back of the answers, a byte a
+//                         ray, counts as Embree's). Goal: <= 1.3.
 // The surface points are the pixel-centre hits of the scene's camera at 1024 × 1024, the light its
-// first light's homogeneous point, the offset the scene's epsilon: the pixel-centre rays of render().
+// first light's homogeneous point, the offset the scene's epsilon: the pixel-centre rays a render
+// traces. The bare loops trace under the reference's own FlushDenormalsGuard (flush_denormals.hpp).
 #include <benchmark/benchmark.h>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -38,6 +42,7 @@
 
 #include "bench_support.hpp"
 #include "shadowref/reference/embree_scene.hpp"
+#include "shadowref/reference/flush_denormals.hpp"
 #include "shadowref/reference/ray_stream.hpp"
 #include "shadowref/reference/render.hpp"
 #include "shadowref/reference/shadow_ray.hpp"
@@ -55,17 +60,7 @@ constexpr int kResolution = 1024;
 constexpr std::size_t kBlock = 16384;  // queries per parallel task (both paths split alike)
 constexpr std::size_t kChunk = 4096;   // rays per rtcOccluded1M call, as in render.cpp
 
-// Flush-to-zero / denormals-are-zero for the tracing thread (docs/dependencies.md), restored after.
-class Ftz {
- public:
-  Ftz() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | 0x8040u); }
-  ~Ftz() { _mm_setcsr(saved_); }
-  Ftz(const Ftz&) = delete;
-  Ftz& operator=(const Ftz&) = delete;
-
- private:
-  unsigned saved_;
-};
+using Ftz = ref::FlushDenormalsGuard;  // for the bare loops: the mode the reference traces in
 
 struct Case {
   sc::Scene scene;
@@ -225,10 +220,6 @@ void shadow_rays(benchmark::State& state, const std::string& name, bool trace) {
   for (auto _ : state) {
     arena.execute([&] {
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
-        Ftz ftz;
-        RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
         Scratch& s = buffers.local();
         s.lit.resize(kBlock);
         for (std::size_t b = r.begin(); b < r.end(); ++b) {
@@ -244,11 +235,7 @@ void shadow_rays(benchmark::State& state, const std::string& name, bool trace) {
               benchmark::ClobberMemory();
               continue;
             }
-            const RTCRayNp np = s.rays.rays();
-            rtcOccludedNp(c.embree->handle(), &ctx, &np, static_cast<unsigned>(count));
-            const float* __restrict tfar = s.rays.tfar;
-            std::uint8_t* __restrict lit = s.lit.data() + (first - b * kBlock);
-            for (std::size_t i = 0; i < count; ++i) lit[i] = !(tfar[i] < 0);  // as RayStream::lit
+            ref::occlude_shadow_rays(*c.embree, s.rays, count, s.lit.data() + (first - b * kBlock));
           }
           benchmark::DoNotOptimize(s.lit.data());
         }

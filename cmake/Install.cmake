@@ -2,6 +2,7 @@
 #   P/bin/shadowref                                  (cmd/CMakeLists.txt)
 #   P/share/shadowref/conformance/scenes/            the catalogue, meshes included
 #   P/share/shadowref/goldens/images/                the reference masks `shadowref goldens` checks
+#   P/share/shadowref/pack/README.template.md        the pack README's template `shadowref export` fills
 #   P/include/shadowref/*.hpp                        the header-only math (mathlib/CMakeLists.txt)
 #   P/share/cmake/shadowref/                         find_package(shadowref): shadowref::mathlib, with
 #                                                    Eigen3 found by find_dependency, and
@@ -18,6 +19,7 @@ set(SHADOWREF_INSTALL_CMAKEDIR ${CMAKE_INSTALL_DATADIR}/cmake/shadowref)
 
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/conformance/scenes DESTINATION ${SHADOWREF_INSTALL_DATADIR}/conformance)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/goldens/images DESTINATION ${SHADOWREF_INSTALL_DATADIR}/goldens)
+install(FILES ${PROJECT_SOURCE_DIR}/pack/README.template.md DESTINATION ${SHADOWREF_INSTALL_DATADIR}/pack)
 
 install(EXPORT shadowrefTargets NAMESPACE shadowref:: DESTINATION ${SHADOWREF_INSTALL_CMAKEDIR})
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/shadowrefConfig.cmake.in

@@ -26,6 +26,7 @@
 #include "shadowref/conform/expectations.hpp"
 #include "shadowref/conform/judge.hpp"
 #include "shadowref/outputs/atomic_file.hpp"
+#include "shadowref/outputs/cause.hpp"
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/outputs/image_io.hpp"
 #include "shadowref/outputs/json_text.hpp"
@@ -236,8 +237,7 @@ void register_compare_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--json", args->json, "print one JSON object instead of text");
   add_expectations_option(*cmd, args->expectations);
   cmd->footer(
-      "Error image: red = false shadow (reference lit), blue = false light (reference shadowed), magenta = "
-      "coverage (surface vs no surface), green = undecided (not judged), grey = the dimmed reference.\n"
+      "Error image: " + outputs::error_colours_line() + ".\n"
       "Exit: 0 pass, 1 quality warning, 2 fail, 3 size mismatch, 4 bad input; with --scene, the case's status under the "
       "scene's expectation as conform gives it (an XFAIL or an expected WARN exits 0, an XPASS 2); with --expectations (needs\n"
       "--scene), the case against those files: 0 as expected, 1 an improvement or a new warning, 2 a new failure.");

@@ -32,7 +32,8 @@ prefix)
   cmake --install "$build" --prefix "$prefix" >/dev/null
   for f in bin/shadowref include/shadowref/shadow_matrix.hpp share/cmake/shadowref/shadowrefConfig.cmake \
     share/pkgconfig/shadowref.pc share/shadowref/conformance/scenes/ground_sphere.json \
-    share/shadowref/goldens/images/ground_sphere/mask.png share/shadowref/property_tests/math_properties_test.cpp; do
+    share/shadowref/goldens/images/ground_sphere/mask.png share/shadowref/pack/README.template.md \
+    share/shadowref/property_tests/math_properties_test.cpp; do
     [ -e "$prefix/$f" ] || fail "$f is not installed"
   done
   ;;

@@ -16,7 +16,9 @@
 
 #include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/candidate.hpp"
+#include "shadowref/outputs/cause.hpp"
 #include "shadowref/outputs/file_names.hpp"
+#include "shadowref/outputs/image.hpp"
 #include "shadowref/outputs/image_io.hpp"
 #include "shadowref/outputs/errors.hpp"
 #include "shadowref/outputs/interruption.hpp"
@@ -318,6 +320,55 @@ TEST(SpareCores, TheCoresTheLoadLeavesAtLeastOne) {
   const int here = spare_cores();
   EXPECT_GE(here, 1);
   EXPECT_LE(here, static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
+}
+
+
+// The error classes: one row per class, in their enum's order (error_class() indexes by it), each
+// colour and name once, the explained ones exactly the explaining causes.
+TEST(ErrorClasses, OneRowPerClassInOrderWithDistinctColoursAndNames) {
+  for (std::size_t i = 0; i < kErrorClasses.size(); ++i) {
+    const ErrorClassRow& r = kErrorClasses[i];
+    EXPECT_EQ(static_cast<std::size_t>(r.id), i) << r.name;
+    EXPECT_EQ(&error_class(r.id), &r);
+    EXPECT_EQ(find_error_class(r.name), &r);
+    for (std::size_t j = 0; j < i; ++j) {
+      EXPECT_NE(kErrorClasses[j].colour, r.colour) << r.name;
+      EXPECT_NE(kErrorClasses[j].name, r.name);
+      if (!r.json_key.empty()) {
+        EXPECT_NE(kErrorClasses[j].json_key, r.json_key);
+      }
+    }
+    for (const Rgb& dim : {kDimmedShadowed, kDimmedNoSurface, kDimmedLit}) EXPECT_NE(dim, r.colour) << r.name;
+  }
+  EXPECT_TRUE(explains(Cause::TexelFootprint));
+  EXPECT_TRUE(explains(Cause::DepthBias));
+  EXPECT_FALSE(explains(Cause::Acne));
+  EXPECT_FALSE(explains(Cause::Unexplained));
+  for (const ErrorClassRow& r : kErrorClasses)
+    EXPECT_EQ(r.explained, r.id == ErrorClass::Texel || r.id == ErrorClass::Bias) << r.name;
+  EXPECT_EQ(error_class_of(Cause::Acne)->id, ErrorClass::Acne);
+  EXPECT_EQ(error_class_of(Cause::Unexplained), nullptr);
+}
+
+TEST(ErrorClasses, TheHelpLineNamesEveryColourAndMeaning) {
+  const std::string line = error_colours_line();
+  for (const ErrorClassRow& r : kErrorClasses)
+    EXPECT_NE(line.find(std::string(r.colour_name) + " = " + std::string(r.legend)), std::string::npos) << r.name;
+  EXPECT_EQ(rgb_text({1, 22, 255}), "rgb(1, 22, 255)");
+}
+
+// One reading of a mask's values and of a flag: the class thresholds, nearest_mask_value through them.
+TEST(MaskValues, OneReadingOfTheThreeValuesAndOfAFlag) {
+  for (int v = 0; v < 256; ++v) {
+    const auto b = static_cast<std::uint8_t>(v);
+    const std::uint8_t expected = v < 64 ? kMaskShadowed : v < 192 ? kMaskNoSurface : kMaskLit;
+    EXPECT_EQ(nearest_mask_value(b), expected) << v;
+    EXPECT_EQ(mask_class(b), v < 64 ? kClassShadowed : v < 192 ? kClassNoSurface : kClassLit) << v;
+    EXPECT_EQ(is_flag_set(b), v >= 128) << v;
+    EXPECT_EQ(flag_bit(b), v >= 128 ? 1 : 0) << v;
+  }
+  EXPECT_TRUE(is_flag_set(kFlagSet));
+  EXPECT_FALSE(is_flag_set(kFlagClear));
 }
 
 }  // namespace

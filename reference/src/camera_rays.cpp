@@ -9,7 +9,7 @@
 
 #include "shadowref/convention.hpp"
 #include "shadowref/reference/simd_path.hpp"
-#include "flush_denormals.hpp"
+#include "shadowref/reference/flush_denormals.hpp"
 
 namespace shadowref::reference {
 

@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "flush_denormals.hpp"
+#include "shadowref/reference/flush_denormals.hpp"
 #include "shadowref/reference/camera_rays.hpp"
 #include "shadowref/reference/embree_scene.hpp"
 #include "shadowref/reference/pixel_surface.hpp"
@@ -297,7 +297,7 @@ double CauseModel::mask_reach_texels(const outputs::CandidateDeclaration& d) {
   // filtered mask (lit at >= 1/2 of the taps) puts a straight boundary where the nearest lookup does,
   // give or take its tap spacing: the filter widens the mask's reach by at most kMaxMaskFilterTexels,
   // whatever radius is declared (its wider reach is judged in the lit fraction, visibility_band).
-  return (d.light_views_from_pack ? 0.5 : 1.0) + std::min(d.filter_radius_texels, kMaxMaskFilterTexels);
+  return grid_uncertainty_texels(d) + std::min(d.filter_radius_texels, kMaxMaskFilterTexels);
 }
 
 bool CauseModel::filter_may_answer(const Lookup& k, Probes& probes, const outputs::CandidateDeclaration& d, bool candidate_lit,
@@ -308,7 +308,7 @@ bool CauseModel::filter_may_answer(const Lookup& k, Probes& probes, const output
   // of the lookup's grid uncertainty (1/2 texel on the pack's grid, 1 on the candidate's own).
   const int radius = static_cast<int>(std::ceil(d.filter_radius_texels));
   const int stride = std::max(1, (2 * radius + 1 + kMaxFilterTapsPerAxis - 1) / kMaxFilterTapsPerAxis);
-  const double h = d.light_views_from_pack ? 0.5 : 1.0;
+  const double h = grid_uncertainty_texels(d);
   static constexpr std::array<std::array<double, 2>, 5> kPlacements{{{0, 0}, {1, 1}, {-1, 1}, {1, -1}, {-1, -1}}};
   const int per_axis = 2 * radius / stride + 1;
   const int taps = per_axis * per_axis;
@@ -327,7 +327,7 @@ bool CauseModel::filter_may_answer(const Lookup& k, Probes& probes, const output
   return false;
 }
 
-Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::CandidateDeclaration& d, bool candidate_lit) const {
+Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::CandidateDeclaration& d, bool candidate_lit) {
   const std::optional<Surface> surface = surface_at(x, y);
   if (!surface) return Cause::Unexplained;
   const std::optional<Lookup> found = lookup(light, *surface, d);
@@ -344,8 +344,6 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
   const auto slope = [&](const Vec3<double>& ng, const Vec3<double>& along, double at) {
     return k.texel_at(at) * capped_tan(std::abs(ng.normalized().dot(along)));
   };
-  static constexpr std::array<std::array<double, 2>, 8> kDirs{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, 1},
-                                                               {1, -1}, {-1, -1}}};
   const auto none = [](const Vec3<double>&, const Vec3<double>&, double) { return 0.0; };
   // The probes: rings every kProbeStep texels out to the reach, so that a smaller reach probes a
   // subset of a larger one's texels (declaring less never explains more).
@@ -365,7 +363,7 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
     // Depth bias: the texel of p itself (a contact within the bias comes out lit: peter-panning).
     if (texel_gives(k, probes, 0, 0, true, bias) && !texel_gives(k, probes, 0, 0, true, none)) return Cause::DepthBias;
     for (const double r : rings)
-      for (const auto& dv : kDirs)
+      for (const auto& dv : kProbeDirections)
         if (texel_gives(k, probes, dv[0] * r, dv[1] * r, true, bias)) return Cause::TexelFootprint;
     if (filter_may_answer(k, probes, d, true, [&](double, double) { return BiasOf(bias); })) return Cause::TexelFootprint;
     return Cause::Unexplained;
@@ -375,7 +373,7 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
   // the precision): the receiver's own surface never qualifies, whatever bias is declared. A false
   // shadow that only the receiver's own surface, stored with less bias than that, casts is acne.
   for (const double r : rings)
-    for (const auto& dv : kDirs) {
+    for (const auto& dv : kProbeDirections) {
       const double distance = r * std::sqrt(dv[0] * dv[0] + dv[1] * dv[1]);
       const auto needed = [&](const Vec3<double>& ng, const Vec3<double>& along, double at) {
         return distance * slope(ng, along, at) + precision;
@@ -390,7 +388,7 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
   };
   if (filter_may_answer(k, probes, d, false, needed_at)) return Cause::TexelFootprint;
   for (const double r : rings)
-    for (const auto& dv : kDirs)
+    for (const auto& dv : kProbeDirections)
       if (texel_gives(k, probes, dv[0] * r, dv[1] * r, false, none)) return Cause::Acne;
   return Cause::Unexplained;
 }
@@ -433,12 +431,10 @@ std::vector<double> CauseModel::fractions_around(std::size_t light, int x, int y
 
 CauseModel::Band CauseModel::visibility_band(std::size_t light, int x, int y,
                                              const outputs::CandidateDeclaration& d) const {
-  const double radius = (d.light_views_from_pack ? 0.5 : 1.0) + d.filter_radius_texels;
-  static constexpr std::array<std::array<double, 2>, 8> kDirs{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, 1},
-                                                               {1, -1}, {-1, -1}}};
+  const double radius = grid_uncertainty_texels(d) + d.filter_radius_texels;
   std::vector<std::array<double, 2>> offsets;
   for (const double r : {0.5 * radius, radius})
-    for (const auto& dv : kDirs) offsets.push_back({dv[0] * r, dv[1] * r});
+    for (const auto& dv : kProbeDirections) offsets.push_back({dv[0] * r, dv[1] * r});
   Band band;
   for (const double v : fractions_around(light, x, y, d, offsets)) {
     band.lo = std::min(band.lo, v);
@@ -449,9 +445,18 @@ CauseModel::Band CauseModel::visibility_band(std::size_t light, int x, int y,
 
 double CauseModel::visibility_texel_shift(std::size_t light, int x, int y,
                                           const outputs::CandidateDeclaration& d) const {
-  const double h = d.light_views_from_pack ? 0.5 : 1.0;
+  // A circle of radius h (the Euclidean norm: the diagonals at h / sqrt(2) per axis), where explain()
+  // and visibility_band() reach a square (kProbeDirections' max norm). Why two norms: explain() asks
+  // which texels a lookup may read, and those lie in a square cell around p's; this asks how far a
+  // correct map may move a straight penumbra, h across its edge in any direction. Not unified: each
+  // feeds verdicts (the masks' causes; the soft techniques' texel allowance), which must not change.
+  const double h = grid_uncertainty_texels(d);
   const double k = h * 0.5 * std::sqrt(2.0);
-  const std::vector<std::array<double, 2>> offsets{{h, 0}, {-h, 0}, {0, h}, {0, -h}, {k, k}, {-k, k}, {k, -k}, {-k, -k}};
+  std::vector<std::array<double, 2>> offsets;
+  for (const auto& dv : kProbeDirections) {
+    const double r = dv[0] != 0 && dv[1] != 0 ? k : h;
+    offsets.push_back({dv[0] * r, dv[1] * r});
+  }
   const std::vector<double> f = fractions_around(light, x, y, d, offsets);
   double shift = 0;
   for (std::size_t i = 1; i < f.size(); ++i) shift = std::max(shift, std::abs(f[i] - f[0]));

@@ -5,7 +5,7 @@
 #include <bit>
 #include <cmath>
 
-#include "flush_denormals.hpp"
+#include "shadowref/reference/flush_denormals.hpp"
 
 namespace shadowref::reference {
 namespace {

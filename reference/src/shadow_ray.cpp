@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "flush_denormals.hpp"
+#include "shadowref/reference/flush_denormals.hpp"
 #include "shadowref/reference/embree_scene.hpp"
 
 namespace shadowref::reference {
@@ -141,6 +141,17 @@ void build_shadow_rays(const SurfacePoints& points, std::size_t count, const Vec
   const Kernel kernel = path == SimdPath::Avx2Fma ? shadow_avx2_fma : shadow_baseline;
   kernel(points, count, l, out.org_x + first, out.org_y + first, out.org_z + first, out.dir_x + first,
          out.dir_y + first, out.dir_z + first, out.tnear + first, out.tfar + first);
+}
+
+void occlude_shadow_rays(const EmbreeScene& scene, RayStream& rays, std::size_t count, std::uint8_t* lit) {
+  const FlushDenormalsGuard ftz;  // as Embree asks (docs/dependencies.md)
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  const RTCRayNp np = rays.rays();
+  rtcOccludedNp(scene.handle(), &ctx, &np, static_cast<unsigned>(count));
+  const float* __restrict tfar = rays.tfar;
+  for (std::size_t i = 0; i < count; ++i) lit[i] = !(tfar[i] < 0);  // Embree sets tfar to −inf on a hit
 }
 
 ShadowRayKind make_shadow_ray(const Vec3<double>& p, const Vec3<double>& n, const Vec4<double>& L, double offset,

@@ -4,6 +4,7 @@
 #include "shadowref/outputs/file_names.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -15,13 +16,14 @@
 namespace shadowref::compare {
 namespace {
 
-enum Class : std::uint8_t { kShadowed = 0, kNoSurface = 1, kLit = 2 };
-
-// Nearest of 0 / 128 / 255: 0, 1 or 2 thresholds passed (branchless, so that loops over it vectorise).
-inline Class classify(std::uint8_t v) {
-  return static_cast<Class>((v >= outputs::kMaskNoSurfaceFrom) + (v >= outputs::kMaskLitFrom));
-}
+// A mask value's class (outputs/image.hpp's one reading).
+using Class = std::uint8_t;
+constexpr Class kShadowed = outputs::kClassShadowed, kNoSurface = outputs::kClassNoSurface, kLit = outputs::kClassLit;
+inline Class classify(std::uint8_t v) { return outputs::mask_class(v); }
 inline bool exact(std::uint8_t v) { return outputs::is_mask_value(v); }
+
+// A colour as the 4 bytes the row loop stores (the last one overwritten by the next pixel).
+constexpr std::array<std::uint8_t, 4> four(const outputs::Rgb& c) { return {c[0], c[1], c[2], 0}; }
 
 // Wrong-pixel codes in the scratch image.
 enum Wrong : std::uint8_t { kRight = 0, kFalseShadow = 1, kFalseLight = 2, kCoverage = 3 };
@@ -171,10 +173,12 @@ std::size_t row_edges(const std::uint8_t* __restrict up, const std::uint8_t* __r
   return edges;
 }
 
-}  // namespace
+// compare_mask's jobs, in its order: the contract (check_images, refuse_off_values), one pass over
+// the rows (scan_rows), the wrong pixels alone (judge_wrong_pixels), their shapes (cores,
+// displacement, regions, in compare_mask).
 
-MaskComparison compare_mask(const Image8& reference, const Image8& decided, const Image8& candidate,
-                            const std::string& what, std::size_t light, const CompareOptions& options) {
+// Three 1-channel images of one size.
+void check_images(const Image8& reference, const Image8& decided, const Image8& candidate, const std::string& what) {
   for (const Image8* i : {&reference, &decided, &candidate})
     if (i->channels != 1 || i->pixels.size() != i->pixel_count())
       throw CompareError(CompareError::Kind::BadInput, what + ": images must be 8-bit grey (1 channel)");
@@ -184,14 +188,34 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
   if (candidate.width != reference.width || candidate.height != reference.height)
     throw CompareError(CompareError::Kind::SizeMismatch, what + ": candidate is " + size_text(candidate) +
                                                              ", reference is " + size_text(reference));
+}
+
+// The contract allows three values and nothing is rounded: a mask written as 10 / 250 is a broken
+// writer, not a near miss (docs/output-contract.md). Refused before anything is judged (the cause
+// model is the costly part), naming the count and the first such pixel. Cost: one pass, vectorised.
+void refuse_off_values(const Image8& candidate, const std::string& what) {
+  const std::uint8_t* __restrict cand = candidate.pixels.data();
+  const std::size_t n = candidate.pixel_count();
+  std::size_t off = 0;
+  for (std::size_t i = 0; i < n; ++i) off += !exact(cand[i]);
+  if (off == 0) return;
+  std::size_t first = 0;
+  while (exact(cand[first])) ++first;
+  const std::size_t w = static_cast<std::size_t>(candidate.width);
+  throw CompareError(CompareError::Kind::BadInput,
+                     what + ": " + std::to_string(off) + " pixel(s) hold values other than 255 (lit), 0 (shadowed) "
+                     "and 128 (no surface), e.g. " + std::to_string(cand[first]) + " at (" + std::to_string(first % w) + ", " +
+                         std::to_string(first / w) + ")");
+}
+
+// One pass over the rows, vectorised: the reference's classes (three rows kept for its edges), the
+// decided and invariant counts, each pixel's background in the error image (the dimmed reference,
+// or the undecided colour), and the wrong pixels, returned as a list (they are few, or the verdict
+// is a FAIL anyway).
+std::vector<std::size_t> scan_rows(const Image8& reference, const Image8& decided, const Image8& candidate, bool invariant_on,
+                                   MaskComparison& out) {
   const int w = reference.width, h = reference.height;
-  const std::size_t n = reference.pixel_count();
-  MaskComparison out;
   MaskMetrics& m = out.metrics;
-  m.width = w;
-  m.height = h;
-  m.pixels = n;
-  out.error = Image8{w, h, 3, std::vector<std::uint8_t>(3 * n)};
   const std::uint8_t* ref = reference.pixels.data();
   const std::uint8_t* dec = decided.pixels.data();
   const std::uint8_t* cand = candidate.pixels.data();
@@ -199,16 +223,11 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
   // The dimmed reference under the error colours, by class (shadowed, no surface, lit), and the
   // undecided colour: each as 4 bytes, so that a pixel's colour is one 4-byte store whose last byte
   // the next pixel overwrites.
-  static constexpr std::uint8_t kColour[4][4] = {{55, 55, 55, 0}, {28, 28, 42, 0}, {150, 150, 150, 0},
-                                                 {kErrorColours.undecided[0], kErrorColours.undecided[1],
-                                                  kErrorColours.undecided[2], 0}};
+  static constexpr std::array<std::uint8_t, 4> kColour[4] = {four(outputs::kDimmedShadowed), four(outputs::kDimmedNoSurface),
+                                                             four(outputs::kDimmedLit), four(error_colour(ErrorClass::Undecided))};
   static_assert(kShadowed == 0 && kNoSurface == 1 && kLit == 2);
   const std::size_t stride = static_cast<std::size_t>(w);
-  const std::uint8_t invariant = options.no_cast_shadow_invariant ? 1 : 0;
-
-  // 1. One pass over the rows, vectorised: the reference's classes (three rows kept for its edges),
-  //    the decided, invariant and off-value counts, each pixel's colour index, and the wrong pixels
-  //    (a list: they are few, or the verdict is a FAIL anyway).
+  const std::uint8_t invariant = invariant_on ? 1 : 0;
   std::vector<std::uint8_t> cls_rows(3 * stride), colour(stride), wrong_row(stride);
   std::uint8_t* rows[3] = {cls_rows.data(), cls_rows.data() + stride, cls_rows.data() + 2 * stride};
   const auto classify_row = [&](int y, std::uint8_t* __restrict out_row) {
@@ -217,7 +236,7 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
   };
   classify_row(0, rows[1]);
   std::vector<std::size_t> wrong;
-  std::size_t edges = 0, off_values = 0, decided_count = 0, decided_surface = 0, invariant_pixels = 0;
+  std::size_t edges = 0, decided_count = 0, decided_surface = 0, invariant_pixels = 0;
   for (int y = 0; y < h; ++y) {
     // rows[0] above, rows[1] this row, rows[2] below (the row itself at the image's edges).
     if (y + 1 < h) classify_row(y + 1, rows[2]);
@@ -230,14 +249,13 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
     const std::uint8_t* __restrict dv = dec + first;
     std::uint8_t* __restrict col = colour.data();
     std::uint8_t* __restrict wr = wrong_row.data();
-    std::uint32_t row_off = 0, row_decided = 0, row_surface = 0, row_invariant = 0, row_wrong = 0;
+    std::uint32_t row_decided = 0, row_surface = 0, row_invariant = 0, row_wrong = 0;
     for (int x = 0; x < w; ++x) {
       const std::uint8_t r = rc[x], c = classify(cv[x]);
-      const std::uint8_t d = dv[x] >> 7;  // >= 128
+      const std::uint8_t d = outputs::flag_bit(dv[x]);
       // Judged although undecided: the scene's invariant (no cast shadow) and a false shadow.
       const std::uint8_t inv = static_cast<std::uint8_t>((d ^ 1) & invariant & (r == kLit) & (c == kShadowed));
       const std::uint8_t judged = d | inv;
-      row_off += !exact(cv[x]);
       row_decided += d;
       row_surface += d & (r != kNoSurface);
       row_invariant += inv;
@@ -245,97 +263,123 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
       wr[x] = judged & (r != c);
       row_wrong += wr[x];
     }
-    off_values += row_off;
     decided_count += row_decided;
     decided_surface += row_surface;
     invariant_pixels += row_invariant;
     std::uint8_t* e = err + 3 * first;
-    for (int x = 0; x + 1 < w || (x + 1 == w && y + 1 < h); ++x) std::memcpy(e + 3 * x, kColour[col[x]], 4);
-    if (y + 1 == h) std::memcpy(e + 3 * static_cast<std::size_t>(w - 1), kColour[col[w - 1]], 3);  // the image's last pixel
+    for (int x = 0; x + 1 < w || (x + 1 == w && y + 1 < h); ++x) std::memcpy(e + 3 * x, kColour[col[x]].data(), 4);
+    if (y + 1 == h) std::memcpy(e + 3 * static_cast<std::size_t>(w - 1), kColour[col[w - 1]].data(), 3);  // the image's last pixel
     if (row_wrong)
       for (int x = 0; x < w; ++x)
         if (wr[x]) wrong.push_back(first + static_cast<std::size_t>(x));
     std::rotate(rows, rows + 1, rows + 3);
   }
   m.edge_pixels = edges;
-  m.off_values = off_values;
   m.decided = decided_count;
   m.decided_surface = decided_surface;
   m.invariant_pixels = invariant_pixels;
+  return wrong;
+}
 
-  // 2. The wrong pixels alone: their kind, their cause, their colour.
-  ZeroBytes codes = wrong.empty() ? nullptr : zero_bytes(n);
-  ZeroBytes flagged = wrong.empty() ? nullptr : zero_bytes(n);
+// What judge_wrong_pixels leaves for the shapes: each wrong pixel's kind (codes) and the unexplained
+// ones, flagged and listed.
+struct WrongPixels {
+  ZeroBytes codes, flagged;
   std::vector<std::size_t> unexplained, unexplained_false_light;
+};
+
+// The wrong pixels alone: their kind, their cause (asked of options.explain for shadow errors), their
+// count by kind and cause, and their colour in the error image (outputs::kErrorClasses).
+WrongPixels judge_wrong_pixels(const Image8& reference, const Image8& candidate, const std::vector<std::size_t>& wrong,
+                               std::size_t light, const CompareOptions& options, MaskComparison& out) {
+  MaskMetrics& m = out.metrics;
+  const std::size_t n = reference.pixel_count(), stride = static_cast<std::size_t>(reference.width);
+  const std::uint8_t* ref = reference.pixels.data();
+  const std::uint8_t* cand = candidate.pixels.data();
+  std::uint8_t* err = out.error.pixels.data();
+  WrongPixels wp;
+  wp.codes = wrong.empty() ? nullptr : zero_bytes(n);
+  wp.flagged = wrong.empty() ? nullptr : zero_bytes(n);
   for (const std::size_t i : wrong) {
     const Class r = classify(ref[i]), c = classify(cand[i]);
     const int x = static_cast<int>(i % stride), y = static_cast<int>(i / stride);
     std::uint8_t code;
-    const unsigned char* paint;
+    const outputs::Rgb* paint;
     if (r == kNoSurface || c == kNoSurface) {
       code = kCoverage;
       ++m.coverage;
-      paint = kErrorColours.coverage;
+      paint = &error_colour(ErrorClass::Coverage);
     } else if (r == kLit) {
       code = kFalseShadow;
       ++m.false_shadow;
-      paint = kErrorColours.false_shadow;
+      paint = &error_colour(ErrorClass::FalseShadow);
     } else {
       code = kFalseLight;
       ++m.false_light;
-      paint = kErrorColours.false_light;
+      paint = &error_colour(ErrorClass::FalseLight);
     }
-    codes[i] = code;
+    wp.codes[i] = code;
     ++m.wrong;
     // A cause for a shadow error (coverage has none).
     Cause cause = Cause::Unexplained;
     if (code != kCoverage && options.explain) cause = (*options.explain)(light, x, y, c == kLit);
     if (cause == Cause::TexelFootprint) {
       ++m.explained_texel;
-      paint = kErrorColours.texel;
+      paint = &error_colour(ErrorClass::Texel);
     } else if (cause == Cause::DepthBias) {
       ++m.explained_bias;
-      paint = kErrorColours.bias;
+      paint = &error_colour(ErrorClass::Bias);
     } else {
       ++m.unexplained;
       if (code == kFalseLight) {
         ++m.unexplained_false_light;
-        unexplained_false_light.push_back(i);
+        wp.unexplained_false_light.push_back(i);
       }
       if (cause == Cause::Acne) {
         ++m.unexplained_acne;
-        paint = kErrorColours.acne;
+        paint = &error_colour(ErrorClass::Acne);
       }
-      flagged[i] = 1;
-      unexplained.push_back(i);
+      wp.flagged[i] = 1;
+      wp.unexplained.push_back(i);
     }
-    std::memcpy(err + 3 * i, paint, 3);
+    std::memcpy(err + 3 * i, paint->data(), 3);
   }
+  return wp;
+}
+
+}  // namespace
+
+MaskComparison compare_mask(const Image8& reference, const Image8& decided, const Image8& candidate,
+                            const std::string& what, std::size_t light, const CompareOptions& options) {
+  check_images(reference, decided, candidate, what);
+  refuse_off_values(candidate, what);
+  const int w = reference.width, h = reference.height;
+  const std::size_t n = reference.pixel_count();
+  MaskComparison out;
+  MaskMetrics& m = out.metrics;
+  m.width = w;
+  m.height = h;
+  m.pixels = n;
+  out.error = Image8{w, h, 3, std::vector<std::uint8_t>(3 * n)};
+  const std::vector<std::size_t> wrong = scan_rows(reference, decided, candidate, options.no_cast_shadow_invariant, out);
+  WrongPixels wp = judge_wrong_pixels(reference, candidate, wrong, light, options, out);
+  // The shapes of the unexplained pixels: cores, a displacement that makes them right, regions.
   if (!wrong.empty()) {
-    m.unexplained_core = count_cores_listed(flagged.get(), unexplained, w, h);
+    m.unexplained_core = count_cores_listed(wp.flagged.get(), wp.unexplained, w, h);
     // The same over the false light alone (an expected failure's predicted kind, conform.cpp).
-    for (const std::size_t i : unexplained) flagged[i] = codes[i] == kFalseLight;
-    m.unexplained_false_light_core = count_cores_listed(flagged.get(), unexplained_false_light, w, h);
+    for (const std::size_t i : wp.unexplained) wp.flagged[i] = wp.codes[i] == kFalseLight;
+    m.unexplained_false_light_core = count_cores_listed(wp.flagged.get(), wp.unexplained_false_light, w, h);
   }
-  if (m.off_values) {
-    // The contract allows three values and nothing is rounded: a mask written as 10 / 250 is a
-    // broken writer, not a near miss (docs/output-contract.md).
-    std::size_t first = 0;
-    while (exact(cand[first])) ++first;
-    throw CompareError(CompareError::Kind::BadInput,
-                       what + ": " + std::to_string(m.off_values) + " pixel(s) hold values other than 255 (lit), 0 (shadowed) "
-                       "and 128 (no surface), e.g. " + std::to_string(cand[first]) + " at (" +
-                       std::to_string(first % static_cast<std::size_t>(w)) + ", " + std::to_string(first / static_cast<std::size_t>(w)) + ")");
-  }
-  if (!unexplained.empty() && static_cast<double>(unexplained.size()) <= options.displacement_up_to * static_cast<double>(edges)) {
+  if (!wp.unexplained.empty() &&
+      static_cast<double>(wp.unexplained.size()) <= options.displacement_up_to * static_cast<double>(m.edge_pixels)) {
     std::vector<std::size_t> unexplained_shadow;  // coverage has its own count
-    for (const std::size_t i : unexplained)
-      if (codes[i] != kCoverage) unexplained_shadow.push_back(i);
+    for (const std::size_t i : wp.unexplained)
+      if (wp.codes[i] != kCoverage) unexplained_shadow.push_back(i);
     out.displacement = find_displacement(reference, decided, candidate, options.no_cast_shadow_invariant, unexplained_shadow,
                                          m.false_shadow + m.false_light);
     m.displaced = out.displacement.fixed_unexplained;
   }
-  if (m.wrong) regions_listed(codes.get(), wrong, w, h, m);
+  if (m.wrong) regions_listed(wp.codes.get(), wrong, w, h, m);
   return out;
 }
 
@@ -404,9 +448,6 @@ FolderComparison compare_folders(const std::filesystem::path& reference_dir,
     const Image8 cand = read_image8(candidate_dir / name, 1, ref.width, ref.height);
     CompareOptions o = options;
     if (!threshold.bands) o.explain = nullptr;  // exact techniques: no texel or bias band
-    // Looked for per light up to as many unexplained pixels as edge pixels: past its own fail bound
-    // a light may still sum to a total below it beside a light with more edges.
-    o.displacement_up_to = 1.0;
     out.per_light.push_back(compare_mask(ref, dec, cand, (candidate_dir / name).string(), i, o));
     out.total += out.per_light.back().metrics;
     // Soft shadows: the lit fraction of a light with an area.

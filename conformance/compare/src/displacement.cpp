@@ -50,7 +50,7 @@ inline bool shadow_error(const std::vector<std::uint8_t>& ref, const outputs::Im
                          std::size_t i, std::uint8_t c) {
   const std::uint8_t r = outputs::nearest_mask_value(ref[i]);
   if (r == kNoSurface || c == kNoSurface || r == c) return false;
-  return decided.pixels[i] >= 128 || (invariant && r == kLit && c == kShadowed);
+  return outputs::is_flag_set(decided.pixels[i]) || (invariant && r == kLit && c == kShadowed);
 }
 
 // The pixels a move of at most kReach px can change: those within kReach px (a square) of a pair of

@@ -98,7 +98,7 @@ VisibilityComparison compare_visibility(const std::vector<float>& reference, con
     for (int x = 0; x < w; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
       const float r = reference[i];
-      if (covered.pixels[i] != 255 || r < 0 || candidate_mask.pixels[i] == outputs::kMaskNoSurface) continue;
+      if (!outputs::is_flag_set(covered.pixels[i]) || r < 0 || candidate_mask.pixels[i] == outputs::kMaskNoSurface) continue;
       ++m.judged;
       const double c = candidate.pixels[i] / 255.0;
       const double e = c - static_cast<double>(r);
@@ -164,16 +164,15 @@ VisibilityComparison compare_visibility(const std::vector<float>& reference, con
   m.unexplained_too_light_core = count_cores(unexplained, w, h, m.unexplained_too_light);
   // The error image over the dimmed reference fraction.
   out.error = outputs::Image8{w, h, 3, std::vector<std::uint8_t>(3 * n)};
-  const ErrorColours& k = kErrorColours;
   for (std::size_t i = 0; i < n; ++i) {
     std::uint8_t* px = &out.error.pixels[3 * i];
     const double grey = reference[i] < 0 ? 0.15 : 0.2 + 0.3 * static_cast<double>(reference[i]);
     double rgb[3] = {grey, grey, grey};
     const double strength = std::min(1.0, 0.35 + 1.3 * std::abs(static_cast<double>(error[i])));
-    const unsigned char* colour = nullptr;
-    if (code[i] == kNotJudged && reference[i] >= 0) colour = k.undecided;
-    if (code[i] == kExplained) colour = k.texel;
-    if (code[i] == kUnexplained) colour = error[i] < 0 ? k.false_shadow : k.false_light;
+    const std::uint8_t* colour = nullptr;
+    if (code[i] == kNotJudged && reference[i] >= 0) colour = error_colour(ErrorClass::Undecided).data();
+    if (code[i] == kExplained) colour = error_colour(ErrorClass::Texel).data();
+    if (code[i] == kUnexplained) colour = (error[i] < 0 ? error_colour(ErrorClass::FalseShadow) : error_colour(ErrorClass::FalseLight)).data();
     if (colour) {
       const double a = code[i] == kNotJudged ? 1.0 : strength;
       for (int ch = 0; ch < 3; ++ch) rgb[ch] = a * colour[ch] / 255.0 + (1 - a) * rgb[ch];

@@ -49,10 +49,10 @@ TEST(CompareMask, CountsEachKindOnDecidedPixelsOnly) {
   const auto rgb = [&](int x, int y) {
     return std::array<int, 3>{c.error.at(x, y, 0), c.error.at(x, y, 1), c.error.at(x, y, 2)};
   };
-  EXPECT_EQ(rgb(5, 5), (std::array<int, 3>{kErrorColours.false_shadow[0], kErrorColours.false_shadow[1], kErrorColours.false_shadow[2]}));
-  EXPECT_EQ(rgb(0, 0), (std::array<int, 3>{kErrorColours.false_light[0], kErrorColours.false_light[1], kErrorColours.false_light[2]}));
-  EXPECT_EQ(rgb(9, 9), (std::array<int, 3>{kErrorColours.coverage[0], kErrorColours.coverage[1], kErrorColours.coverage[2]}));
-  EXPECT_EQ(rgb(3, 3), (std::array<int, 3>{kErrorColours.undecided[0], kErrorColours.undecided[1], kErrorColours.undecided[2]}));
+  EXPECT_EQ(rgb(5, 5), (std::array<int, 3>{error_colour(ErrorClass::FalseShadow).data()[0], error_colour(ErrorClass::FalseShadow).data()[1], error_colour(ErrorClass::FalseShadow).data()[2]}));
+  EXPECT_EQ(rgb(0, 0), (std::array<int, 3>{error_colour(ErrorClass::FalseLight).data()[0], error_colour(ErrorClass::FalseLight).data()[1], error_colour(ErrorClass::FalseLight).data()[2]}));
+  EXPECT_EQ(rgb(9, 9), (std::array<int, 3>{error_colour(ErrorClass::Coverage).data()[0], error_colour(ErrorClass::Coverage).data()[1], error_colour(ErrorClass::Coverage).data()[2]}));
+  EXPECT_EQ(rgb(3, 3), (std::array<int, 3>{error_colour(ErrorClass::Undecided).data()[0], error_colour(ErrorClass::Undecided).data()[1], error_colour(ErrorClass::Undecided).data()[2]}));
 }
 
 TEST(CompareMask, ValuesOtherThanTheThreeAreRefusedNotRounded) {
@@ -67,6 +67,26 @@ TEST(CompareMask, ValuesOtherThanTheThreeAreRefusedNotRounded) {
     EXPECT_EQ(std::string(e.what()), "cand/mask.png: 16 pixel(s) hold values other than 255 (lit), 0 (shadowed) and 128 "
                                      "(no surface), e.g. 10 at (0, 0)");
   }
+}
+
+// The refusal comes first: a mask off the contract is refused before any wrong pixel is explained
+// (the cause model is the costly part of a comparison).
+TEST(CompareMask, OffContractValuesAreRefusedBeforeAnyCauseIsAsked) {
+  const Image8 ref = grey(4, 4, 255);
+  Image8 cand = grey(4, 4, 0);  // every pixel a false shadow...
+  set(cand, 3, 3, 7);            // ...and one value off the contract
+  int asked = 0;
+  const Explainer explain = [&](std::size_t, int, int, bool) {
+    ++asked;
+    return Cause::TexelFootprint;
+  };
+  CompareOptions o;
+  o.explain = &explain;
+  EXPECT_THROW((void)compare_mask(ref, grey(4, 4, 255), cand, "cand/mask.png", 0, o), CompareError);
+  EXPECT_EQ(asked, 0);
+  set(cand, 3, 3, 0);
+  EXPECT_EQ(compare_mask(ref, grey(4, 4, 255), cand, "cand/mask.png", 0, o).metrics.explained_texel, 16u);
+  EXPECT_EQ(asked, 16);
 }
 
 TEST(CompareMask, RegionsAreEightConnected) {
@@ -144,8 +164,8 @@ TEST(CompareMask, AnExplainerTakesErrorsOutOfTheUnexplainedAndColoursThem) {
   EXPECT_EQ(c.metrics.explained_texel, 1u);
   EXPECT_EQ(c.metrics.explained_bias, 1u);
   EXPECT_EQ(c.metrics.unexplained, 0u);
-  EXPECT_EQ(c.error.at(2, 2, 0), kErrorColours.texel[0]);
-  EXPECT_EQ(c.error.at(5, 5, 2), kErrorColours.bias[2]);
+  EXPECT_EQ(c.error.at(2, 2, 0), error_colour(ErrorClass::Texel).data()[0]);
+  EXPECT_EQ(c.error.at(5, 5, 2), error_colour(ErrorClass::Bias).data()[2]);
 }
 
 TEST(CompareMask, TheNoCastShadowInvariantJudgesUndecidedPixelsToo) {
@@ -214,7 +234,7 @@ TEST_F(Folders, ComparesAndWritesErrorImages) {
   EXPECT_EQ(c.masks, std::vector<std::string>{"mask.png"});
   EXPECT_EQ(write_error_images(c, root / "out"), std::vector<std::string>{"error.png"});
   const Image8 e = read_image8(root / "out" / "error.png", 3);
-  EXPECT_EQ(e.at(3, 3, 2), kErrorColours.false_light[2]);
+  EXPECT_EQ(e.at(3, 3, 2), error_colour(ErrorClass::FalseLight).data()[2]);
 }
 
 TEST_F(Folders, SeveralLightsAreSummedAndAMissingOneRefused) {
@@ -297,7 +317,7 @@ MaskComparison plain_compare(const Image8& ref, const Image8& dec, const Image8&
       const bool invariant = !decided && o.no_cast_shadow_invariant && r == 2 && c == 0;
       const unsigned char* colour = kDim[r];
       if (!decided && !invariant) {
-        colour = kErrorColours.undecided;
+        colour = error_colour(ErrorClass::Undecided).data();
       } else {
         m.decided += decided;
         m.decided_surface += decided && r != 1;
@@ -306,22 +326,22 @@ MaskComparison plain_compare(const Image8& ref, const Image8& dec, const Image8&
           ++m.wrong;
           std::uint8_t code = 3;
           if (r == 1 || c == 1) {
-            ++m.coverage, colour = kErrorColours.coverage;
+            ++m.coverage, colour = error_colour(ErrorClass::Coverage).data();
           } else if (r == 2) {
-            ++m.false_shadow, colour = kErrorColours.false_shadow, code = 1;
+            ++m.false_shadow, colour = error_colour(ErrorClass::FalseShadow).data(), code = 1;
           } else {
-            ++m.false_light, colour = kErrorColours.false_light, code = 2;
+            ++m.false_light, colour = error_colour(ErrorClass::FalseLight).data(), code = 2;
           }
           codes[static_cast<std::size_t>(y * w + x)] = code;
           const Cause cause = code != 3 && o.explain ? (*o.explain)(0, x, y, c == 2) : Cause::Unexplained;
           if (cause == Cause::TexelFootprint) {
-            ++m.explained_texel, colour = kErrorColours.texel;
+            ++m.explained_texel, colour = error_colour(ErrorClass::Texel).data();
           } else if (cause == Cause::DepthBias) {
-            ++m.explained_bias, colour = kErrorColours.bias;
+            ++m.explained_bias, colour = error_colour(ErrorClass::Bias).data();
           } else {
             ++m.unexplained;
             m.unexplained_false_light += code == 2;
-            if (cause == Cause::Acne) ++m.unexplained_acne, colour = kErrorColours.acne;
+            if (cause == Cause::Acne) ++m.unexplained_acne, colour = error_colour(ErrorClass::Acne).data();
             unexplained[static_cast<std::size_t>(y * w + x)] = 1;
           }
         }

@@ -28,7 +28,7 @@ struct Explainers {
 
 compare::CompareOptions options_for(const scene::Scene& s, const compare::Threshold& threshold,
                                     const outputs::TechniqueName* technique, const outputs::CandidateDeclaration& declared,
-                                    const reference::CauseModel* model, Explainers& explainers, std::string& causes) {
+                                    reference::CauseModel* model, Explainers& explainers, std::string& causes) {
   compare::CompareOptions o;
   o.no_cast_shadow_invariant = s.invariant_no_cast_shadow;
   causes = "none (an exact technique, or one the suite does not know: every wrong pixel is unexplained)";
@@ -96,7 +96,7 @@ outputs::CandidateDeclaration checked_against_staircases(const reference::CauseM
 Judge::Judge() = default;
 Judge::~Judge() = default;
 
-const reference::CauseModel& Judge::causes_of(const scene::PreparedScene& prepared) {
+reference::CauseModel& Judge::causes_of(const scene::PreparedScene& prepared) {
   std::unique_ptr<reference::CauseModel>& m = causes_[&prepared];
   if (!m) m = std::make_unique<reference::CauseModel>(prepared);
   return *m;
@@ -147,7 +147,7 @@ CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJud
   if (const auto e = s.expect.find(j.technique); e != s.expect.end()) j.expectation = e->second;
 
   // 2-4. Threshold, causes, lit fraction: the comparison, under the declaration as the pixels bear it out.
-  const reference::CauseModel* model = threshold.bands || soft ? &causes_of(*prepared) : nullptr;
+  reference::CauseModel* model = threshold.bands || soft ? &causes_of(*prepared) : nullptr;
   std::string staircases;
   const outputs::CandidateDeclaration judged =
       model && named && named->family == outputs::TechniqueFamily::ShadowMap

@@ -44,9 +44,9 @@ StaircaseCheck check_staircases(const reference::CauseModel& model, const output
   };
   StaircaseCheck c;
   const auto pair = [&](int ax, int ay, int bx, int by) {
-    const std::uint8_t a = at(ax, ay), b = at(bx, by);
-    const bool crossing = (a == outputs::kMaskLit && b == outputs::kMaskShadowed) ||
-                          (a == outputs::kMaskShadowed && b == outputs::kMaskLit);
+    const std::uint8_t a = outputs::mask_class(at(ax, ay)), b = outputs::mask_class(at(bx, by));
+    const bool crossing = (a == outputs::kClassLit && b == outputs::kClassShadowed) ||
+                          (a == outputs::kClassShadowed && b == outputs::kClassLit);
     if (!crossing) return;
     const std::optional<Cell>& ca = cell(ax, ay);
     const std::optional<Cell>& cb = cell(bx, by);

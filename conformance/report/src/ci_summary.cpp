@@ -114,8 +114,8 @@ std::string render_markdown(const json& report) {
   if (report.contains("expectations")) {
     const json& e = report["expectations"];
     m << "\nAgainst the expectations files:";
-    const json counts = e.value("counts", json::object());
-    for (const auto& [k, v] : counts.items()) m << " " << v.dump() << " " << k << ",";
+    const json outcomes = e.value("counts", json::object());
+    for (const auto& [k, v] : outcomes.items()) m << " " << v.dump() << " " << k << ",";
     m << " " << e.value("stale", json::array()).size() << " stale line(s); the next file: `expectations-update.txt`\n";
     for (const json& st : e.value("stale", json::array()))
       m << "- **stale** " << cell(st.value("line", "")) << ": `" << cell(st.value("text", "")) << "` names no case of this run\n";

@@ -1,9 +1,18 @@
 // comparison_json.cpp — comparison results as JSON (comparison_json.hpp).
 #include "shadowref/report/comparison_json.hpp"
 
+#include "shadowref/outputs/cause.hpp"
+
 namespace shadowref::report {
+namespace {
+
+// A count's key, from the one table of error classes (outputs/cause.hpp).
+std::string key(outputs::ErrorClass c) { return std::string(outputs::error_class(c).json_key); }
+
+}  // namespace
 
 nlohmann::json to_json(const compare::MaskMetrics& m) {
+  using outputs::ErrorClass;
   return {{"width", m.width},
           {"height", m.height},
           {"pixels", m.pixels},
@@ -11,17 +20,17 @@ nlohmann::json to_json(const compare::MaskMetrics& m) {
           {"decided_surface", m.decided_surface},
           {"wrong", m.wrong},
           {"wrong_percent", m.wrong_percent()},
-          {"false_shadow", m.false_shadow},
-          {"false_light", m.false_light},
-          {"coverage", m.coverage},
+          {key(ErrorClass::FalseShadow), m.false_shadow},
+          {key(ErrorClass::FalseLight), m.false_light},
+          {key(ErrorClass::Coverage), m.coverage},
           {"off_values", m.off_values},
           {"regions", m.regions},
           {"largest_region", m.largest_region},
-          {"explained_texel", m.explained_texel},
-          {"explained_bias", m.explained_bias},
+          {key(ErrorClass::Texel), m.explained_texel},
+          {key(ErrorClass::Bias), m.explained_bias},
           {"unexplained", m.unexplained},
           {"unexplained_false_light", m.unexplained_false_light},
-          {"unexplained_acne", m.unexplained_acne},
+          {key(ErrorClass::Acne), m.unexplained_acne},
           {"unexplained_core", m.unexplained_core},
           {"edge_pixels", m.edge_pixels},
           {"unexplained_percent_of_edges", 100.0 * m.unexplained_ratio()},

@@ -2,6 +2,8 @@
 // but the images, so the folder opens anywhere (a CI artefact, a file:// URL).
 #include "shadowref/report/html.hpp"
 
+#include "shadowref/outputs/cause.hpp"
+
 #include "shadowref/compare/compare.hpp"
 
 #include <cstdio>
@@ -214,11 +216,14 @@ void viewer(std::ostringstream& h, const json& l) {
     << "<div class=\"notes\">swipe: reference left of the line, candidate right</div></div>";
 }
 
-// One legend entry in the error images' own colour (compare.hpp's kErrorColours, the one definition).
-std::string swatch(const unsigned char (&rgb)[3], const char* label) {
+// One legend entry in the error images' own colour (outputs::kErrorClasses, the one definition).
+std::string swatch(const outputs::Rgb& rgb, std::string_view label) {
   return "<span><i style=\"background:rgb(" + std::to_string(rgb[0]) + "," + std::to_string(rgb[1]) + "," +
-         std::to_string(rgb[2]) + ")\"></i>" + label + "</span>";
+         std::to_string(rgb[2]) + ")\"></i>" + std::string(label) + "</span>";
 }
+
+// A mask metric's report.json key, from the table.
+const char* key(outputs::ErrorClass c) { return outputs::error_class(c).json_key.data(); }
 
 void metrics_table(std::ostringstream& h, const json& m) {
   h << "<table class=\"metrics\">";
@@ -226,14 +231,14 @@ void metrics_table(std::ostringstream& h, const json& m) {
     h << "<tr><td>" << label << "</td><td>" << escape_html(v) << "</td></tr>";
   };
   row("wrong", str(m, "wrong") + " (" + num(m, "wrong_percent") + " %)");
-  row("false shadow", str(m, "false_shadow"));
-  row("false light", str(m, "false_light"));
-  row("coverage", str(m, "coverage"));
+  row("false shadow", str(m, key(outputs::ErrorClass::FalseShadow)));
+  row("false light", str(m, key(outputs::ErrorClass::FalseLight)));
+  row("coverage", str(m, key(outputs::ErrorClass::Coverage)));
   row("unexplained", str(m, "unexplained") + " px (" + num(m, "unexplained_percent_of_edges") + " % of " +
                          str(m, "edge_pixels") + " edge px), core " + str(m, "unexplained_core") + " px, of which " +
-                         str(m, "unexplained_acne") + " self-shadowing (acne) and " + str(m, "displaced") +
+                         str(m, key(outputs::ErrorClass::Acne)) + " self-shadowing (acne) and " + str(m, "displaced") +
                          " right once the shadows are moved back (displaced)");
-  row("explained", str(m, "explained_texel") + " texel footprint + " + str(m, "explained_bias") + " depth bias (" +
+  row("explained", str(m, key(outputs::ErrorClass::Texel)) + " texel footprint + " + str(m, key(outputs::ErrorClass::Bias)) + " depth bias (" +
                        num(m, "explained_percent_of_edges") + " % of edge px)");
   row("largest region", str(m, "largest_region") + " px (" + str(m, "regions") + " regions)");
   row("decided surface px", str(m, "decided_surface") + " of " + str(m, "pixels"));
@@ -375,27 +380,25 @@ void expectations_section(std::ostringstream& h, const json& r, const json& case
        "report.json.</p></section>\n";
 }
 
-// How to read the images: the mask values and the error colours (compare.hpp's one definition).
+// How to read the images: the mask values and the error colours (outputs/cause.hpp's one table).
 void legend_section(std::ostringstream& h) {
   h << "<section><h2>Reading the images</h2><div class=\"legend\">"
     << "<span><i style=\"background:#fff\"></i>reference / candidate mask: white lit</span>"
     << "<span><i style=\"background:#000\"></i>black shadowed</span>"
     << "<span><i style=\"background:#808080\"></i>grey no surface</span></div><div class=\"legend\" style=\"margin-top:8px\">"
     << "<span>error image:</span>"
-    << swatch(compare::kErrorColours.false_shadow, "false shadow (reference lit)")
-    << swatch(compare::kErrorColours.acne, "false shadow: self-shadowing (acne)")
-    << swatch(compare::kErrorColours.false_light, "false light (reference shadowed)")
-    << swatch(compare::kErrorColours.coverage, "coverage (surface vs none)")
-    << swatch(compare::kErrorColours.texel, "explained: texel footprint")
-    << swatch(compare::kErrorColours.bias, "explained: depth bias")
-    << swatch(compare::kErrorColours.undecided, "undecided: not judged")
-    << "<span><i style=\"background:rgb(150,150,150)\"></i><i style=\"background:rgb(55,55,55)\"></i>"
-    << "<i style=\"background:rgb(28,28,42)\"></i>dimmed reference: lit, shadowed, no surface</span></div>"
+    ;
+  for (const outputs::ErrorClassRow& r : outputs::kErrorClasses) h << swatch(r.colour, r.legend);
+  const auto css = [](const outputs::Rgb& c) {
+    return "rgb(" + std::to_string(c[0]) + "," + std::to_string(c[1]) + "," + std::to_string(c[2]) + ")";
+  };
+  h << "<span><i style=\"background:" << css(outputs::kDimmedLit) << "\"></i><i style=\"background:" << css(outputs::kDimmedShadowed)
+    << "\"></i><i style=\"background:" << css(outputs::kDimmedNoSurface) << "\"></i>dimmed reference: lit, shadowed, no surface</span></div>"
     << "<div class=\"legend\" style=\"margin-top:8px\"><span>visibility error (soft shadows), brighter for larger |error|:</span>"
-    << swatch(compare::kErrorColours.false_shadow, "too dark, unexplained")
-    << swatch(compare::kErrorColours.false_light, "too light, unexplained")
-    << swatch(compare::kErrorColours.texel, "within the filter footprint's range")
-    << swatch(compare::kErrorColours.undecided, "not judged: not covered by one surface")
+    << swatch(outputs::error_colour(outputs::ErrorClass::FalseShadow), "too dark, unexplained")
+    << swatch(outputs::error_colour(outputs::ErrorClass::FalseLight), "too light, unexplained")
+    << swatch(outputs::error_colour(outputs::ErrorClass::Texel), "within the filter footprint's range")
+    << swatch(outputs::error_colour(outputs::ErrorClass::Undecided), "not judged: not covered by one surface")
     << "<span>grey: the reference's lit fraction, dimmed</span></div></section>\n";
 
 }

@@ -76,6 +76,17 @@ inline constexpr int kMaxFilterTapsPerAxis = 13;
 // pack's nearest reach of 1/2 is probed at 1/4 and 1/2).
 inline constexpr double kProbeStep = 0.25;
 
+// The probes' 8 directions, in texels of the light view: the axes and the diagonals, each component
+// -1, 0 or 1. A ring of radius r is the square of half-side r (the max norm): the texels a lookup
+// reads lie within a square of p's, since a texel is a square cell.
+inline constexpr std::array<std::array<double, 2>, 8> kProbeDirections{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, 1},
+                                                                        {1, -1}, {-1, -1}}};
+
+// The grid's uncertainty, in texels of the declared map: how far from p's own texel centre the texel
+// a nearest lookup reads may lie along each axis. Half a texel on the pack's grid (light_views:
+// pack, a known grid); a whole texel on the candidate's own (its turn and phase unknown).
+inline double grid_uncertainty_texels(const outputs::CandidateDeclaration& d) { return d.light_views_from_pack ? 0.5 : 1.0; }
+
 class EmbreeScene;
 class CameraRays;
 
@@ -88,14 +99,15 @@ class CauseModel {
   CauseModel& operator=(const CauseModel&) = delete;
 
   // The cause that explains the candidate's answer `candidate_lit` (wrong by the reference) at
-  // pixel (x, y) (row 0 at the top) for light `light`, under `declared`. Not thread-safe (it
-  // caches light fits per declared map size, and reuses one table of probes).
-  Cause explain(std::size_t light, int x, int y, const outputs::CandidateDeclaration& declared, bool candidate_lit) const;
+  // pixel (x, y) (row 0 at the top) for light `light`, under `declared`. Not const: it reuses one
+  // table of traced probes from pixel to pixel (its scratch, reset per pixel: the answer never
+  // depends on an earlier call). Not thread-safe, for that reason and the light-fit cache.
+  Cause explain(std::size_t light, int x, int y, const outputs::CandidateDeclaration& declared, bool candidate_lit);
 
   // Soft shadows (the visibility judgement, compare.hpp): the range [lo, hi] of the true lit
   // fraction of light `light` (over its samples, shadow_ray.hpp's lit_fraction) at the pixel
   // centre's surface point p and at the points of p's tangent plane that the declared map's texels
-  // within R = (0.5 or 1) + filter_radius_texels of p's texel look at (probed at R and R/2 in 8
+  // within R = grid_uncertainty_texels + filter_radius_texels of p's texel look at (probed at R and R/2 in 8
   // directions, as explain()): what a filter of that footprint may honestly average over. An empty
   // range (lo > hi) when the centre sees no surface. Cost: 17 · samples² shadow rays.
   struct Band {
@@ -104,8 +116,9 @@ class CauseModel {
   Band visibility_band(std::size_t light, int x, int y, const outputs::CandidateDeclaration& declared) const;
 
   // Soft shadows: the largest change of the true lit fraction of light `light` between p and the
-  // points of p's tangent plane that lie h texels of the declared map away (h = 1/2 on the pack's
-  // grid, 1 on the candidate's own; 8 directions, each h texels long). A map reads its caster at
+  // points of p's tangent plane that lie h texels of the declared map away (h: the grid's
+  // uncertainty, grid_uncertainty_texels; 8 directions, each h texels long: a circle, not
+  // explain()'s square, causes.cpp says why). A map reads its caster at
   // texel centres, so a correct map moves a penumbra by up to h texels, the same way along a whole
   // straight edge; no filter averages that away. Where the penumbra is a few texels wide this is
   // what the map's size alone leaves in the fraction (compare/visibility.hpp, the texel shift).
@@ -174,6 +187,8 @@ class CauseModel {
   const scene::PreparedScene& scene_;
   std::unique_ptr<EmbreeScene> embree_;
   std::unique_ptr<CameraRays> camera_;
+  // The light fits per declared (light, map size, cascades): a memo of fit_for(), which the const
+  // queries share; filling it changes no answer, hence mutable (and the model not thread-safe).
   mutable std::map<std::tuple<std::size_t, int, int>, LightFit> fits_;
   std::unique_ptr<Probes> probes_;  // explain()'s table of traced probes, reused from pixel to pixel
 };

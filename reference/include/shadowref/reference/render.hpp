@@ -77,7 +77,7 @@ struct Stats {
   std::uint64_t shadow_rays = 0;
   double seconds_build = 0;            // BVH build
   double seconds_render = 0;           // everything after the build
-  double seconds_shadow_calls = 0;     // summed over threads: inside rtcOccluded1M only
+  double seconds_shadow_calls = 0;     // summed over threads: inside occlude_shadow_rays (Embree, and a byte a ray)
   double seconds_shadow_phase = 0;     // summed over threads: building, tracing and reading shadow rays
   double seconds_primary_calls = 0;    // summed over threads: inside rtcIntersect1M only
   // Summed over threads: the whole ray work of the tiles — building and tracing the primary rays,

@@ -66,6 +66,14 @@ struct SurfacePoints {
 void build_shadow_rays(const SurfacePoints& points, std::size_t count, const Vec4<double>& L, double offset,
                        RayStream& out, std::size_t first, SimdPath path = best_simd_path());
 
+// The shadow-ray stage of render()'s tiles, for one batch: the `count` rays built in `rays` (from 0,
+// by build_shadow_rays) traced with rtcOccludedNp in a coherent context under flush-to-zero and
+// denormals-are-zero (flush_denormals.hpp), and each answer written to lit[i]: 1 lit (Embree left
+// tfar >= 0, or an inactive ray set lit), 0 shadowed. bench/reference_bench.cpp times this very
+// function. Cost: Embree's, and a byte a ray.
+class EmbreeScene;
+void occlude_shadow_rays(const EmbreeScene& scene, RayStream& rays, std::size_t count, std::uint8_t* lit);
+
 // One ray of the above from double inputs (rounded to float inside): its kind, and the ray in
 // `ray` when Trace (left alone otherwise). build_shadow_rays() on a stream of one: the same bits.
 ShadowRayKind make_shadow_ray(const Vec3<double>& p, const Vec3<double>& n, const Vec4<double>& L, double offset,
@@ -81,7 +89,6 @@ void accumulate_lit(const SurfacePoints& points, std::size_t count, const Vec4<d
                     double* direct, std::uint32_t* lit_count, SimdPath path = best_simd_path());
 
 // Rule 1 and 2 for one light point with single-ray tracing: true when lit.
-class EmbreeScene;
 bool lit(const EmbreeScene& scene, const Vec3<double>& p, const Vec3<double>& n, const Vec4<double>& L, double offset);
 
 // The lit fraction of `light` at (p, n): the mean of lit() over light_samples(light), with the

@@ -8,10 +8,11 @@
 // and the first such pixel): the contract rounds nothing.
 //
 // Wrong kinds on a decided pixel:
-//   false shadow  reference lit, candidate shadowed        (red in the error image)
-//   false light   reference shadowed, candidate lit        (blue)
-//   coverage      surface in one, no surface in the other  (magenta: the candidate's camera or
-//                 geometry differs, which no shadow technique explains)
+//   false shadow  reference lit, candidate shadowed
+//   false light   reference shadowed, candidate lit
+//   coverage      surface in one, no surface in the other (the candidate's camera or geometry
+//                 differs, which no shadow technique explains)
+// (their colours, and the causes', in outputs::kErrorClasses).
 // `largest_region` is the largest 8-connected set of wrong pixels: resolution error is thin and
 // scattered along shadow boundaries, a real bug is a blob (thresholds.hpp caps it).
 //
@@ -53,7 +54,7 @@ struct MaskMetrics {
   std::size_t false_shadow = 0;
   std::size_t false_light = 0;
   std::size_t coverage = 0;
-  std::size_t off_values = 0;       // candidate values other than 0, 128, 255 (always 0: refused)
+  std::size_t off_values = 0;       // candidate values other than 0, 128, 255: always 0 (refused first, compare_mask)
   std::size_t regions = 0;          // 8-connected regions of wrong pixels
   std::size_t largest_region = 0;   // pixels in the largest one
   // The tolerance model (docs/tolerance-model.md): wrong pixels by cause, and the scale they are
@@ -95,21 +96,13 @@ std::size_t count_cores(const std::vector<std::uint8_t>& flagged, int w, int h, 
 struct MaskComparison {
   MaskMetrics metrics;
   Displacement displacement;  // looked for where options.displacement_up_to allows (metrics.displaced: its count)
-  Image8 error;  // RGB: wrong pixels by kind over the dimmed reference (colours in kErrorColours)
+  Image8 error;  // RGB: wrong pixels by kind or cause over the dimmed reference (outputs::kErrorClasses)
 };
 
-// Error-image colours (RGB), for the report's legend.
-// Unexplained errors by kind (false shadow, false light, coverage); explained ones by cause.
-struct ErrorColours {
-  unsigned char false_shadow[3] = {235, 50, 50};
-  unsigned char false_light[3] = {40, 120, 255};
-  unsigned char coverage[3] = {230, 40, 230};
-  unsigned char texel[3] = {240, 170, 20};      // explained: texel footprint
-  unsigned char bias[3] = {30, 200, 200};       // explained: depth bias
-  unsigned char acne[3] = {255, 235, 40};       // unexplained: self-shadowing (acne), a false shadow of its own kind
-  unsigned char undecided[3] = {70, 105, 70};   // not judged: the reference's undecided pixels
-};
-inline constexpr ErrorColours kErrorColours{};
+// The error image's colours and their meaning: outputs::kErrorClasses (outputs/cause.hpp), the one
+// table the painter, the report, the pack's README and `compare --help` read.
+using outputs::ErrorClass;
+using outputs::error_colour;
 
 // The causes a wrong decided pixel may have (the reference's cause model computes them).
 using outputs::Cause;
@@ -129,13 +122,15 @@ struct CompareOptions {
   const VisibilityExplainer* explain_visibility = nullptr;
   const VisibilityTexelShift* visibility_texel_shift = nullptr;  // null: the means get no texel shift
   // Displaced shadows (displacement.hpp) are looked for where the unexplained pixels are at most
-  // this share of the edge pixels (a mask wrong beyond it FAILs anyway); negative: never.
-  // compare_folders sets 1.
-  double displacement_up_to = -1;
+  // this share of the edge pixels; negative: never. The judge's 1: looked for per light up to as many
+  // unexplained pixels as edge pixels, since past its own fail bound a light may still sum to a total
+  // below it beside a light with more edges (a mask wrong beyond that FAILs anyway).
+  double displacement_up_to = 1.0;
 };
 
 // Compares one mask. All three images are 1-channel and of the same size; throws
-// CompareError(SizeMismatch) naming both sizes otherwise (`what` names the files in messages).
+// CompareError(SizeMismatch) naming both sizes otherwise (`what` names the files in messages), and
+// CompareError(BadInput) for a candidate value other than the three, before anything is judged.
 MaskComparison compare_mask(const Image8& reference, const Image8& decided, const Image8& candidate,
                             const std::string& what = "mask", std::size_t light = 0, const CompareOptions& options = {});
 

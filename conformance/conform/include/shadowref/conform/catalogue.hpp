@@ -14,7 +14,7 @@
 namespace shadowref::conform {
 
 // The folder the data lives in, which keeps the source tree's layout (conformance/scenes with its
-// meshes, goldens/images). Installed, it is found relative to the running binary (/proc/self/exe):
+// meshes, goldens/images, pack/README.template.md). Installed, it is found relative to the running binary (/proc/self/exe):
 // <prefix>/bin/shadowref reads <prefix>/share/shadowref. A binary inside the build tree (the build's
 // `shadowref` and every test) reads the source tree, a compile-time path; so does a binary that
 // cannot see /proc/self/exe. An installed binary whose data is missing still answers the installed

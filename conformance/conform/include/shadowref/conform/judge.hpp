@@ -82,7 +82,7 @@ class Judge {
   CaseJudgement judge(const scene::PreparedScene* prepared, const CaseToJudge& c);
 
  private:
-  const reference::CauseModel& causes_of(const scene::PreparedScene& prepared);
+  reference::CauseModel& causes_of(const scene::PreparedScene& prepared);
   std::filesystem::path draw_model(const scene::PreparedScene& prepared, const std::string& technique,
                                    const std::filesystem::path& reference_dir, const std::filesystem::path& dir);
   std::map<const scene::PreparedScene*, std::unique_ptr<reference::CauseModel>> causes_;
