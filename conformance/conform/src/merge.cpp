@@ -185,15 +185,6 @@ void copy_images(const json& c, const fs::path& from_report, const outputs::Stag
   }
 }
 
-std::string now_utc() {
-  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
 // The merged cases as a ConformResult (table and exit code), each classified against `e`.
 ConformResult merged_result(const json& first, std::vector<json>& cases, const Expectations& e) {
   ConformResult r;

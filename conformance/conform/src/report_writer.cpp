@@ -28,15 +28,6 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-std::string now_utc() {
-  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
 // Copies `from` to <report>/<rel> and returns rel; "" when `from` is missing (a case that ended in an
 // ERROR before its image was written). A copy that fails is a FileError: the report is not written
 // with holes the disk made.
@@ -192,6 +183,15 @@ void publish_reports(const json& j, outputs::StagedFolder& staged, const fs::pat
   report::write_markdown(j, report_json.parent_path() / "summary.md");
   if (!update.empty()) outputs::write_file_atomically(report_json.parent_path() / "expectations-update.txt", update);
   outputs::write_file_atomically(report_json, outputs::json_text(j, 2) + "\n");
+}
+
+std::string now_utc() {
+  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
 }
 
 void write_reports(const ConformResult& r, const ConformOptions& o, const fs::path& cache) {

@@ -15,6 +15,9 @@
 
 namespace shadowref::conform {
 
+// The time now, UTC, as report.json's "generated" ("2026-11-27T20:15:00Z").
+std::string now_utc();
+
 void write_reports(const ConformResult& result, const ConformOptions& options, const std::filesystem::path& cache);
 
 // report.json's "summary".
