@@ -231,7 +231,7 @@ class DeclarationGrid : public ::testing::TestWithParam<const char*> {};
 TEST_P(DeclarationGrid, TheControlPassesAndNoDeclarationLetsAMutantPass) {
   SceneUnderTest s(GetParam());
   const conform::CaseJudgement control = s.judged("control", s.control, grid().front().json);
-  ASSERT_EQ(control.comparison.judgement.verdict, compare::Verdict::Pass) << "the control (our render, honestly declared)";
+  ASSERT_EQ(control.comparison.decision.verdict, compare::Verdict::Pass) << "the control (our render, honestly declared)";
   // The reference's decided pixels (255): a mutant is judged where it changes one of them.
   const Image8 decided = outputs::read_image8(s.reference / "decided.png", 1);
   for (const Mutant& m : mutants()) {
@@ -245,15 +245,15 @@ TEST_P(DeclarationGrid, TheControlPassesAndNoDeclarationLetsAMutantPass) {
       const conform::CaseJudgement j = s.judged(std::string(m.name) + "-" + d.name, mask, d.json);
       const compare::MaskMetrics& t = j.comparison.total;
       if (known_gap(s.scene.name, m.name, d.name)) {
-        EXPECT_NE(j.comparison.judgement.verdict, compare::Verdict::Fail)
+        EXPECT_NE(j.comparison.decision.verdict, compare::Verdict::Fail)
             << m.name << " declared " << d.name << " FAILs now: remove it from kKnownGaps";
         EXPECT_EQ(t.unexplained_core, 0u) << m.name << " declared " << d.name << ": not the predicted kind of gap";
         EXPECT_LE(t.displaced, compare::kDisplaced.displaced_fail * static_cast<double>(t.edge_pixels))
             << m.name << " declared " << d.name << ": not the predicted kind of gap";
         continue;
       }
-      EXPECT_EQ(j.comparison.judgement.verdict, compare::Verdict::Fail)
-          << m.name << " declared " << d.name << ": " << compare::to_string(j.comparison.judgement.verdict) << " with "
+      EXPECT_EQ(j.comparison.decision.verdict, compare::Verdict::Fail)
+          << m.name << " declared " << d.name << ": " << compare::to_string(j.comparison.decision.verdict) << " with "
           << t.unexplained << " px unexplained of " << t.wrong << " wrong (" << 100 * t.unexplained_ratio() << " % of "
           << t.edge_pixels << " edge px, core " << t.unexplained_core << ", " << t.displaced << " displaced)";
     }
@@ -275,11 +275,11 @@ TEST_P(DeclarationGrid, DeclaringLessNeverExplainsMore) {
         if (i > 0) {
           EXPECT_GE(j.comparison.total.unexplained, before_unexplained)
               << m.name << ": declaring " << chain[i].name << " instead of " << chain[i - 1].name << " explained more";
-          EXPECT_GE(j.comparison.judgement.verdict, before)
+          EXPECT_GE(j.comparison.decision.verdict, before)
               << m.name << ": declaring " << chain[i].name << " instead of " << chain[i - 1].name << " improved the verdict";
         }
         before_unexplained = j.comparison.total.unexplained;
-        before = j.comparison.judgement.verdict;
+        before = j.comparison.decision.verdict;
       }
     }
   }
@@ -300,16 +300,16 @@ TEST(Staircases, ADeclaredPackMapSizeIsCheckedAgainstTheMasksOwnStaircases) {
   ASSERT_EQ(coarse.declaration.shadow_map_size, 512);
   ASSERT_TRUE(coarse.declaration.light_views_from_pack);
   const conform::CaseJudgement drawn = s.judged("staircases-512", coarse.masks.at(0), at_512);
-  EXPECT_EQ(drawn.comparison.judgement.verdict, compare::Verdict::Pass);
+  EXPECT_EQ(drawn.comparison.decision.verdict, compare::Verdict::Pass);
   EXPECT_NE(drawn.causes.find("512-texel map on the pack's grid is not contradicted"), std::string::npos) << drawn.causes;
   const conform::CaseJudgement finer = s.judged("staircases-finer", s.control, at_512);
-  EXPECT_EQ(finer.comparison.judgement.verdict, compare::Verdict::Pass) << "a correct render, wrongly declared";
+  EXPECT_EQ(finer.comparison.decision.verdict, compare::Verdict::Pass) << "a correct render, wrongly declared";
   EXPECT_NE(finer.causes.find("is contradicted"), std::string::npos) << finer.causes;
   Image8 moved = s.control;
   shifted(1)(moved);
   const conform::CaseJudgement shift = s.judged("staircases-shifted", moved, at_512);
   EXPECT_NE(shift.causes.find("is contradicted"), std::string::npos) << shift.causes;
-  EXPECT_EQ(shift.comparison.judgement.verdict, compare::Verdict::Fail)
+  EXPECT_EQ(shift.comparison.decision.verdict, compare::Verdict::Fail)
       << shift.comparison.total.unexplained << " px unexplained (" << 100 * shift.comparison.total.unexplained_ratio()
       << " % of the edges)";
 }
@@ -334,9 +334,9 @@ TEST(PeterPanning, AConstantBiasDeclaredHonestlyStillFailsOnItsLeak) {
     const conform::CaseJudgement j = judge.judge(&prepared, {reference, dir, "shadowmap", false, {}});
     const compare::MaskMetrics& m = j.comparison.total;
     std::printf("contact_shadow, constant bias %.3f m declared: %s, %zu px false light, %zu explained by bias, %zu unexplained "
-                "(%.2f %% of %zu edge px, core %zu)\n", metres, compare::to_string(j.comparison.judgement.verdict), m.false_light,
+                "(%.2f %% of %zu edge px, core %zu)\n", metres, compare::to_string(j.comparison.decision.verdict), m.false_light,
                 m.explained_bias, m.unexplained, 100 * m.unexplained_ratio(), m.edge_pixels, m.unexplained_core);
-    EXPECT_EQ(j.comparison.judgement.verdict, metres == 0 ? compare::Verdict::Pass : compare::Verdict::Fail)
+    EXPECT_EQ(j.comparison.decision.verdict, metres == 0 ? compare::Verdict::Pass : compare::Verdict::Fail)
         << metres << " m declared: " << m.false_light << " px false light, " << m.explained_bias << " explained by bias, "
         << m.unexplained << " unexplained (" << 100 * m.unexplained_ratio() << " % of " << m.edge_pixels << " edge px)";
   }
@@ -369,10 +369,10 @@ TEST(ContactLeak, ACorrectMapsLeakBehindABoxOnAGrazingGroundIsExplained) {
       const conform::CaseJudgement j = judge.judge(&prepared, {reference, dir, technique, false, {}});
       const compare::MaskMetrics& m = j.comparison.total;
       std::printf("grazing_light at 1024², %s, %d texels: %s, %zu px false light, %zu explained by bias, %zu unexplained "
-                  "(%.2f %% of %zu edge px, core %zu)\n", technique, size, compare::to_string(j.comparison.judgement.verdict),
+                  "(%.2f %% of %zu edge px, core %zu)\n", technique, size, compare::to_string(j.comparison.decision.verdict),
                   m.false_light, m.explained_bias, m.unexplained, 100 * m.unexplained_ratio(), m.edge_pixels,
                   m.unexplained_core);
-      EXPECT_NE(j.comparison.judgement.verdict, compare::Verdict::Fail) << technique << " at " << size << " texels";
+      EXPECT_NE(j.comparison.decision.verdict, compare::Verdict::Fail) << technique << " at " << size << " texels";
       EXPECT_EQ(m.unexplained_core, 0u) << technique << " at " << size << " texels";
       EXPECT_GT(m.explained_bias, 0u) << technique << " at " << size << " texels: the leak is the bias's";
     }
@@ -403,8 +403,8 @@ TEST(PerLightDeclarations, AnEntryReachesItsLightAndBuysNothing) {
                               R"("depth_bias": 0.01, "filter_radius_texels": 8, "light_views": "own", "shadow_map_size": 512)";
   const std::string entry_for_1 = R"(, "lights": [{}, {)" + largest + "}]";
   // Our masks: PASS with or without the entry.
-  EXPECT_EQ(judged("plain", ours.masks[0], ours.masks[1], "").comparison.judgement.verdict, compare::Verdict::Pass);
-  EXPECT_EQ(judged("entry", ours.masks[0], ours.masks[1], entry_for_1).comparison.judgement.verdict, compare::Verdict::Pass);
+  EXPECT_EQ(judged("plain", ours.masks[0], ours.masks[1], "").comparison.decision.verdict, compare::Verdict::Pass);
+  EXPECT_EQ(judged("entry", ours.masks[0], ours.masks[1], entry_for_1).comparison.decision.verdict, compare::Verdict::Pass);
   // Both masks shifted by a pixel: light 0 is judged the same with or without light 1's entry, and
   // light 1 under its entry (the larger footprint explains more of its shift).
   Image8 shifted_0 = ours.masks[0], shifted_1 = ours.masks[1];
@@ -424,7 +424,7 @@ TEST(PerLightDeclarations, AnEntryReachesItsLightAndBuysNothing) {
   Image8 dark = ours.masks[1];
   for_surface(dark, [](std::uint8_t& v) { v = kMaskShadowed; });
   const conform::CaseJudgement bought = judged("all-shadowed", ours.masks[0], dark, entry_for_1);
-  EXPECT_EQ(bought.comparison.judgement.verdict, compare::Verdict::Fail)
+  EXPECT_EQ(bought.comparison.decision.verdict, compare::Verdict::Fail)
       << bought.comparison.per_light.at(1).metrics.unexplained << " px unexplained on light 1";
 }
 

@@ -22,7 +22,7 @@ TEST(CompareMask, IdenticalMasksHaveNoWrongPixels) {
   EXPECT_EQ(c.metrics.decided, 64u);
   EXPECT_EQ(c.metrics.decided_surface, 63u);
   EXPECT_EQ(c.metrics.regions, 0u);
-  EXPECT_EQ(judge(c.metrics, kExactGeometry).verdict, Verdict::Pass);
+  EXPECT_EQ(decide(c.metrics, kExactGeometry).verdict, Verdict::Pass);
 }
 
 TEST(CompareMask, CountsEachKindOnDecidedPixelsOnly) {
@@ -104,20 +104,20 @@ TEST(Judge, EachBoundGivesItsVerdict) {
   MaskMetrics m;
   m.edge_pixels = 1000;
   m.unexplained = 20;  // 2 % of the edges: at the bound
-  EXPECT_EQ(judge(m, t).verdict, Verdict::Pass);
+  EXPECT_EQ(decide(m, t).verdict, Verdict::Pass);
   m.unexplained = 21;
-  Judgement j = judge(m, t);
+  Decision j = decide(m, t);
   EXPECT_EQ(j.verdict, Verdict::Fail);
   ASSERT_EQ(j.reasons.size(), 1u);
   EXPECT_NE(j.reasons[0].find("unexplained wrong 21 px"), std::string::npos) << j.reasons[0];
   m.unexplained = 0;
   m.explained_texel = 400;
   m.explained_bias = 100;  // half the edges: at the quality bound
-  EXPECT_EQ(judge(m, t).verdict, Verdict::Pass);
+  EXPECT_EQ(decide(m, t).verdict, Verdict::Pass);
   m.explained_bias = 101;
-  EXPECT_EQ(judge(m, t).verdict, Verdict::QualityWarning);
+  EXPECT_EQ(decide(m, t).verdict, Verdict::QualityWarning);
   m.unexplained_core = 1;  // one thick core is structural, whatever the ratios
-  j = judge(m, t);
+  j = decide(m, t);
   EXPECT_EQ(j.verdict, Verdict::Fail);
   EXPECT_NE(j.reasons[0].find("core"), std::string::npos) << j.reasons[0];
 }
@@ -125,7 +125,7 @@ TEST(Judge, EachBoundGivesItsVerdict) {
 TEST(Judge, UnexplainedErrorsWithoutAnyBoundaryAreAFailure) {
   MaskMetrics m;
   m.wrong = m.unexplained = 1;
-  EXPECT_EQ(judge(m, kShadowMap).verdict, Verdict::Fail);
+  EXPECT_EQ(decide(m, kShadowMap).verdict, Verdict::Fail);
 }
 
 TEST(CompareMask, CountsEdgesAndThickCores) {
@@ -142,7 +142,7 @@ TEST(CompareMask, CountsEdgesAndThickCores) {
   // Core: the whole 5 × 5 block around it inside the image and wrong: x in 2..5 (x < 2 reaches the
   // border, x > 5 the right half, which is right), y in 4..7: 4 × 4 = 16.
   EXPECT_EQ(c.metrics.unexplained_core, 16u);
-  EXPECT_EQ(judge(c.metrics, kShadowMap).verdict, Verdict::Fail);
+  EXPECT_EQ(decide(c.metrics, kShadowMap).verdict, Verdict::Fail);
 }
 
 TEST(CompareMask, AnExplainerTakesErrorsOutOfTheUnexplainedAndColoursThem) {
@@ -179,7 +179,7 @@ TEST(CompareMask, TheNoCastShadowInvariantJudgesUndecidedPixelsToo) {
   const MaskComparison c = compare_mask(ref, undecided, cand, "mask", 0, o);
   EXPECT_EQ(c.metrics.wrong, 1u);
   EXPECT_EQ(c.metrics.invariant_pixels, 1u);
-  EXPECT_EQ(judge(c.metrics, kExactGeometry).verdict, Verdict::Fail);
+  EXPECT_EQ(decide(c.metrics, kExactGeometry).verdict, Verdict::Fail);
 }
 
 TEST(Thresholds, EveryRendererTechniqueHasOneAndEachHasAReason) {
@@ -248,7 +248,7 @@ TEST_F(Folders, SeveralLightsAreSummedAndAMissingOneRefused) {
   const FolderComparison c = compare_folders(root / "ref", root / "cand", kExactGeometry);
   EXPECT_EQ(c.total.false_shadow, 16u);
   EXPECT_EQ(c.total.decided_surface, 32u);
-  EXPECT_EQ(c.judgement.verdict, Verdict::Fail);
+  EXPECT_EQ(c.decision.verdict, Verdict::Fail);
 }
 
 TEST_F(Folders, RefusesBadFiles) {
