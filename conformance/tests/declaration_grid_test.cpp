@@ -17,6 +17,7 @@
 #include <fstream>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "catalogue_scene.hpp"
@@ -82,6 +83,33 @@ Mutation morphed(int n, bool grow) {
   };
 }
 
+// An 8 x 8 tile swapped with the one 8 px to its right (a tiled GPU's or a cache's local glitch), at
+// the `rank`-th place (0: first) where that changes most pixels, places 16 px apart: the busiest
+// place of a scene's boundaries and the next ones, wherever they lie.
+Mutation swapped_tile(int rank) {
+  return [rank](Image8& m) {
+    const auto at = [&m](int x, int y) -> std::uint8_t& { return m.pixels[static_cast<std::size_t>(y * m.width + x)]; };
+    std::vector<std::pair<int, int>> taken;
+    int bx = 0, by = 0;
+    for (int r = 0; r <= rank; ++r) {
+      int best = -1;
+      for (int y = 0; y + 8 <= m.height; y += 4)
+        for (int x = 0; x + 16 <= m.width; x += 4) {
+          bool near = false;
+          for (const auto& [tx, ty] : taken) near = near || (std::abs(x - tx) < 16 && std::abs(y - ty) < 16);
+          if (near) continue;
+          int differ = 0;
+          for (int v = 0; v < 8; ++v)
+            for (int u = 0; u < 8; ++u) differ += at(x + u, y + v) != at(x + u + 8, y + v);
+          if (differ > best) best = differ, bx = x, by = y;
+        }
+      taken.emplace_back(bx, by);
+    }
+    for (int v = 0; v < 8; ++v)
+      for (int u = 0; u < 8; ++u) std::swap(at(bx + u, by + v), at(bx + u + 8, by + v));
+  };
+}
+
 struct Mutant {
   const char* name;
   Mutation mutate;
@@ -98,23 +126,9 @@ std::vector<Mutant> mutants() {
       {"grown-2px", morphed(2, true)},
       {"shrunk-1px", morphed(1, false)},
       {"shrunk-2px", morphed(2, false)},
-      {"swapped-tile", [](Image8& m) {
-         // An 8 x 8 tile swapped with the one 8 px to its right, where that changes most pixels.
-         int best = -1, bx = 0, by = 0;
-         for (int y = 0; y + 8 <= m.height; y += 4)
-           for (int x = 0; x + 16 <= m.width; x += 4) {
-             int differ = 0;
-             for (int v = 0; v < 8; ++v)
-               for (int u = 0; u < 8; ++u)
-                 differ += m.pixels[static_cast<std::size_t>((y + v) * m.width + x + u)] !=
-                           m.pixels[static_cast<std::size_t>((y + v) * m.width + x + u + 8)];
-             if (differ > best) best = differ, bx = x, by = y;
-           }
-         for (int v = 0; v < 8; ++v)
-           for (int u = 0; u < 8; ++u)
-             std::swap(m.pixels[static_cast<std::size_t>((by + v) * m.width + bx + u)],
-                       m.pixels[static_cast<std::size_t>((by + v) * m.width + bx + u + 8)]);
-       }},
+      {"swapped-tile", swapped_tile(0)},
+      {"swapped-tile-2nd", swapped_tile(1)},
+      {"swapped-tile-3rd", swapped_tile(2)},
   };
 }
 
@@ -185,7 +199,7 @@ struct SceneUnderTest : test::CatalogueScene {
 
 // Known limitations, each seen to fail in the predicted way (not FAIL, no unexplained core, and no
 // more displaced pixels than the bound lets through), measured over the whole catalogue
-// (docs/tolerance-model.md, "What is left"). Three kinds:
+// (docs/tolerance-model.md, "What is left"). Four kinds:
 // - a declared map SMALLER than the one drawn, on the candidate's own views, widens the texel
 //   footprint until it takes in the whole change: at 256² under grazing_light's sun 8 degrees up one
 //   512-texel map texel lies along the ground over about 7 px (1 / sin 8°), so a swapped tile inside
@@ -196,6 +210,10 @@ struct SceneUnderTest : test::CatalogueScene {
 // - camera_at_light, whose camera sits at the light: no cast shadow is visible, and a mutant changes
 //   only slivers along silhouettes (1 to 4 px unexplained), as the engines' correct renders show
 //   them (4 px, OpenSceneGraph SoftShadowMap);
+// - a tile swapped where the declared footprint (a 512-texel own map, an 8-texel filter, all the
+//   largest keys) takes in most of its change: what is left unexplained is a run along the boundary
+//   (0 to 13 px in one 9 x 9 window), as thin as the runs correct renders leave (up to 12), so the
+//   local-glitch bound (thresholds.hpp, kLocalGlitch) cannot tell it from them either;
 // - sun_horizon under all the largest keys at once (a 512-texel own map, whose texels are a metre
 //   wide over 600 m of ground): a 1-px shift leaves 23 px unexplained, every one displaced, just
 //   below that bound (0.92 % of the edges; correct renders reach 0.78 %).
@@ -216,7 +234,12 @@ constexpr KnownGap kKnownGaps[] = {
     {"camera_at_light", "swapped-tile",
      "ours,slope-0,slope-0-own,slope-8,constant-6.4cm,constant-1m,normal-offset-4-texels,depth-bias-1%,distance-bias-1m,"
      "filter-8,map-512,map-512-pack,largest"},
+    {"camera_at_light", "swapped-tile-2nd",
+     "ours,slope-0,slope-0-own,slope-8,constant-6.4cm,constant-1m,normal-offset-4-texels,depth-bias-1%,distance-bias-1m,"
+     "filter-8,map-512,map-512-pack,largest"},
     {"sun_horizon", "shifted-1px", "largest"},
+    {"directional_light", "swapped-tile-2nd", "largest"},
+    {"sun_horizon", "swapped-tile-3rd", "filter-8,map-512,largest"},
 };
 
 bool known_gap(const std::string& scene, const std::string& mutant, const std::string& declaration) {
@@ -244,6 +267,10 @@ TEST_P(DeclarationGrid, TheControlPassesAndNoDeclarationLetsAMutantPass) {
     for (const Declaration& d : grid()) {
       const conform::CaseJudgement j = s.judged(std::string(m.name) + "-" + d.name, mask, d.json);
       const compare::MaskMetrics& t = j.comparison.total;
+      // The tiles' densest windows, the local-glitch bound's margin from below (thresholds.hpp).
+      if (std::string(m.name).rfind("swapped-tile", 0) == 0)
+        std::printf("%s %s declared %s: %s, %zu px unexplained, densest 9 x 9 window %zu\n", s.scene.name.c_str(), m.name,
+                    d.name.c_str(), compare::to_string(j.comparison.decision.verdict), t.unexplained, t.densest_unexplained);
       if (known_gap(s.scene.name, m.name, d.name)) {
         EXPECT_NE(j.comparison.decision.verdict, compare::Verdict::Fail)
             << m.name << " declared " << d.name << " FAILs now: remove it from kKnownGaps";
@@ -255,7 +282,8 @@ TEST_P(DeclarationGrid, TheControlPassesAndNoDeclarationLetsAMutantPass) {
       EXPECT_EQ(j.comparison.decision.verdict, compare::Verdict::Fail)
           << m.name << " declared " << d.name << ": " << compare::to_string(j.comparison.decision.verdict) << " with "
           << t.unexplained << " px unexplained of " << t.wrong << " wrong (" << 100 * t.unexplained_ratio() << " % of "
-          << t.edge_pixels << " edge px, core " << t.unexplained_core << ", " << t.displaced << " displaced)";
+          << t.edge_pixels << " edge px, core " << t.unexplained_core << ", " << t.displaced << " displaced, densest 9 x 9 window "
+          << t.densest_unexplained << ")";
     }
   }
 }

@@ -145,6 +145,39 @@ TEST(CompareMask, CountsEdgesAndThickCores) {
   EXPECT_EQ(decide(c.metrics, kShadowMap).verdict, Verdict::Fail);
 }
 
+// A local glitch is many unexplained pixels in one place. Along a long boundary (a 64-px edge, 128
+// edge pixels), a run two pixels thick and 40 long is no glitch (the ratio bound is given room here:
+// 80 px is 62 % of the edges), its densest 9 × 9
+// window holds 18. 20 pixels packed in a 5 × 4 block FAIL by the window alone.
+TEST(CompareMask, ALocalGlitchFailsWhereABoundaryRunDoesNot) {
+  const Threshold roomy{"test", true, 1.0, 1.0, "a ratio bound out of the way"};
+  Image8 ref = grey(64, 64, 255);
+  for (int y = 32; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) set(ref, x, y, 0);
+  Image8 run = ref;
+  for (int y = 30; y < 32; ++y)  // two rows of false shadow above the boundary
+    for (int x = 10; x < 50; ++x) set(run, x, y, 0);
+  const MaskComparison thin = compare_mask(ref, grey(64, 64, 255), run);
+  EXPECT_EQ(thin.metrics.unexplained, 80u);
+  EXPECT_EQ(thin.metrics.densest_unexplained, 18u);
+  EXPECT_EQ(thin.metrics.unexplained_core, 0u);
+  // (A whole run so placed is a displaced shadow, which its own bound judges: not a glitch.)
+  for (const std::string& reason : decide(thin.metrics, roomy).reasons)
+    EXPECT_EQ(reason.find("local glitch"), std::string::npos) << "a run two pixels thick is no glitch: " << reason;
+
+  Image8 blob = ref;
+  for (int y = 10; y < 14; ++y)  // 4 rows of 5: no 5 x 5 core, all in one window
+    for (int x = 20; x < 25; ++x) set(blob, x, y, 0);
+  const MaskComparison glitch = compare_mask(ref, grey(64, 64, 255), blob);
+  EXPECT_EQ(glitch.metrics.unexplained, 20u);
+  EXPECT_EQ(glitch.metrics.unexplained_core, 0u);
+  EXPECT_EQ(glitch.metrics.densest_unexplained, 20u);
+  const Decision d = decide(glitch.metrics, roomy);
+  EXPECT_EQ(d.verdict, Verdict::Fail);
+  ASSERT_EQ(d.reasons.size(), 1u);
+  EXPECT_NE(d.reasons[0].find("local glitch"), std::string::npos) << d.reasons[0];
+}
+
 TEST(CompareMask, AnExplainerTakesErrorsOutOfTheUnexplainedAndColoursThem) {
   Image8 ref = grey(8, 8, 255);
   Image8 cand = ref;

@@ -73,6 +73,8 @@ nlohmann::json to_json(const compare::Threshold& t) {
           {"unexplained_core_fail", 0},
           {"displaced_fail_percent_of_edges", 100.0 * compare::kDisplaced.displaced_fail},
           {"displaced_why", compare::kDisplaced.why},
+          {"densest_unexplained_fail", compare::kLocalGlitch.densest_fail},
+          {"densest_unexplained_why", compare::kLocalGlitch.why},
           {"why", t.why}};
 }
 

@@ -12,6 +12,8 @@
 //                      resolution, so the ratio means the same at any size. Above the bound: FAIL.
 //   displaced          unexplained pixels that come right when the mask's shadows are moved back
 //                      by 1 or 2 px (displacement.hpp), over the edge pixels: above kDisplaced, FAIL.
+//   local glitch       the most unexplained pixels in one 9 × 9 window (compare.hpp's kClusterRadius)
+//                      above kLocalGlitch: FAIL, wherever the rest of the image stands.
 //   explained ratio    explained / edge pixels: explained errors beyond this quality bound are a
 //                      quality warning (VK-GL-CTS's QualityWarning; exit 1) — the only WARN there is.
 //
@@ -141,6 +143,29 @@ inline constexpr DisplacementThreshold kDisplaced{
     "unexplained pixels that come right when the mask's shadows are moved back by 1 or 2 px (or shrunk or grown "
     "back), the mask as a whole agreeing better so moved: displaced shadows, which no texel, bias or filter "
     "explains (correct renders <= 0.78 % of the edge pixels; a one-pixel shift >= 1.21 %); FAIL beyond 1 %"};
+
+// Where unexplained pixels lie, not how many: a local glitch (a swapped tile of a tiled GPU, a wrong
+// texel fetch, a broken cache line) puts its unexplained pixels in one small window, while the
+// unexplained pixels of correct renders lie one or two pixels thick along a boundary. The ratio
+// bound counts them against the length of every edge in the image, so a cluster of 30 PASSes there
+// on a scene with long edges; this bound looks at the densest 9 × 9 window alone, the same at any
+// resolution (a glitch is as many pixels at 1024² as at 256²).
+// Measured (llvmpipe, 2026-11-27; docs/tolerance-model.md): every correct render of every sweep
+// (conventions, map sizes 500 … 2048, own views, front faces, normal offset, distance cubes, random
+// taps, ×2 and 256 × 384) and every engine render that PASSes (Irrlicht, OpenSceneGraph, three.js,
+// Babylon.js): at most 12 (OpenSceneGraph SoftShadowMap on shadow_on_object, a 2-px-thick run of
+// a staircase under its PCF); along a boundary a 9 × 9 window holds at most 18 of a 2-px band.
+// An 8 × 8 swapped tile leaves up to 64 in one window. Hence a FAIL beyond 18: 1.5 times the worst
+// correct render, and still the thickest band a staircase can leave.
+struct LocalGlitchThreshold {
+  std::size_t densest_fail;  // unexplained pixels in one 9 × 9 window above this: FAIL
+  std::string_view why;
+};
+inline constexpr LocalGlitchThreshold kLocalGlitch{
+    18,
+    "the most unexplained pixels in one 9 x 9 window: a local glitch (a swapped tile, a wrong texel fetch), "
+    "which no boundary's staircase explains (correct renders <= 12: a run one or two pixels thick along an "
+    "edge); FAIL beyond 18"};
 
 // The threshold of a technique (outputs::kTechniques); an unknown name
 // (an engine team's own technique) gets the strictest, kExactGeometry.
