@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "shadowref/conform/conform.hpp"
 #include "shadowref/conform/expectations.hpp"
 #include "shadowref/outputs/limits.hpp"
+#include "shadowref/report/ci_summary.hpp"
 #include "shadowref/renderer/gl_context.hpp"
 #include "shadowref/scene/load_scene.hpp"
 
@@ -91,6 +93,26 @@ void print_case_lines(const conform::ConformResult& r) {
     if (!c.error.empty()) std::printf(": %s", c.error.c_str());
     std::printf("\n");
   }
+}
+
+// How many cases could not have seen a blatant error of some kind under their declaration, and how
+// to sharpen them (conform/resolving_power.hpp).
+void print_resolving_power(const conform::ConformResult& r) {
+  std::size_t judged = 0;
+  std::size_t blind = 0;
+  for (const conform::CaseResult& c : r.cases) {
+    if (!c.judgement || !c.judgement->resolving_power) continue;
+    ++judged;
+    blind += !c.judgement->resolving_power->blind.empty();
+  }
+  if (!judged) return;
+  if (blind == 0) {
+    std::printf("resolving power: all %zu judged cases resolve 1- and 2-px shifts, 1-px growth and shrinkage and 8x8 tiles\n", judged);
+    return;
+  }
+  std::printf("resolving power: %zu of %zu judged cases are blind to a blatant error under their declaration "
+              "(report.json: resolving_power); to sharpen them, %s\n",
+              blind, judged, report::kHowToSharpen);
 }
 
 int run_conform_command(const ConformArgs& a) {
@@ -182,6 +204,7 @@ int run_conform_command(const ConformArgs& a) {
   if (linked)
     std::printf("note: %zu candidate file(s) were read through symbolic links that leave --candidate-dir "
                 "(report.json: read_through_links)\n", linked);
+  print_resolving_power(r);
   print_expectation_lines(r, o.expectations);
   print_shard(r, o);
   std::printf("report: %s\n        %s\n", r.report_html.string().c_str(), r.report_json.string().c_str());

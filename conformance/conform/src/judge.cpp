@@ -1,5 +1,5 @@
-// judge.cpp — the one judge (judge.hpp): declaration, threshold, causes, lit fraction, status and
-// the expected failure's signature, in that order.
+// judge.cpp — the one judge (judge.hpp): declaration, threshold, causes, lit fraction, resolving
+// power, status and the expected failure's signature, in that order.
 #include "shadowref/conform/judge.hpp"
 
 #include <chrono>
@@ -158,7 +158,13 @@ CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJud
   if (!staircases.empty()) j.causes += "; " + staircases;
   j.comparison = compare::compare_folders(c.reference_dir, c.candidate_dir, threshold, options);
 
-  // 5. Status and signature.
+  // 5. What the verdict could have seen, once per reference, threshold and declaration as judged.
+  const std::string key = c.reference_dir.string() + '\n' + std::string(threshold.name) + '\n' + outputs::declaration_text(judged);
+  auto known = resolving_.find(key);
+  if (known == resolving_.end()) known = resolving_.emplace(key, resolving_power(c.reference_dir, s.lights.size(), threshold, options)).first;
+  j.resolving_power = known->second;
+
+  // 6. Status and signature.
   j.status = status_of(j.comparison.decision.verdict, j.expectation.pass);
   j.unmet_expectation = unmet_expectation(j.expectation, j.status);
   if (j.status != Status::XFail) return j;

@@ -54,6 +54,16 @@ json expectation_json(const CaseResult& c) {
   return e;
 }
 
+// What a case's verdict could have seen (resolving_power.hpp): the summary, the kinds it is blind
+// to, and each probe's verdict.
+json resolving_power_json(const ResolvingPower& r) {
+  json blind = json::array(), probes = json::array();
+  for (const ProbeKind k : r.blind) blind.push_back(to_string(k));
+  for (const Probe& p : r.probes)
+    probes.push_back({{"probe", p.name}, {"verdict", compare::to_string(p.verdict)}, {"wrong", p.wrong}, {"unexplained", p.unexplained}});
+  return {{"summary", r.summary()}, {"blind_to", blind}, {"probes", probes}};
+}
+
 // One case as report.json holds it, its images copied into the staged report folder.
 json case_json(const CaseResult& c, const outputs::StagedFolder& staged, std::set<std::string>& scenes_copied,
                const ConformResult& r, bool with_expectations) {
@@ -72,6 +82,7 @@ json case_json(const CaseResult& c, const outputs::StagedFolder& staged, std::se
   k["seconds"] = c.seconds;
   k["notes"] = c.notes;
   k["causes"] = c.judgement ? c.judgement->causes : "";
+  if (c.judgement && c.judgement->resolving_power) k["resolving_power"] = resolving_power_json(*c.judgement->resolving_power);
   k["host"] = host_name();
   if (r.plan.shards > 1) k["shard"] = r.plan.shard_of.at(c.scene) + 1;
   if (with_expectations) k["expectation"] = expectation_json(c);
