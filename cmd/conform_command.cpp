@@ -107,7 +107,7 @@ void print_resolving_power(const conform::ConformResult& r) {
   }
   if (!judged) return;
   if (blind == 0) {
-    std::printf("resolving power: all %zu judged cases resolve 1- and 2-px shifts, 1-px growth and shrinkage and 8x8 tiles\n", judged);
+    std::printf("resolving power: none of %zu judged cases lets a probe that changes a decided pixel pass (report.json: resolving_power)\n", judged);
     return;
   }
   std::printf("resolving power: %zu of %zu judged cases are blind to a blatant error under their declaration "

@@ -159,7 +159,11 @@ CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJud
   j.comparison = compare::compare_folders(c.reference_dir, c.candidate_dir, threshold, options);
 
   // 5. What the verdict could have seen, once per reference, threshold and declaration as judged.
-  const std::string key = c.reference_dir.string() + '\n' + std::string(threshold.name) + '\n' + outputs::declaration_text(judged);
+  // The key is what the probes' verdicts depend on: not the technique's name, producer or version
+  // (the volume techniques and planar share one answer per scene).
+  outputs::CandidateDeclaration keyed = judged;
+  keyed.technique = keyed.producer = keyed.version = "";
+  const std::string key = c.reference_dir.string() + '\n' + std::string(threshold.name) + '\n' + outputs::declaration_text(keyed);
   auto known = resolving_.find(key);
   if (known == resolving_.end()) known = resolving_.emplace(key, resolving_power(c.reference_dir, s.lights.size(), threshold, options)).first;
   j.resolving_power = known->second;

@@ -163,7 +163,7 @@ std::string render_markdown(const json& report) {
   if (blind.judged)
     m << "\nResolving power: " << blind.blind << " of " << blind.judged
       << " judged cases are blind to a probe of the reference's own masks under their declaration"
-      << (blind.blind ? " (" + cell(blind.kinds) + "): " + std::string(kHowToSharpen) : std::string(": every one resolves them all"))
+      << (blind.blind ? " (" + cell(blind.kinds) + "): " + std::string(kHowToSharpen) : std::string(": none lets a probe that changes a decided pixel pass"))
       << "\n";
   bool any = false;
   for (const json& c : cases) {

@@ -325,7 +325,7 @@ void summary_section(std::ostringstream& h, const json& r, const json& cases) {
   if (const BlindCases b = blind_cases(r); b.judged)
     h << "<p class=\"notes\"><b>Resolving power:</b> " << b.blind << " of " << b.judged
       << " judged cases are blind to a probe of the reference's own masks under their declaration"
-      << (b.blind ? " (" + escape_html(b.kinds) + "): " + escape_html(kHowToSharpen) : std::string(": every one resolves them all"))
+      << (b.blind ? " (" + escape_html(b.kinds) + "): " + escape_html(kHowToSharpen) : std::string(": none lets a probe that changes a decided pixel pass"))
       << ".</p>";
   std::vector<std::string> scenes, techniques;
   if (r.contains("scenes")) scenes = r["scenes"].get<std::vector<std::string>>();
@@ -435,7 +435,7 @@ void case_info(std::ostringstream& h, const json& c) {
     const json& rp = c["resolving_power"];
     const bool blind = !rp.value("blind_to", json::array()).empty();
     h << "<div class=\"" << (blind ? "why" : "notes") << "\"><b>resolving power:</b> " << escape_html(str(rp, "summary"))
-      << (blind ? std::string(" (a probe of the reference's own masks that does not FAIL here: an error of that kind would "
+      << (blind ? std::string(" (a probe of the reference's own masks that changes decided pixels and does not FAIL here: an error of that kind would "
                               "have passed too)")
                 : std::string())
       << "</div>";

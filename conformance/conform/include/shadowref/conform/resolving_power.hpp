@@ -38,12 +38,15 @@ struct Probe {
 
 struct ResolvingPower {
   std::vector<Probe> probes;
-  // The kinds every probe of which FAILs, and those with a probe that does not.
-  std::vector<ProbeKind> resolved, blind;
-  // "resolves 1-px shifts, 2-px shifts, 1-px growth, 1-px shrinkage, 8x8 tiles" or "blind to 1-px
-  // shifts (3 of 8 pass), 8x8 tiles under this declaration; resolves ...".
+  // A probe that changes no decided pixel (a shift along a straight boundary, any probe where no
+  // cast shadow is in view) shows nothing and counts for neither side. Per kind: `resolved`, every
+  // probe that changes a decided pixel FAILs; `blind`, one of them does not; `unseen`, none changes one.
+  std::vector<ProbeKind> resolved, blind, unseen;
+  // "resolves 1-px shifts, 2-px shifts, 1-px growth, 1-px shrinkage and 8x8 tiles", or "blind to
+  // 1-px shifts (3 of 7 pass) under this declaration; resolves ...; no 8x8 tile changes a decided pixel".
   std::string summary() const;
   bool blind_to(ProbeKind k) const;
+  bool sees_nothing_of(ProbeKind k) const;  // k is in `unseen`
 };
 
 // The probes of the reference folder's masks (mask.png or mask_<i>.png, decided.png or
