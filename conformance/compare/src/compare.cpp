@@ -428,7 +428,7 @@ Decision decide(const MaskMetrics& m, const Threshold& t, const std::string& dis
                              percent(ratio_to_edges(m.displaced, m.edge_pixels)) + " of " + edges +
                              " come right when the shadows are moved back" + (displaced_how.empty() ? "" : " (" + displaced_how + ")") +
                              ": displaced shadows > " + percent(kDisplaced.displaced_fail) + " (fail bound)");
-  if (m.densest_unexplained > kLocalGlitch.densest_fail)
+  if (t.bands && m.densest_unexplained > kLocalGlitch.densest_fail)
     raise(Verdict::Fail, std::to_string(m.densest_unexplained) + " unexplained px in one 9 x 9 window: a local glitch > " +
                              std::to_string(kLocalGlitch.densest_fail) + " (fail bound)");
   if (m.explained_ratio() > t.explained_warn)
