@@ -6,6 +6,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <string_view>
 #include <span>
 #include <vector>
@@ -27,8 +28,7 @@ enum class MapLayout { Single, Cube, Cascades };
 
 // The shadow-map lookups (shadow_maps/lookup.hpp), each with a surface program of its own; None:
 // the surface program without a map.
-enum class Lookup { None, DepthCompare, Pcf, PackedRgba8, Pcss, Vsm };
-inline constexpr std::size_t kLookupCount = 6;
+struct MapLookup;  // shadow_maps/lookup.hpp: one per lookup, in the lookup's own file
 
 // A linked program and the locations of the uniforms every scene pass sets (-1 when a program lacks
 // one); the others are looked up by name where they are set (at()).
@@ -52,12 +52,12 @@ class Programs {
   Program packed_depth;   // kSceneVertex + kPackedDepthFragment
   Program moments;        // kSceneVertex + kMomentsFragment: vsm's light pass
   Program distance;       // kSceneVertex + kDistanceFragment: a distance cube's light pass
-  // kSceneVertex + shaders::surface_fragment(lookup): Lookup::None for the passes without a map.
-  const Program& surface(Lookup lookup = Lookup::None) const;
+  // kSceneVertex + shaders::surface_fragment(lookup): nullptr for the passes without a map.
+  const Program& surface(const MapLookup* lookup = nullptr) const;
 
  private:
   const GlFunctions& gl_;
-  mutable std::array<Program, kLookupCount> surface_{};  // id 0: not compiled yet
+  mutable std::map<const MapLookup*, Program> surface_;  // by lookup, compiled when first asked
 };
 
 // Homogeneous vertices (vec4) and optional 32-bit triangle indices on the GPU.

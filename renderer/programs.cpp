@@ -76,13 +76,12 @@ Programs::Programs(const GlFunctions& gl) : gl_(gl) {
 
 Programs::~Programs() {
   for (const Program* p : {&flat, &moments, &distance, &packed_depth}) gl_.DeleteProgram(p->id);
-  for (const Program& p : surface_)
-    if (p.id) gl_.DeleteProgram(p.id);
+  for (const auto& [lookup, p] : surface_) gl_.DeleteProgram(p.id);
 }
 
-const Program& Programs::surface(Lookup lookup) const {
-  Program& p = surface_[static_cast<std::size_t>(lookup)];
-  if (!p.id) p = link(gl_, shaders::surface_fragment(map_lookup(lookup)), "surface (" + std::string(lookup_name(lookup)) + ")");
+const Program& Programs::surface(const MapLookup* lookup) const {
+  Program& p = surface_[lookup];
+  if (!p.id) p = link(gl_, shaders::surface_fragment(lookup), "surface (" + std::string(lookup ? lookup->name : "no map") + ")");
   return p;
 }
 

@@ -18,7 +18,7 @@ float lookup_visibility(vec3 p, vec4 s, float layer) {
 }  // namespace
 
 const MapLookup kDepthCompareLookup{
-    .id = Lookup::DepthCompare,
+    .name = "depth-compare",
     .glsl = kGlsl,
     .needs_depth_packing = false,
     .penumbra_search = false,

@@ -60,7 +60,7 @@ enum class ShaderOffset {
 };
 
 struct MapLookup {
-  Lookup id;
+  std::string_view name;  // in RenderResult::drawn_maps and the program's name: "pcf", "vsm", ...
   // The surface program's snippet: its uniforms and
   //   float lookup_visibility(vec3 p, vec4 s, float layer)
   // p: the window coordinates in the layer (x, y in 0..1, depth clamped to the far plane), s: the
@@ -104,10 +104,6 @@ extern const MapLookup kPcfLookup;           // pcf.cpp
 extern const MapLookup kPackedRgba8Lookup;   // packed_rgba8.cpp
 extern const MapLookup kPcssLookup;          // pcss.cpp
 extern const MapLookup kVsmLookup;           // vsm.cpp
-
-// The lookup `id` (Lookup::None has none: nullptr), and its name in RenderResult::drawn_maps.
-const MapLookup* map_lookup(Lookup id);
-std::string_view lookup_name(Lookup id);
 
 // What light `light` is drawn with under `lookup`: the lookup itself, or PCF for a light without an
 // area under a lookup that needs one.

@@ -20,7 +20,7 @@ float lookup_visibility(vec3 p, vec4 s, float layer) {
 }  // namespace
 
 const MapLookup kPackedRgba8Lookup{
-    .id = Lookup::PackedRgba8,
+    .name = "packed-rgba8",
     .glsl = kGlsl,
     .needs_depth_packing = true,
     .penumbra_search = false,

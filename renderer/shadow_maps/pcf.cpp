@@ -31,7 +31,7 @@ float lookup_visibility(vec3 p, vec4 s, float layer) {
 }  // namespace
 
 const MapLookup kPcfLookup{
-    .id = Lookup::Pcf,
+    .name = "pcf",
     .glsl = kGlsl,
     .needs_depth_packing = false,
     .penumbra_search = false,

@@ -217,7 +217,7 @@ void set_rect_light_uniforms(const Frame& frame, const Program& p, std::size_t i
 }
 
 const MapLookup kPcssLookup{
-    .id = Lookup::Pcss,
+    .name = "pcss",
     .glsl = kGlsl,
     .needs_depth_packing = false,
     .penumbra_search = true,

@@ -55,7 +55,7 @@ void render_map_technique(Frame& frame, std::string_view name) {
   // lit fraction (visibility.png), into the mask attachment (Frame::light_pass).
   frame.ambient_pass(clip);
   for (std::size_t i = 0; i < maps.size(); ++i) {
-    const Program& program = frame.programs.surface(lookups[i]->id);
+    const Program& program = frame.programs.surface(lookups[i]);
     bind_light_map(frame, i, maps[i], *lookups[i], program);
     frame.light_pass(clip, i, &program, &maps[i].shadow_from_world, /*masks=*/true);
     frame.result.masks.push_back(frame.read_grey(GL_GREEN, Frame::kMaskAttachment));

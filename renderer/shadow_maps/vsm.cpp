@@ -63,7 +63,7 @@ float lookup_visibility(vec3 p, vec4 s, float layer) { return vsm(s.w, int(layer
 }  // namespace
 
 const MapLookup kVsmLookup{
-    .id = Lookup::Vsm,
+    .name = "vsm",
     .glsl = kGlsl,
     .needs_depth_packing = false,
     .penumbra_search = true,
