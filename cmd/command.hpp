@@ -77,6 +77,7 @@ struct RenderVariantArgs {
   std::string cube_depth = "window";
   double view_turn = 0;
   double view_phase = 0;
+  bool declare_light_matrices = false;
 };
 void add_render_variant_options(CLI::App& cmd, RenderVariantArgs& args);
 // Sets `options`' variant fields from `args`; BadInput when the guard band would make a map of

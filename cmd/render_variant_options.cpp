@@ -1,7 +1,7 @@
 // render_variant_options.cpp — our renderer's correct variants on the command line, one definition
 // for `shadowref render` and `shadowref conform`: a randomized kernel, the depth pass's faces, a
 // shadow-atlas guard band, a normal offset, distance cubes and light views of our own (turned, their
-// grid moved), each declared in candidate.json by the renderer.
+// grid moved), and the light matrices declared, each declared in candidate.json by the renderer.
 #include <CLI/CLI.hpp>
 
 #include <string>
@@ -49,6 +49,10 @@ void add_render_variant_options(CLI::App& cmd, RenderVariantArgs& args) {
                  "place it; declared \"light_views\": \"own\"")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  cmd.add_flag("--declare-light-matrices", args.declare_light_matrices,
+               "declare our shadow maps' light matrices as an engine that knows its own may: \"light_views\": "
+               "\"declared\" with each light's view and projection as drawn and its map size, so that the judge "
+               "knows the exact texel grid");
 }
 
 void apply_render_variants(const RenderVariantArgs& a, int shadow_map_size, renderer::RenderOptions& options) {
@@ -62,6 +66,7 @@ void apply_render_variants(const RenderVariantArgs& a, int shadow_map_size, rend
   options.cube_depth = a.cube_depth == "distance" ? outputs::StoredDepth::Distance : outputs::StoredDepth::Window;
   options.view_turn_degrees = a.view_turn;
   options.view_phase_texels = a.view_phase;
+  options.declare_light_matrices = a.declare_light_matrices;
 }
 
 }  // namespace shadowref::cli

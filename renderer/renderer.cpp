@@ -544,7 +544,8 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_
       result.declaration.shadow_map_size = prepared.options.shadow_map_size;
       // The prepared scene's light fits are the pack's, unless turned or moved (RenderOptions); the
       // shadow-map techniques add what each light's map draws with.
-      result.declaration.light_views_from_pack = options.view_turn_degrees == 0 && options.view_phase_texels == 0;
+      result.declaration.light_views = options.view_turn_degrees == 0 && options.view_phase_texels == 0 ? outputs::LightViews::Pack
+                                                                                                          : outputs::LightViews::Own;
       declare_shadow_map(t->name, prepared, options, result.declaration);
       result.declaration.defaulted.clear();
     }

@@ -9,8 +9,10 @@
 // for `own`) never explains more: the unexplained count and the verdict of every mask, control
 // included, never improve along a chain of ever smaller declarations.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -26,6 +28,7 @@
 #include "shadowref/conform/catalogue.hpp"
 #include "shadowref/conform/judge.hpp"
 #include "shadowref/conform/reference_cache.hpp"
+#include "shadowref/outputs/candidate.hpp"
 #include "shadowref/outputs/image.hpp"
 #include "shadowref/outputs/image_io.hpp"
 #include "shadowref/scene/load_scene.hpp"
@@ -139,10 +142,15 @@ struct Declaration {
   std::string json;  // the keys beyond "technique"
 };
 
+// Stands for our render's own declaration with its light matrices ("light_views": "declared", the
+// exact views and projections the maps were drawn with): SceneUnderTest::judged fills it in.
+constexpr const char* kOurMatrices = "@declared";
+
 // The grid: each key at its extremes, then all the largest at once.
 std::vector<Declaration> grid() {
   return {
       {"ours", R"("slope_bias_texels": 2, "light_views": "pack")"},
+      {"declared", kOurMatrices},
       {"slope-0", R"("slope_bias_texels": 0, "light_views": "pack")"},
       {"slope-0-own", R"("slope_bias_texels": 0, "light_views": "own")"},
       {"slope-8", R"("slope_bias_texels": 8)"},
@@ -176,6 +184,7 @@ std::vector<std::vector<Declaration>> chains() {
        {"distance bias 0", R"("depth": "distance", "depth_range": 10, "depth_bias": 0, "slope_bias_texels": 0)"}},
       {{"filter 8", R"("filter_radius_texels": 8)"}, {"filter 1", R"("filter_radius_texels": 1)"}, {"filter 0", R"("filter_radius_texels": 0)"}},
       {{"own", R"("light_views": "own")"}, {"pack", R"("light_views": "pack")"}},
+      {{"own", R"("light_views": "own")"}, {"declared", kOurMatrices}},
       {{"map 512 own", R"("shadow_map_size": 512, "light_views": "own")"},
        {"map 512 pack", R"("shadow_map_size": 512, "light_views": "pack")"}},
   };
@@ -184,16 +193,28 @@ std::vector<std::vector<Declaration>> chains() {
 // One scene: its prepared form, the reference (from the CTest fixtures' cache), our render's mask.
 struct SceneUnderTest : test::CatalogueScene {
   explicit SceneUnderTest(const std::string& name)
-      : CatalogueScene(name), control(test::llvmpipe_renderer().render(prepared, "shadowmap").masks.at(0)) {}
+      : CatalogueScene(name), control(test::llvmpipe_renderer().render(prepared, "shadowmap").masks.at(0)) {
+    renderer::RenderOptions o;
+    o.declare_light_matrices = true;
+    const renderer::RenderResult declared = test::llvmpipe_renderer().render(prepared, "shadowmap", o);
+    // The same drawing: declaring the matrices changes what is said, not what is drawn.
+    if (declared.masks.at(0).pixels != control.pixels) ADD_FAILURE() << "declaring the matrices changed the mask";
+    nlohmann::json keys = nlohmann::json::parse(outputs::declaration_text(declared.declaration));
+    keys.erase("technique");
+    our_matrices = keys.dump();
+    our_matrices = our_matrices.substr(1, our_matrices.size() - 2);  // the keys, without the braces
+  }
   Image8 control;
+  std::string our_matrices;  // our render's declaration with its light matrices, kOurMatrices
   conform::Judge judge;
 
-  // Judges `mask` declared with `keys`, in folder `name`.
+  // Judges `mask` declared with `keys` (kOurMatrices: our_matrices), in folder `name`.
   conform::CaseJudgement judged(const std::string& name, const Image8& mask, const std::string& keys) {
     const fs::path dir = fs::path(SHADOWREF_TEST_OUT) / scene.name / name;
     fs::create_directories(dir);
     outputs::write_png(mask, dir / "mask.png");
-    std::ofstream(dir / "candidate.json") << "{\"technique\": \"shadowmap\"" << (keys.empty() ? "" : ", ") << keys << "}\n";
+    const std::string& said = keys == kOurMatrices ? our_matrices : keys;
+    std::ofstream(dir / "candidate.json") << "{\"technique\": \"shadowmap\"" << (said.empty() ? "" : ", ") << said << "}\n";
     return judge.judge(&prepared, {reference, dir, "", false, {}});
   }
 };
@@ -233,10 +254,10 @@ constexpr KnownGap kKnownGaps[] = {
     {"camera_at_light", "shifted-1px", "map-512,largest"},
     {"camera_at_light", "shifted-2px", "largest"},
     {"camera_at_light", "swapped-tile",
-     "ours,slope-0,slope-0-own,slope-8,constant-6.4cm,constant-1m,normal-offset-4-texels,depth-bias-1%,distance-bias-1m,"
+     "ours,declared,slope-0,slope-0-own,slope-8,constant-6.4cm,constant-1m,normal-offset-4-texels,depth-bias-1%,distance-bias-1m,"
      "filter-8,map-512,map-512-pack,largest"},
     {"camera_at_light", "swapped-tile-2nd",
-     "ours,slope-0,slope-0-own,slope-8,constant-6.4cm,constant-1m,normal-offset-4-texels,depth-bias-1%,distance-bias-1m,"
+     "ours,declared,slope-0,slope-0-own,slope-8,constant-6.4cm,constant-1m,normal-offset-4-texels,depth-bias-1%,distance-bias-1m,"
      "filter-8,map-512,map-512-pack,largest"},
     {"sun_horizon", "shifted-1px", "largest"},
     {"directional_light", "swapped-tile-2nd", "largest"},
@@ -273,6 +294,11 @@ TEST_P(DeclarationGrid, TheControlPassesAndNoDeclarationLetsAMutantPass) {
   const conform::ResolvingPower& power = *control.resolving_power;
   EXPECT_FALSE(power.blind_to(conform::ProbeKind::Shift1)) << power.summary();
   EXPECT_EQ(power.sees_nothing_of(conform::ProbeKind::Shift1), s.scene.name == "camera_at_light") << power.summary();
+  // And so under the exact light matrices it was drawn with.
+  const conform::CaseJudgement declared = s.judged("control-declared", s.control, kOurMatrices);
+  EXPECT_EQ(declared.comparison.decision.verdict, compare::Verdict::Pass) << "the control, its light matrices declared";
+  ASSERT_TRUE(declared.resolving_power);
+  EXPECT_FALSE(declared.resolving_power->blind_to(conform::ProbeKind::Shift1)) << declared.resolving_power->summary();
   // The reference's decided pixels (255): a mutant is judged where it changes one of them.
   const Image8 decided = outputs::read_image8(s.reference / "decided.png", 1);
   for (const Mutant& m : mutants()) {
@@ -294,9 +320,10 @@ TEST_P(DeclarationGrid, TheControlPassesAndNoDeclarationLetsAMutantPass) {
             << m.name << " declared " << d.name << " FAILs now: remove it from kKnownGaps";
         // Never silently: the case says it is blind to the kind of error it lets through.
         ASSERT_TRUE(j.resolving_power);
-        if (const std::optional<conform::ProbeKind> kind = probe_kind_of(m.name))
+        if (const std::optional<conform::ProbeKind> kind = probe_kind_of(m.name)) {
           EXPECT_TRUE(j.resolving_power->blind_to(*kind) || j.resolving_power->sees_nothing_of(*kind))
               << m.name << " declared " << d.name << " passes, but the case says: " << j.resolving_power->summary();
+        }
         EXPECT_EQ(t.unexplained_core, 0u) << m.name << " declared " << d.name << ": not the predicted kind of gap";
         EXPECT_LE(t.displaced, compare::kDisplaced.displaced_fail * static_cast<double>(t.edge_pixels))
             << m.name << " declared " << d.name << ": not the predicted kind of gap";
@@ -349,7 +376,7 @@ TEST(Staircases, ADeclaredPackMapSizeIsCheckedAgainstTheMasksOwnStaircases) {
   options.shadow_map_size = 512;
   const renderer::RenderResult coarse = test::llvmpipe_renderer().render(s.scene, "shadowmap", options);
   ASSERT_EQ(coarse.declaration.shadow_map_size, 512);
-  ASSERT_TRUE(coarse.declaration.light_views_from_pack);
+  ASSERT_EQ(coarse.declaration.light_views, outputs::LightViews::Pack);
   const conform::CaseJudgement drawn = s.judged("staircases-512", coarse.masks.at(0), at_512);
   EXPECT_EQ(drawn.comparison.decision.verdict, compare::Verdict::Pass);
   EXPECT_NE(drawn.causes.find("512-texel map on the pack's grid is not contradicted"), std::string::npos) << drawn.causes;
@@ -363,6 +390,72 @@ TEST(Staircases, ADeclaredPackMapSizeIsCheckedAgainstTheMasksOwnStaircases) {
   EXPECT_EQ(shift.comparison.decision.verdict, compare::Verdict::Fail)
       << shift.comparison.total.unexplained << " px unexplained (" << 100 * shift.comparison.total.unexplained_ratio()
       << " % of the edges)";
+}
+
+// Declared light matrices are held to the mask's staircases as the pack's grid is: our grazing_light
+// render at 512 texels with its exact matrices declared agrees with them and PASSes; the same render
+// declaring matrices whose grid is moved by half a texel, or turned by 5 degrees about the view axis,
+// is contradicted (the case's causes say so) and judged as the candidate's own views.
+TEST(Staircases, DeclaredLightMatricesOffByHalfATexelOrTurnedAreReported) {
+  SceneUnderTest s("grazing_light");
+  renderer::RenderOptions options;
+  options.shadow_map_size = 512;
+  options.declare_light_matrices = true;
+  const renderer::RenderResult r = test::llvmpipe_renderer().render(s.scene, "shadowmap", options);
+  ASSERT_EQ(r.declaration.for_light(0).light_views, outputs::LightViews::Declared);
+  ASSERT_EQ(r.declaration.for_light(0).views.size(), 1u);
+  const auto judged_with = [&](const std::string& name, const Mat4<double>& clip_change) {
+    outputs::CandidateDeclaration d = r.declaration;
+    outputs::DeclaredView& v = d.lights.at(0).views.at(0);
+    const Mat4<double> p = clip_change * Eigen::Map<const Mat4<double>>(v.projection.data());
+    std::copy(p.data(), p.data() + 16, v.projection.begin());
+    nlohmann::json keys = nlohmann::json::parse(outputs::declaration_text(d));
+    keys.erase("technique");
+    const std::string text = keys.dump();
+    return s.judged(name, r.masks.at(0), text.substr(1, text.size() - 2));
+  };
+  const conform::CaseJudgement exact = judged_with("matrices-exact", Mat4<double>::Identity());
+  EXPECT_EQ(exact.comparison.decision.verdict, compare::Verdict::Pass);
+  EXPECT_NE(exact.causes.find("declared light matrices' grid is not contradicted"), std::string::npos) << exact.causes;
+  Mat4<double> half_texel = Mat4<double>::Identity();
+  half_texel(0, 3) = half_texel(1, 3) = 1.0 / 512;  // NDC spans 2 / 512 per texel
+  const double a = 5 * std::acos(-1.0) / 180;
+  Mat4<double> turned = Mat4<double>::Identity();
+  turned(0, 0) = turned(1, 1) = std::cos(a);
+  turned(0, 1) = -std::sin(a);
+  turned(1, 0) = std::sin(a);
+  for (const auto& [name, change] : {std::pair<std::string, Mat4<double>>{"half a texel", half_texel}, {"turned 5 degrees", turned}}) {
+    const conform::CaseJudgement off = judged_with("matrices-" + name, change);
+    EXPECT_NE(off.causes.find("declared light matrices' grid is contradicted"), std::string::npos) << name << ": " << off.causes;
+    EXPECT_EQ(off.comparison.decision.verdict, compare::Verdict::Pass) << name << ": a correct render, wrongly declared";
+  }
+}
+
+// Declared matrices the scene cannot have been drawn with are bad input, named by their JSON path:
+// two views for a point light (1, or a cube's 6), a view missing, or matrices in another convention
+// than the run's (they are read in the run's).
+TEST(DeclaredMatrices, TheCountsAndTheConventionAreChecked) {
+  SceneUnderTest s("two_lights");
+  const std::string view = R"({"view": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,-5,1], "projection": [1,0,0,0, 0,1,0,0, 0,0,-1,-1, 0,0,-0.2,0]})";
+  const auto refused = [&](const std::string& name, const std::string& keys) -> std::string {
+    try {
+      s.judged(name, s.control, keys);
+    } catch (const outputs::InputError& e) {
+      return e.what();
+    }
+    return "(accepted)";
+  };
+  EXPECT_NE(refused("two-views", R"("shadow_map_size": 512, "light_views": "declared", "lights": [{"views": [)" + view + ", " + view +
+                                     "]}, {\"views\": [" + view + "]}]")
+                .find("lights[0].views: a point or spot light has 1 view or a cube's 6"),
+            std::string::npos);
+  EXPECT_NE(refused("no-views", R"("shadow_map_size": 512, "light_views": "declared", "lights": [{"views": [)" + view + "]}]")
+                .find("views: light_views \"declared\" needs this light's views"),
+            std::string::npos)
+      << "light 1 takes the top level, which declares no views";
+  EXPECT_NE(refused("d3d", R"("convention": "d3d", "shadow_map_size": 512, "light_views": "declared", "views": [)" + view + "]")
+                .find("convention: declared light matrices are read in the run's convention 'gl'"),
+            std::string::npos);
 }
 
 // Peter-panning of a measured size, declared honestly: our shadowmap with a constant offset of

@@ -3,6 +3,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -32,6 +36,15 @@ const char* to_string(DepthFaces f) {
   return "?";
 }
 
+const char* to_string(LightViews v) {
+  switch (v) {
+    case LightViews::Own: return "own";
+    case LightViews::Pack: return "pack";
+    case LightViews::Declared: return "declared";
+  }
+  return "?";
+}
+
 const char* to_string(StoredDepth d) { return d == StoredDepth::Distance ? "distance" : "window"; }
 
 const char* to_string(Sampling s) { return s == Sampling::Random ? "random" : "grid"; }
@@ -54,6 +67,53 @@ using Bad = std::function<InputError(const std::string&)>;
 bool per_light_key(const std::string& key) {
   return key != "producer" && key != "version" && key != "technique" && key != "convention" && key != "settings" &&
          key != "lights";
+}
+
+// 16 finite numbers, column-major.
+std::array<double, 16> read_matrix(const Json& m, const std::string& key, const Bad& bad) {
+  if (!m.is_array() || m.size() != 16) throw bad(key + ": must be an array of 16 numbers (column-major)");
+  std::array<double, 16> out{};
+  for (std::size_t i = 0; i < 16; ++i) {
+    if (!m[i].is_number() || !std::isfinite(m[i].get<double>())) throw bad(key + "[" + std::to_string(i) + "]: must be a finite number");
+    out[i] = m[i].get<double>();
+  }
+  return out;
+}
+
+// "views": 1 to kMaxDeclaredViews objects {"view": [16], "projection": [16]}, each whose
+// projection × view maps scene space onto clip space invertibly (a texel's ray must exist).
+std::vector<DeclaredView> read_views(const Json& v, const std::string& key, const Bad& bad) {
+  if (!v.is_array() || v.empty() || v.size() > kMaxDeclaredViews)
+    throw bad(key + ": must be an array of 1 to " + std::to_string(kMaxDeclaredViews) +
+              " objects {\"view\": [16 numbers], \"projection\": [16 numbers]}");
+  std::vector<DeclaredView> out;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const std::string at = key + "[" + std::to_string(i) + "]";
+    if (!v[i].is_object() || v[i].size() != 2 || !v[i].contains("view") || !v[i].contains("projection"))
+      throw bad(at + ": must be {\"view\": [16 numbers], \"projection\": [16 numbers]} and nothing else");
+    DeclaredView d;
+    d.view = read_matrix(v[i]["view"], at + ".view", bad);
+    d.projection = read_matrix(v[i]["projection"], at + ".projection", bad);
+    const Eigen::Map<const Eigen::Matrix4d> view(d.view.data()), projection(d.projection.data());
+    const double det = (projection * view).determinant();
+    if (!std::isfinite(det) || det == 0) throw bad(at + ": projection x view is singular (no texel has a ray)");
+    out.push_back(d);
+  }
+  return out;
+}
+
+// "cascade_splits": 2 to kMaxDeclaredViews + 1 increasing camera depths, the first >= 0.
+std::vector<double> read_splits(const Json& v, const std::string& key, const Bad& bad) {
+  if (!v.is_array() || v.size() < 2 || v.size() > kMaxDeclaredViews + 1)
+    throw bad(key + ": must be an array of 2 to " + std::to_string(kMaxDeclaredViews + 1) + " camera depths");
+  std::vector<double> out;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (!v[i].is_number() || !std::isfinite(v[i].get<double>()) || v[i].get<double>() < 0 ||
+        (i > 0 && !(v[i].get<double>() > out.back())))
+      throw bad(key + "[" + std::to_string(i) + "]: must be a finite depth >= 0, larger than the one before");
+    out.push_back(v[i].get<double>());
+  }
+  return out;
 }
 
 // Reads the keys of object `j` into `d` (`where` prefixes messages: "" or "lights[1].").
@@ -121,11 +181,23 @@ void read_keys(const Json& j, CandidateDeclaration& d, std::set<std::string>& gi
   number_key("slope_bias_texels", d.slope_bias_texels, 64.0);
   number_key("constant_bias", d.constant_bias, 1e6);
   if (j.contains("light_views")) {
-    if (!j["light_views"].is_string() || (j["light_views"] != "pack" && j["light_views"] != "own"))
-      throw bad(where + "light_views: must be \"pack\" or \"own\"");
-    d.light_views_from_pack = j["light_views"] == "pack";
+    const Json& v = j["light_views"];
+    const LightViews all[] = {LightViews::Own, LightViews::Pack, LightViews::Declared};
+    const auto it = std::find_if(std::begin(all), std::end(all), [&](LightViews l) { return v.is_string() && v == to_string(l); });
+    if (it == std::end(all)) throw bad(where + "light_views: must be \"own\", \"pack\" or \"declared\"");
+    d.light_views = *it;
     given.insert("light_views");
   }
+  if (j.contains("views")) {
+    d.views = read_views(j["views"], where + "views", bad);
+    given.insert("views");
+  }
+  if (j.contains("cascade_splits")) {
+    d.cascade_splits = read_splits(j["cascade_splits"], where + "cascade_splits", bad);
+    given.insert("cascade_splits");
+  }
+  if ((!d.views.empty() || !d.cascade_splits.empty()) && d.light_views != LightViews::Declared)
+    throw bad(where + (d.views.empty() ? "cascade_splits" : "views") + ": given, but light_views is not \"declared\"");
   integer_key("cascades", d.cascades, 0, kMaxCascades,
               "must be in [0, " + std::to_string(kMaxCascades) + "] (0: the pack's count)");
   integer_key("light_taps", d.light_taps, 1, kMaxLightTaps, "must be in [1, " + std::to_string(kMaxLightTaps) + "]");
@@ -225,7 +297,13 @@ std::string declaration_text(const CandidateDeclaration& d) {
   j["filter_radius_texels"] = d.filter_radius_texels;
   j["slope_bias_texels"] = d.slope_bias_texels;
   j["constant_bias"] = d.constant_bias;
-  j["light_views"] = d.light_views_from_pack ? "pack" : "own";
+  j["light_views"] = to_string(d.light_views);
+  if (!d.views.empty()) {
+    nlohmann::json views = nlohmann::json::array();
+    for (const DeclaredView& v : d.views) views.push_back({{"view", v.view}, {"projection", v.projection}});
+    j["views"] = views;
+  }
+  if (!d.cascade_splits.empty()) j["cascade_splits"] = d.cascade_splits;
   j["cascades"] = d.cascades;
   j["light_taps"] = d.light_taps;
   j["sampling"] = to_string(d.sampling);

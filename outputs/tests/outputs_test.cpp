@@ -92,6 +92,52 @@ TEST(Declaration, AnAtlasTileIsItsSizeLessItsGuardBands) {
   fs::remove_all(dir);
 }
 
+// "light_views": "declared": each light's views (view and projection, column-major) and, for
+// cascades, their splits, read and written back the same; everything malformed refused with the
+// JSON path that is wrong.
+TEST(Declaration, DeclaredLightMatricesRoundTripAndMalformedOnesAreRefused) {
+  const fs::path dir = fresh_dir("declared");
+  const std::string identity = "[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]";
+  const std::string shifted = "[1,0,0,0, 0,1,0,0, 0,0,1,0, 0.25,0,-3,1]";  // column-major: the translation last
+  std::ofstream(dir / kCandidateFile) << R"({"shadow_map_size": 1024, "light_views": "declared", "lights": [
+    {"views": [{"view": )" << shifted << R"(, "projection": )" << identity << R"(}]},
+    {"views": [{"view": )" << identity << R"(, "projection": )" << identity << R"(},
+               {"view": )" << identity << R"(, "projection": )" << identity << R"(}], "cascade_splits": [0.1, 5, 40]}]})";
+  const CandidateDeclaration d = read_declaration(dir, "csm");
+  ASSERT_EQ(d.lights.size(), 2u);
+  EXPECT_EQ(d.for_light(0).light_views, LightViews::Declared);
+  ASSERT_EQ(d.for_light(0).views.size(), 1u);
+  EXPECT_EQ(d.for_light(0).views[0].view[12], 0.25) << "element [4 c + r]: column 3, row 0";
+  EXPECT_EQ(d.for_light(0).views[0].view[14], -3.0);
+  EXPECT_EQ(d.for_light(1).views.size(), 2u);
+  EXPECT_EQ(d.for_light(1).cascade_splits, (std::vector<double>{0.1, 5, 40}));
+  const std::string text = declaration_text(d);
+  std::ofstream(dir / kCandidateFile) << text;
+  EXPECT_EQ(declaration_text(read_declaration(dir, "csm")), text);
+
+  const auto refused = [&](const std::string& json) -> std::string {
+    std::ofstream(dir / kCandidateFile) << json;
+    try {
+      read_declaration(dir, "shadowmap");
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "(accepted)";
+  };
+  const std::string one = R"({"view": )" + identity + R"(, "projection": )" + identity + "}";
+  EXPECT_NE(refused(R"({"views": [)" + one + "]}").find("views: given, but light_views is not \"declared\""), std::string::npos);
+  EXPECT_NE(refused(R"({"light_views": "declared", "views": [{"view": [1,2,3], "projection": )" + identity + "}]}")
+                .find("views[0].view: must be an array of 16 numbers"),
+            std::string::npos);
+  EXPECT_NE(refused(R"({"light_views": "declared", "views": [{"view": )" + identity + R"(, "projection": [1,0,0,0, 0,1,0,0, 0,0,0,0, 0,0,0,0]}]})")
+                .find("views[0]: projection x view is singular"),
+            std::string::npos);
+  EXPECT_NE(refused(R"({"light_views": "declared", "lights": [{"views": [)" + one + R"(], "cascade_splits": [1, 1]}]})")
+                .find("lights[0].cascade_splits[1]: must be a finite depth >= 0, larger than the one before"),
+            std::string::npos);
+  EXPECT_NE(refused(R"({"light_views": "seen"})").find("light_views: must be \"own\", \"pack\" or \"declared\""), std::string::npos);
+}
+
 TEST(FileNames, OneLightHasNoIndexSeveralDo) {
   EXPECT_EQ(mask_name(0, 1), "mask.png");
   EXPECT_EQ(mask_name(0, 2), "mask_0.png");

@@ -60,6 +60,36 @@ const LightFit& CauseModel::fit_for(std::size_t light, int size, int cascades) c
   return it->second;
 }
 
+const LightFit& CauseModel::fit_of(std::size_t light, const outputs::CandidateDeclaration& d, int cascades) const {
+  if (d.light_views != outputs::LightViews::Declared || d.views.empty()) return fit_for(light, d.shadow_map_size, cascades);
+  std::string key(reinterpret_cast<const char*>(&light), sizeof light);
+  key.append(reinterpret_cast<const char*>(&d.shadow_map_size), sizeof d.shadow_map_size);
+  for (const outputs::DeclaredView& v : d.views) {
+    key.append(reinterpret_cast<const char*>(v.view.data()), sizeof v.view);
+    key.append(reinterpret_cast<const char*>(v.projection.data()), sizeof v.projection);
+  }
+  key.append(reinterpret_cast<const char*>(d.cascade_splits.data()), d.cascade_splits.size() * sizeof(double));
+  auto it = declared_fits_.find(key);
+  if (it != declared_fits_.end()) return it->second;
+  // The judge has checked the counts (a cube's 6 for a positional light; cascades with their
+  // splits for a directional one) and that each projection x view is invertible.
+  LightFit fit;
+  fit.size = d.shadow_map_size;
+  for (const outputs::DeclaredView& v : d.views) {
+    LightView view;
+    view.view = Eigen::Map<const Mat4<double>>(v.view.data());  // column-major, as Eigen's default
+    view.projection = Eigen::Map<const Mat4<double>>(v.projection.data());
+    fit.views.push_back(view);
+  }
+  fit.cube = scene_.lights[light].w() != 0 && fit.views.size() == 6;
+  if (!d.cascade_splits.empty() && fit.views.size() > 1) {
+    fit.cascade_splits = d.cascade_splits;
+    // The camera's view-axis depth of a scene point, as the pack's cascades measure it.
+    fit.cascade_depth_from_scene = scene_.cascade_fits[light].cascade_depth_from_scene;
+  }
+  return declared_fits_.emplace(std::move(key), std::move(fit)).first->second;
+}
+
 std::optional<CauseModel::Surface> CauseModel::surface_at(int x, int y) const {
   // The pixel centre's surface, exactly as the reference finds it (pixel_surface.hpp): the same
   // ray (camera_rays.hpp), traced through the same Embree call on a stream of one.
@@ -107,7 +137,7 @@ std::optional<CauseModel::Lookup> CauseModel::lookup(std::size_t light, const Su
   const Vec4<double>& L = scene_.lights[light];
   k.to_light = L.w() == 0 ? Vec3<double>(L.head<3>().normalized()) : Vec3<double>((L.head<3>() / L.w() - s.p).normalized());
   // The light view that decides p: the cube face, the cascade, or the one view (light_view_of).
-  const LightFit& fit = fit_for(light, d.shadow_map_size, cascades_of(d));
+  const LightFit& fit = fit_of(light, d, cascades_of(d));
   k.view = &fit.views[static_cast<std::size_t>(light_view_of(fit, L, s.p))];
   k.m = k.view->projection * k.view->view;
   const Vec4<double> h = k.m * Vec4<double>(s.p.x(), s.p.y(), s.p.z(), 1.0);
@@ -145,7 +175,7 @@ std::optional<CauseModel::TexelCell> CauseModel::texel_cell(std::size_t light, i
   if (!k || !(s->n.dot(k->to_light) > 0)) return std::nullopt;
   // NDC −1..1 spans the view's texels 0..size (the viewport transform); texel_ndc = 2 / size.
   TexelCell c;
-  c.view = static_cast<int>(k->view - fit_for(light, d.shadow_map_size, cascades_of(d)).views.data());
+  c.view = static_cast<int>(k->view - fit_of(light, d, cascades_of(d)).views.data());
   c.column = static_cast<long>(std::floor((k->q.x() + 1.0) / k->texel_ndc));
   c.row = static_cast<long>(std::floor((k->q.y() + 1.0) / k->texel_ndc));
   c.n = s->n;
@@ -409,7 +439,7 @@ std::vector<double> CauseModel::fractions_around(std::size_t light, int x, int y
   // The texels around p's in the map of the light's centre (the one view, or the cube face p is in).
   const double zn = near_ndc_z(*scene_.convention), zf = far_ndc_z(*scene_.convention);
   const Vec4<double>& L = scene_.lights[light];
-  const LightFit& fit = fit_for(light, d.shadow_map_size, 0);
+  const LightFit& fit = fit_of(light, d, 0);
   const LightView& view = fit.views[static_cast<std::size_t>(light_view_of(fit, L, p))];
   const Mat4<double> m = view.projection * view.view;
   const Vec4<double> h = m * Vec4<double>(p.x(), p.y(), p.z(), 1.0);

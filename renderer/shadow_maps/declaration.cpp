@@ -3,6 +3,7 @@
 // options the light map reads (light_map.cpp), so that the declaration cannot drift from the
 // drawing. renderer_test holds every declared light against RenderResult::drawn_maps, the state
 // read back from GL.
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -65,6 +66,22 @@ bool declare_shadow_map(std::string_view technique, const scene::PreparedScene& 
       // The distance pass draws the lookup's offset by hand, fault switches aside (light_map.cpp).
       light.slope_bias_texels = lookup.offset_factor;
       light.depth_bias = double{lookup.offset_units} / 16777215.0;  // kDistanceFragment's constant step
+    }
+    if (options.declare_light_matrices) {
+      const LightFit& fit = t->cascaded ? prepared.cascade_fits[i] : prepared.light_fits[i];
+      const int map_size = fit.size + 2 * g;
+      light.light_views = outputs::LightViews::Declared;
+      light.shadow_map_size = map_size;  // the whole map: the guard band is in the drawn projection
+      light.atlas_tile_size = light.atlas_guard_band = 0;
+      light.views.clear();
+      for (const LightView& v : fit.views) {
+        outputs::DeclaredView d;
+        const Mat4<double> projection = drawn_projection(options, v.projection, fit.size, map_size);
+        std::copy(v.view.data(), v.view.data() + 16, d.view.begin());  // Eigen stores column-major
+        std::copy(projection.data(), projection.data() + 16, d.projection.begin());
+        light.views.push_back(d);
+      }
+      if (fit.views.size() > 1 && !fit.cube) light.cascade_splits = fit.cascade_splits;
     }
     differ = differ || outputs::declaration_text(light) != outputs::declaration_text(declaration);
     lights.push_back(std::move(light));

@@ -161,14 +161,11 @@ std::vector<Mat4<double>> light_matrices(const Frame& frame, const LightFit& lc,
     shift(0, 3) = shift(1, 3) = 0.5 / map.size;
     bias = shift * bias;
   }
-  // RenderOptions::guard_band_texels: the view shrunk into the map's middle lc.size texels.
-  const double guard_scale = static_cast<double>(lc.size) / static_cast<double>(map.size);
-  const Mat4<double> own = own_view(frame.options, map.size);
   std::vector<Mat4<double>> projections;
-  for (const LightView& v : lc.views) {
-    projections.push_back(faults.fit == FitFault::None ? v.projection : fit_with_fault(conv, v.projection, faults.fit));
-    projections.back() = own * Vec4<double>(guard_scale, guard_scale, 1, 1).asDiagonal() * projections.back();
-  }
+  for (const LightView& v : lc.views)
+    projections.push_back(drawn_projection(frame.options,
+                                           faults.fit == FitFault::None ? v.projection : fit_with_fault(conv, v.projection, faults.fit),
+                                           lc.size, map.size));
   for (std::size_t k = 0; k < lc.views.size(); ++k) {
     const Mat4<double> m = bias * projections[k] * lc.views[k].view;
     map.face_from_world.push_back(to_float(m));
@@ -382,6 +379,12 @@ void draw_depth_pass(const Frame& frame, const LightFit& lc, const std::vector<M
 
 }  // namespace
 
+Mat4<double> drawn_projection(const RenderOptions& o, const Mat4<double>& projection, int fit_size, int map_size) {
+  // RenderOptions::guard_band_texels: the view shrunk into the map's middle fit_size texels.
+  const double guard_scale = static_cast<double>(fit_size) / static_cast<double>(map_size);
+  return own_view(o, map_size) * Vec4<double>(guard_scale, guard_scale, 1, 1).asDiagonal() * projection;
+}
+
 LightMap::LightMap(LightMap&& o) noexcept
     : pool(o.pool), texture(o.texture), moments(o.moments), size(o.size), layout(o.layout),
       distance_range(o.distance_range), light_position(o.light_position), shadow_from_world(o.shadow_from_world),
@@ -452,7 +455,7 @@ LightMap draw_light_map(Frame& frame, std::size_t light, const LightFit& lc, con
   const GLuint depth_rb = allocate_targets(frame, map, static_cast<GLsizei>(lc.views.size()), lookup, fbo);
   const Program& p = set_depth_pass_state(frame, lc, map, lookup);
   DrawnMap drawn;
-  drawn.lookup = std::string(lookup_name(lookup.id));
+  drawn.lookup = std::string(lookup.name);
   drawn.distance = map.distance_range > 0;
   gl.GetTexLevelParameteriv(GL_TEXTURE_2D_ARRAY, 0, GL_TEXTURE_WIDTH, &drawn.texels);
   draw_depth_pass(frame, lc, projections, map, lookup, p, drawn);

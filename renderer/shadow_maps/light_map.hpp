@@ -75,6 +75,12 @@ struct LightMap {
 // when a CascadeFaults switch changes how they are fitted, a refit (into `refit`) with that one change.
 const LightFit& cascade_fit(const Frame& frame, std::size_t i, LightFit& refit);
 
+// The projection with which a view of a fit of `fit_size` texels is drawn into a map of `map_size`
+// texels (fit_size plus a guard band on each side): `projection` turned and moved as RenderOptions'
+// own views ask, and shrunk into the map's middle fit_size texels (no fault applied). With the
+// view's own matrix, at map_size, it is what "light_views": "declared" gives the judge.
+Mat4<double> drawn_projection(const RenderOptions& o, const Mat4<double>& projection, int fit_size, int map_size);
+
 // Whether `lookup`'s cube holds distances under `options` (RenderOptions::cube_depth), and the
 // range they are stored over: the largest distance from the light to a corner of the scene's box,
 // with 1 % to spare, so that every caster's distance lies below 1 (the clear value: nothing there).

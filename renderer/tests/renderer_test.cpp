@@ -280,13 +280,13 @@ TEST(Renderer, OwnViewsMoveTheStaircasesAndAreDeclaredOwn) {
   RenderOptions pack;
   pack.shadow_map_size = 256;
   const RenderResult plain = renderer().render(s, "shadowmap", pack);
-  EXPECT_TRUE(plain.declaration.light_views_from_pack);
+  EXPECT_EQ(plain.declaration.light_views, outputs::LightViews::Pack);
   for (const double turn : {0.0, 30.0}) {
     RenderOptions own = pack;
     own.view_turn_degrees = turn;
     own.view_phase_texels = 0.5;
     const RenderResult r = renderer().render(s, "shadowmap", own);
-    EXPECT_FALSE(r.declaration.light_views_from_pack) << turn;
+    EXPECT_EQ(r.declaration.light_views, outputs::LightViews::Own) << turn;
     std::size_t differ = 0;
     for (std::size_t i = 0; i < r.masks.at(0).pixels.size(); ++i) differ += r.masks[0].pixels[i] != plain.masks[0].pixels[i];
     // At 128² a 256-texel texel spans several pixels along this ground: a grid moved by half a

@@ -85,10 +85,48 @@ outputs::CandidateDeclaration checked_against_staircases(const reference::CauseM
       top.lights.clear();
       judged.lights.resize(s.lights.size(), top);
     }
+    if (judged.lights[i].light_views == outputs::LightViews::Declared) {
+      // Declared matrices that the staircases contradict are not the grid the map was drawn on: the
+      // light is judged as the candidate's own views (turn and phase unknown) at the declared size,
+      // which is all an engine declaring "own" gives.
+      judged.lights[i].light_views = outputs::LightViews::Own;
+      judged.lights[i].views.clear();
+      judged.lights[i].cascade_splits.clear();
+      continue;
+    }
     judged.lights[i].shadow_map_size = 0;
     judged.lights[i].atlas_tile_size = judged.lights[i].atlas_guard_band = 0;
   }
   return judged;
+}
+
+// What is wrong with light `light`'s declared views for this scene and run (empty: nothing, or
+// the light's views are not declared): the count a light of its kind needs, the map size, the run's
+// convention in which the matrices are read.
+std::string declared_views_problem(const scene::PreparedScene& prepared, std::size_t light,
+                                   const outputs::CandidateDeclaration& top, const std::string& technique_name) {
+  const outputs::TechniqueName* technique = outputs::find_technique_name(technique_name);
+  const outputs::CandidateDeclaration& d = top.for_light(light);
+  if (d.light_views != outputs::LightViews::Declared) return "";
+  const std::string at = light < top.lights.size() ? "lights[" + std::to_string(light) + "]." : "";
+  if (top.convention != prepared.convention->name)
+    return "convention: declared light matrices are read in the run's convention '" + std::string(prepared.convention->name) +
+           "', and this candidate declares '" + top.convention + "' (run conform with --convention " + top.convention + ")";
+  if (d.views.empty()) return at + "views: light_views \"declared\" needs this light's views (its view and projection matrices)";
+  if (d.shadow_map_size <= 0) return at + "shadow_map_size: declared views need the map size they are drawn at";
+  const bool positional = prepared.lights[light].w() != 0;
+  const std::size_t n = d.views.size();
+  if (positional && n != 1 && n != 6)
+    return at + "views: a point or spot light has 1 view or a cube's 6 (+x, -x, +y, -y, +z, -z), not " + std::to_string(n);
+  if (positional && !d.cascade_splits.empty()) return at + "cascade_splits: only a directional light's cascades have splits";
+  const bool cascaded = technique && technique->cascaded;
+  if (!positional && n > 1 && !cascaded)
+    return at + "views: " + std::to_string(n) + " views for a directional light, but technique '" + technique_name +
+           "' is not cascaded (one view)";
+  if (!positional && (n > 1 || !d.cascade_splits.empty()) && d.cascade_splits.size() != n + 1)
+    return at + "cascade_splits: " + std::to_string(n) + " cascades need " + std::to_string(n + 1) +
+           " camera depths (where each begins and the last ends), got " + std::to_string(d.cascade_splits.size());
+  return "";
 }
 
 }  // namespace
@@ -144,6 +182,9 @@ CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJud
                               (c.candidate_dir / outputs::kCandidateFile).string() + ": lights: " +
                                   std::to_string(j.declaration.lights.size()) + " entries, but scene '" + s.name + "' has " +
                                   std::to_string(s.lights.size()) + " light(s)");
+  for (std::size_t i = 0; i < s.lights.size(); ++i)
+    if (const std::string p = declared_views_problem(*prepared, i, j.declaration, j.technique); !p.empty())
+      throw outputs::InputError(outputs::InputError::Kind::BadInput, (c.candidate_dir / outputs::kCandidateFile).string() + ": " + p);
   if (const auto e = s.expect.find(j.technique); e != s.expect.end()) j.expectation = e->second;
 
   // 2-4. Threshold, causes, lit fraction: the comparison, under the declaration as the pixels bear it out.

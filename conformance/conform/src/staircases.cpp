@@ -25,7 +25,7 @@ bool one_plane(const Cell& a, const Cell& b) {
 }  // namespace
 
 bool staircases_apply(const outputs::CandidateDeclaration& d) {
-  return d.light_views_from_pack && d.shadow_map_size > 0 && d.filter_radius_texels == 0 &&
+  return d.light_views != outputs::LightViews::Own && d.shadow_map_size > 0 && d.filter_radius_texels == 0 &&
          d.sampling == outputs::Sampling::Grid && d.normal_offset == 0 && d.normal_offset_texels == 0;
 }
 
@@ -66,10 +66,15 @@ StaircaseCheck check_staircases(const reference::CauseModel& model, const output
 std::string describe(const StaircaseCheck& c, std::size_t light, const outputs::CandidateDeclaration& d) {
   char buf[320];
   std::snprintf(buf, sizeof buf,
-                "light %zu: the declared %d-texel map on the pack's grid %s by the candidate's staircases (%zu of %zu "
+                "light %zu: the declared %d-texel map on %s %s by the candidate's staircases (%zu of %zu "
                 "lit/shadowed crossings on one receiver lie inside one texel)%s",
-                light, d.shadow_map_size, c.contradicted ? "is contradicted" : "is not contradicted", c.in_one_texel, c.crossings,
-                c.contradicted ? ": its texels are judged at the automatic size" : "");
+                light, d.shadow_map_size,
+                d.light_views == outputs::LightViews::Declared ? "the declared light matrices' grid" : "the pack's grid",
+                c.contradicted ? "is contradicted" : "is not contradicted", c.in_one_texel, c.crossings,
+                c.contradicted ? (d.light_views == outputs::LightViews::Declared
+                                      ? ": its texels are judged as the candidate's own views at that size"
+                                      : ": its texels are judged at the automatic size")
+                               : "");
   return buf;
 }
 

@@ -17,7 +17,18 @@
 //     "constant_bias": 0.0,               number >= 0: constant bias, in world units along the light ray
 //     "light_views": "own",               "pack": the shadow maps use the pack's light view and
 //                                         projection matrices (matrices.json), so their texel grid is
-//                                         known; "own": the engine fits its own (grid phase unknown)
+//                                         known; "own": the engine fits its own (grid phase unknown);
+//                                         "declared": the engine's own, given in `views`
+//     "views": [ {"view": [16], "projection": [16]} ],
+//                                         "declared" only, per light: the engine's light views, each
+//                                         its view (scene → light view) and projection (light view →
+//                                         clip in the declared convention), 16 numbers column-major.
+//                                         One view; six for a point light's cube (+x, −x, +y, −y, +z,
+//                                         −z of scene space: the face a point's major axis picks); one
+//                                         per cascade for a cascaded directional light, with
+//     "cascade_splits": [0.1, 4, 12, 40]  "declared" cascades: the camera depths (world units along the
+//                                         camera's view axis) where each cascade begins and ends, one
+//                                         more than the views: cascade i decides [splits[i], splits[i+1])
 //     "cascades": 4                       integer in [0, 8]: cascaded techniques (csm, csm-pcf), the
 //                                         cascades per directional light, split as the pack's
 //                                         `cascades` say; 0 = the pack's count
@@ -79,14 +90,34 @@ inline constexpr int kMaxLightTaps = 64;
 inline constexpr const char* kCandidateFile = "candidate.json";
 
 // Every key candidate.json may hold, the one list (the reader, `defaulted`, the pack README's table).
-inline constexpr std::array<const char*, 21> kCandidateKeys{
+inline constexpr std::array<const char*, 23> kCandidateKeys{
     "producer",          "version",       "technique",   "convention", "shadow_map_size",
     "atlas_tile",        "filter_radius_texels", "slope_bias_texels", "constant_bias", "light_views",
+    "views",             "cascade_splits",
     "cascades",          "light_taps",    "sampling",    "normal_offset", "normal_offset_texels",
     "depth_bias",        "depth_faces",   "depth",       "depth_range", "settings",    "lights"};
 
 // The most `lights` entries a declaration may give (a scene's lights are far fewer).
 inline constexpr std::size_t kMaxDeclaredLights = 64;
+
+// The most views one light may declare (a cube's six, or up to kMaxCascades cascades).
+inline constexpr std::size_t kMaxDeclaredViews = 8;
+
+// How the judge knows the light views of the candidate's maps.
+enum class LightViews {
+  Own,       // "own": the engine fits its own; the grid's turn and phase are unknown (a whole texel)
+  Pack,      // "pack": the pack's matrices.json views at the declared map size (half a texel)
+  Declared,  // "declared": the engine's own, given in `views` (half a texel, as the pack's)
+};
+const char* to_string(LightViews v);  // "own", "pack", "declared"
+
+// One light view a candidate declares: view (scene → light view space) and projection (light view
+// → clip space, in the declaration's convention: its depth range and handedness), each 16 numbers
+// column-major (element [4 c + r] is row r, column c: glTF, three.js's Matrix4.elements, OpenGL's
+// glUniformMatrix4fv without transpose).
+struct DeclaredView {
+  std::array<double, 16> view{}, projection{};
+};
 
 // The faces a depth pass draws.
 enum class DepthFaces { Front, Back, Both };
@@ -116,7 +147,9 @@ struct CandidateDeclaration {
   double filter_radius_texels = 0.0;   // shadowmap-pcf's default: 1 (3 × 3)
   double slope_bias_texels = 2.0;      // our renderer's glPolygonOffset factor (its PCF maps: 3)
   double constant_bias = 0.0;
-  bool light_views_from_pack = false;  // "light_views": "pack"
+  LightViews light_views = LightViews::Own;
+  std::vector<DeclaredView> views;     // "declared": this light's views (see above)
+  std::vector<double> cascade_splits;  // "declared" cascades: camera depths, one more than the views
   int cascades = 0;                    // cascaded techniques: cascades per directional light; 0: the pack's default
   int light_taps = 8;                  // soft techniques: filter taps per axis over the light (ours: 8 x 8)
   Sampling sampling = Sampling::Grid;  // "random": light_taps² taps placed anew per pixel

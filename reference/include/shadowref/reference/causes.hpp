@@ -37,6 +37,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -83,9 +84,12 @@ inline constexpr std::array<std::array<double, 2>, 8> kProbeDirections{{{1, 0}, 
                                                                         {1, -1}, {-1, -1}}};
 
 // The grid's uncertainty, in texels of the declared map: how far from p's own texel centre the texel
-// a nearest lookup reads may lie along each axis. Half a texel on the pack's grid (light_views:
-// pack, a known grid); a whole texel on the candidate's own (its turn and phase unknown).
-inline double grid_uncertainty_texels(const outputs::CandidateDeclaration& d) { return d.light_views_from_pack ? 0.5 : 1.0; }
+// a nearest lookup reads may lie along each axis. Half a texel on a known grid (light_views: pack,
+// or declared with the engine's matrices); a whole texel on the candidate's own (its turn and
+// phase unknown).
+inline double grid_uncertainty_texels(const outputs::CandidateDeclaration& d) {
+  return d.light_views == outputs::LightViews::Own ? 1.0 : 0.5;
+}
 
 class EmbreeScene;
 class CameraRays;
@@ -184,12 +188,17 @@ class CauseModel {
   // The light's views at map size `size` (0: the prepared size), cascaded with `cascades` cascades
   // (0: not cascaded).
   const LightFit& fit_for(std::size_t light, int size, int cascades) const;
+  // The views the declaration's map is drawn on: its declared matrices ("light_views": "declared",
+  // at its map size, a cube's faces or cascades as declared), else fit_for(its size, `cascades`).
+  const LightFit& fit_of(std::size_t light, const outputs::CandidateDeclaration& d, int cascades) const;
   const scene::PreparedScene& scene_;
   std::unique_ptr<EmbreeScene> embree_;
   std::unique_ptr<CameraRays> camera_;
   // The light fits per declared (light, map size, cascades): a memo of fit_for(), which the const
   // queries share; filling it changes no answer, hence mutable (and the model not thread-safe).
   mutable std::map<std::tuple<std::size_t, int, int>, LightFit> fits_;
+  // The declared fits, by light and the declared matrices' bytes (the same memo for declarations).
+  mutable std::map<std::string, LightFit> declared_fits_;
   std::unique_ptr<Probes> probes_;  // explain()'s table of traced probes, reused from pixel to pixel
 };
 

@@ -70,6 +70,11 @@ struct RenderOptions {
   // phase). 0 and 0: the pack's views.
   double view_turn_degrees = 0.0;
   double view_phase_texels = 0.0;
+  // Declare the light matrices as engines that know theirs may: "light_views": "declared", each
+  // light's views (view and projection, as drawn: turned and moved as above, a guard band's map whole)
+  // at its map's size, and a cascaded light's splits. The judge then knows the exact texel grid, the
+  // pack's views or our own alike.
+  bool declare_light_matrices = false;
   // The hard maps' normal offset (three.js and Babylon `normalBias`, Unity's "normal bias"): each
   // lookup moves along the surface normal, turned toward the light, by this many texels of the map
   // at the point. Declared as "normal_offset_texels". 0: none.

@@ -1,9 +1,10 @@
 // shadowref/conform/staircases.hpp — a declared map size checked against the candidate's own
-// staircases, where the judge knows the texel grid: the pack's light views.
+// staircases, where the judge knows the texel grid: the pack's light views, or declared matrices.
 //
 // A hard shadow map answers per texel: every point of one texel reads the same stored depth, so on
 // one receiver a nearest lookup's lit/shadowed boundaries run between texels. Where the candidate
-// declares `"light_views": "pack"` and a `shadow_map_size`, the grid is the pack's view at that size
+// declares `"light_views": "pack"` (or `"declared"`, the engine's own matrices) and a
+// `shadow_map_size`, the grid is that view at that size
 // (reference/causes.hpp, texel_cell), and the judge counts the candidate's own crossings — two
 // 4-adjacent pixels whose surface points lie on one receiver plane, both facing the light, one lit
 // and one shadowed — and of those the ones whose two points lie in one texel. A correct render has
