@@ -168,6 +168,8 @@ Image8 read_image8(const std::filesystem::path& file, int channels, int width, i
     throw InputError(InputError::Kind::SizeMismatch, file.string() + ": candidate is " + std::to_string(spec.width) + "x" +
                                                          std::to_string(spec.height) + ", reference is " + std::to_string(width) +
                                                          "x" + std::to_string(height));
+  if (channels == 0 && (spec.channels < 1 || spec.channels > 4)) throw bad("has " + std::to_string(spec.channels) + " channels, expected 1 to 4");
+  if (channels == 0) channels = spec.channels;  // as the file has them
   if (spec.channels != channels)
     throw bad("has " + std::to_string(spec.channels) + " channel(s), expected " + std::to_string(channels) +
               (channels == 1 ? " (8-bit grey: 255 lit, 0 shadowed, 128 no surface)" : ""));
@@ -206,6 +208,12 @@ std::vector<float> read_exr(const std::filesystem::path& file, int width, int he
   if (c.read(o.reader.get(), 1, kShadowrefFloat, pixels.data(), error, sizeof error) != 0)
     throw bad("cannot read pixels: " + first_line(error, "decoding failed"));
   return pixels;
+}
+
+std::string encode_png(const Image8& image) {
+  if (image.pixels.size() != image.pixel_count() * static_cast<std::size_t>(image.channels))
+    throw std::logic_error("image buffer does not match its size");
+  return png::encode(image);
 }
 
 void write_png(const Image8& image, const std::filesystem::path& file) {

@@ -20,7 +20,7 @@
 
 namespace shadowref::outputs::png {
 
-// `image` (1 or 3 channels, row 0 at the top) as a PNG stream: no row filters and a fast deflate
+// `image` (1 to 4 channels: grey, grey + alpha, RGB, RGBA; row 0 at the top) as a PNG stream: no row filters and a fast deflate
 // (PNG_IMAGE_FLAG_FAST), no colour-space chunk. Throws std::runtime_error with libpng's reason.
 std::string encode(const Image8& image);
 

@@ -17,13 +17,15 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "shadowref/outputs/image.hpp"
 
 namespace shadowref::outputs {
 
-// Reads `file` as an 8-bit image with exactly `channels` channels. Throws InputError(BadInput).
+// Reads `file` as an 8-bit image with exactly `channels` channels, or with the file's own 1 to 4
+// (grey, grey + alpha, RGB, RGBA) when `channels` is 0. Throws InputError(BadInput).
 Image8 read_image8(const std::filesystem::path& file, int channels);
 
 // The same, for a file that must be `width` × `height` (a candidate mask beside its reference):
@@ -37,6 +39,9 @@ std::vector<float> read_exr(const std::filesystem::path& file, int width, int he
 
 // Writes `image` as PNG.
 void write_png(const Image8& image, const std::filesystem::path& file);
+// `image` (1 to 4 channels: grey, grey + alpha, RGB, RGBA) as PNG bytes, for a file that embeds
+// them (the pack's glTF mask textures). Throws std::runtime_error with libpng's reason.
+std::string encode_png(const Image8& image);
 
 // Writes a width × height single-channel float image (row 0 at the top) as OpenEXR.
 void write_exr(int width, int height, const float* pixels, const std::filesystem::path& file);
