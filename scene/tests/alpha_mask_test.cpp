@@ -105,5 +105,15 @@ TEST(AlphaLoad, VertexAlphaAloneHasAnOpaqueTexel) {
   EXPECT_TRUE(m.texture->file.empty());
 }
 
+TEST(AlphaLoad, CatalogueMasksLoad) {
+  // The catalogue's masked scenes (scripts/make_alpha_content.py) load, with the masks they name.
+  for (const char* name : {"alpha_cards.json", "alpha_fence.json", "alpha_vertex.json"}) {
+    const Scene s = load_scene(std::filesystem::path(SHADOWREF_SCENES_DIR) / name);
+    int masked = 0;
+    for (const Object& o : s.objects) masked += o.alpha ? 1 : 0;
+    EXPECT_GE(masked, 1) << name;
+  }
+}
+
 }  // namespace
 }  // namespace shadowref::scene
