@@ -51,6 +51,7 @@ EmbreeScene::EmbreeScene(const scene::Scene& scene) : source_(&scene) {
     std::memcpy(t, mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]));
     // Only masked geometry gets the filters: every other hit costs nothing more (reference_bench).
     if (scene.objects[i].alpha) {
+      // Embree takes a void*; the filter only reads the object, which outlives the BVH (source_).
       rtcSetGeometryUserData(geom, const_cast<scene::Object*>(&scene.objects[i]));
       rtcSetGeometryOccludedFilterFunction(geom, alpha_filter);
       rtcSetGeometryIntersectFilterFunction(geom, alpha_filter);
