@@ -159,8 +159,8 @@ int run_compare(const CompareArgs& a) {
   }
   const int code = files ? conform::exit_code(std::vector<conform::Outcome>{files->outcome})
                    : !a.scene.empty() ? conform::exit_code({j.status}, {j.expectation.warn})
-                   : c.judgement.verdict == compare::Verdict::Pass             ? kExitPass
-                   : c.judgement.verdict == compare::Verdict::QualityWarning ? kExitWarnings
+                   : c.decision.verdict == compare::Verdict::Pass             ? kExitPass
+                   : c.decision.verdict == compare::Verdict::QualityWarning ? kExitWarnings
                                                                              : kExitFailures;
   if (a.json) {
     nlohmann::json out = report::to_json(c);
@@ -197,11 +197,11 @@ int run_compare(const CompareArgs& a) {
                 v.unexplained, v.unexplained_core, v.mean_penumbra_error());
   }
   for (const std::string& e : errors) std::printf("  error image: %s\n", (std::filesystem::path(a.out) / e).string().c_str());
-  const std::string verdict = c.judgement.verdict == compare::Verdict::Pass             ? "PASS"
-                              : c.judgement.verdict == compare::Verdict::QualityWarning ? "QUALITY WARNING"
+  const std::string verdict = c.decision.verdict == compare::Verdict::Pass             ? "PASS"
+                              : c.decision.verdict == compare::Verdict::QualityWarning ? "QUALITY WARNING"
                                                                                         : "FAIL";
   std::printf("verdict: %s\n", verdict.c_str());
-  for (const std::string& r : c.judgement.reasons) std::printf("  %s\n", r.c_str());
+  for (const std::string& r : c.decision.reasons) std::printf("  %s\n", r.c_str());
   if (!a.scene.empty()) {
     std::printf("status under the scene's expectation: %s%s%s\n", conform::to_string(j.status),
                 j.signature.empty() ? "" : ": ", j.signature.c_str());

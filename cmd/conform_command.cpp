@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "shadowref/conform/conform.hpp"
 #include "shadowref/conform/expectations.hpp"
 #include "shadowref/outputs/limits.hpp"
+#include "shadowref/report/ci_summary.hpp"
 #include "shadowref/renderer/gl_context.hpp"
 #include "shadowref/scene/load_scene.hpp"
 
@@ -62,34 +64,55 @@ void print_shard(const conform::ConformResult& r, const conform::ConformOptions&
 // Expected failures and failures with their why, so the table is never read without it.
 void print_case_lines(const conform::ConformResult& r) {
   for (const conform::CaseResult& c : r.cases) {
+    const compare::FolderComparison* comparison = c.comparison();
     if (c.status == conform::Status::Pass) {
       // An expectation the verdict did not meet is said, not hidden behind the PASS (status.hpp).
-      if (!c.unmet_expectation.empty())
-        std::printf("PASS   %s x %s: %s\n", c.scene.c_str(), c.technique.c_str(), c.unmet_expectation.c_str());
+      if (c.judgement && !c.judgement->unmet_expectation.empty())
+        std::printf("PASS   %s x %s: %s\n", c.scene.c_str(), c.technique.c_str(), c.judgement->unmet_expectation.c_str());
       continue;
     }
     std::printf("%-6s %s x %s", conform::to_string(c.status), c.scene.c_str(), c.technique.c_str());
-    if (c.status == conform::Status::XFail || c.status == conform::Status::XPass) std::printf(": expected to fail: %s", c.why.c_str());
-    if (c.status == conform::Status::Warn && c.expected_warning) std::printf(": expected quality warning: %s", c.why.c_str());
-    if (c.comparison && c.status == conform::Status::XFail)
-      std::printf(" (wrong %.3g %%, unexplained %zu px = %.3g %% of edges, core %zu px)", c.comparison->total.wrong_percent(),
-                  c.comparison->total.unexplained, 100 * c.comparison->total.unexplained_ratio(), c.comparison->total.unexplained_core);
-    if (c.comparison && c.comparison->visibility_total && c.status == conform::Status::XFail) {
-      const compare::VisibilityMetrics& v = *c.comparison->visibility_total;
+    if (c.status == conform::Status::XFail || c.status == conform::Status::XPass) std::printf(": expected to fail: %s", c.expected.why.c_str());
+    if (c.status == conform::Status::Warn && c.expected.warn) std::printf(": expected quality warning: %s", c.expected.why.c_str());
+    if (comparison && c.status == conform::Status::XFail)
+      std::printf(" (wrong %.3g %%, unexplained %zu px = %.3g %% of edges, core %zu px)", comparison->total.wrong_percent(),
+                  comparison->total.unexplained, 100 * comparison->total.unexplained_ratio(), comparison->total.unexplained_core);
+    if (comparison && comparison->visibility_total && c.status == conform::Status::XFail) {
+      const compare::VisibilityMetrics& v = *comparison->visibility_total;
       std::printf(" (lit fraction: mean error %.3f over the penumbra, unexplained %zu px = %.3g %% of it, core %zu px)",
                   v.mean_penumbra_error(), v.unexplained, 100 * v.unexplained_ratio(), v.unexplained_core);
     }
-    if (c.comparison && !c.comparison->judgement.reasons.empty() && c.status != conform::Status::XFail) {
+    if (comparison && !comparison->decision.reasons.empty() && c.status != conform::Status::XFail) {
       std::string reasons;
-      for (const std::string& reason : c.comparison->judgement.reasons) reasons += (reasons.empty() ? "" : "; ") + reason;
+      for (const std::string& reason : comparison->decision.reasons) reasons += (reasons.empty() ? "" : "; ") + reason;
       std::printf("%s%s", c.status == conform::Status::XPass ? "; but only " : ": ", reasons.c_str());
     }
-    if (c.comparison && c.status == conform::Status::XPass && c.comparison->judgement.reasons.empty())
-      std::printf("; but it passed (wrong %.3g %%)", c.comparison->total.wrong_percent());
-    if (!c.signature.empty()) std::printf("; %s", c.signature.c_str());
+    if (comparison && c.status == conform::Status::XPass && comparison->decision.reasons.empty())
+      std::printf("; but it passed (wrong %.3g %%)", comparison->total.wrong_percent());
+    if (c.judgement && !c.judgement->signature.empty()) std::printf("; %s", c.judgement->signature.c_str());
     if (!c.error.empty()) std::printf(": %s", c.error.c_str());
     std::printf("\n");
   }
+}
+
+// How many cases could not have seen a blatant error of some kind under their declaration, and how
+// to sharpen them (conform/resolving_power.hpp).
+void print_resolving_power(const conform::ConformResult& r) {
+  std::size_t judged = 0;
+  std::size_t blind = 0;
+  for (const conform::CaseResult& c : r.cases) {
+    if (!c.judgement || !c.judgement->resolving_power) continue;
+    ++judged;
+    blind += !c.judgement->resolving_power->blind.empty();
+  }
+  if (!judged) return;
+  if (blind == 0) {
+    std::printf("resolving power: none of %zu judged cases lets a probe that changes a decided pixel pass (report.json: resolving_power)\n", judged);
+    return;
+  }
+  std::printf("resolving power: %zu of %zu judged cases are blind to a blatant error under their declaration "
+              "(report.json: resolving_power); to sharpen them, %s\n",
+              blind, judged, report::kHowToSharpen);
 }
 
 int run_conform_command(const ConformArgs& a) {
@@ -104,7 +127,7 @@ int run_conform_command(const ConformArgs& a) {
   if (!a.technique.empty()) o.techniques.push_back(a.technique);
   o.convention = &parse_convention(a.convention);
   o.shadow_map_size = a.shadow_map_size;
-  apply_render_variants(a.variants, a.shadow_map_size, o.variants);
+  apply_render_variants(a.variants, a.shadow_map_size, o.render_options);
   o.resolution_scale = a.resolution_scale;
   if (!a.resolution.empty()) {
     const Size2 size = parse_size("--resolution", a.resolution, outputs::kMaxResolution);
@@ -113,7 +136,7 @@ int run_conform_command(const ConformArgs& a) {
   }
   try {
     o.backend = renderer::parse_driver(a.backend);
-    o.gl = renderer::parse_gl_api(a.gl);
+    o.gl_api = renderer::parse_gl_api(a.gl);
   } catch (const std::invalid_argument& e) {
     throw BadInput(e.what());
   }
@@ -137,9 +160,9 @@ int run_conform_command(const ConformArgs& a) {
   const auto progress = [&](std::size_t done, std::size_t total, const conform::CaseResult& c) {
     if (a.quiet) return;
     std::string detail;
-    if (c.comparison) {
+    if (const compare::FolderComparison* comparison = c.comparison()) {
       char buf[96];
-      std::snprintf(buf, sizeof buf, "%zu wrong (%.3g %%)", c.comparison->total.wrong, c.comparison->total.wrong_percent());
+      std::snprintf(buf, sizeof buf, "%zu wrong (%.3g %%)", comparison->total.wrong, comparison->total.wrong_percent());
       detail = buf;
     } else {
       detail = c.error;
@@ -181,6 +204,7 @@ int run_conform_command(const ConformArgs& a) {
   if (linked)
     std::printf("note: %zu candidate file(s) were read through symbolic links that leave --candidate-dir "
                 "(report.json: read_through_links)\n", linked);
+  print_resolving_power(r);
   print_expectation_lines(r, o.expectations);
   print_shard(r, o);
   std::printf("report: %s\n        %s\n", r.report_html.string().c_str(), r.report_json.string().c_str());

@@ -16,7 +16,9 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "catalogue_scene.hpp"
@@ -82,6 +84,33 @@ Mutation morphed(int n, bool grow) {
   };
 }
 
+// An 8 x 8 tile swapped with the one 8 px to its right (a tiled GPU's or a cache's local glitch), at
+// the `rank`-th place (0: first) where that changes most pixels, places 16 px apart: the busiest
+// place of a scene's boundaries and the next ones, wherever they lie.
+Mutation swapped_tile(int rank) {
+  return [rank](Image8& m) {
+    const auto at = [&m](int x, int y) -> std::uint8_t& { return m.pixels[static_cast<std::size_t>(y * m.width + x)]; };
+    std::vector<std::pair<int, int>> taken;
+    int bx = 0, by = 0;
+    for (int r = 0; r <= rank; ++r) {
+      int best = -1;
+      for (int y = 0; y + 8 <= m.height; y += 4)
+        for (int x = 0; x + 16 <= m.width; x += 4) {
+          bool near = false;
+          for (const auto& [tx, ty] : taken) near = near || (std::abs(x - tx) < 16 && std::abs(y - ty) < 16);
+          if (near) continue;
+          int differ = 0;
+          for (int v = 0; v < 8; ++v)
+            for (int u = 0; u < 8; ++u) differ += at(x + u, y + v) != at(x + u + 8, y + v);
+          if (differ > best) best = differ, bx = x, by = y;
+        }
+      taken.emplace_back(bx, by);
+    }
+    for (int v = 0; v < 8; ++v)
+      for (int u = 0; u < 8; ++u) std::swap(at(bx + u, by + v), at(bx + u + 8, by + v));
+  };
+}
+
 struct Mutant {
   const char* name;
   Mutation mutate;
@@ -98,23 +127,9 @@ std::vector<Mutant> mutants() {
       {"grown-2px", morphed(2, true)},
       {"shrunk-1px", morphed(1, false)},
       {"shrunk-2px", morphed(2, false)},
-      {"swapped-tile", [](Image8& m) {
-         // An 8 x 8 tile swapped with the one 8 px to its right, where that changes most pixels.
-         int best = -1, bx = 0, by = 0;
-         for (int y = 0; y + 8 <= m.height; y += 4)
-           for (int x = 0; x + 16 <= m.width; x += 4) {
-             int differ = 0;
-             for (int v = 0; v < 8; ++v)
-               for (int u = 0; u < 8; ++u)
-                 differ += m.pixels[static_cast<std::size_t>((y + v) * m.width + x + u)] !=
-                           m.pixels[static_cast<std::size_t>((y + v) * m.width + x + u + 8)];
-             if (differ > best) best = differ, bx = x, by = y;
-           }
-         for (int v = 0; v < 8; ++v)
-           for (int u = 0; u < 8; ++u)
-             std::swap(m.pixels[static_cast<std::size_t>((by + v) * m.width + bx + u)],
-                       m.pixels[static_cast<std::size_t>((by + v) * m.width + bx + u + 8)]);
-       }},
+      {"swapped-tile", swapped_tile(0)},
+      {"swapped-tile-2nd", swapped_tile(1)},
+      {"swapped-tile-3rd", swapped_tile(2)},
   };
 }
 
@@ -185,7 +200,7 @@ struct SceneUnderTest : test::CatalogueScene {
 
 // Known limitations, each seen to fail in the predicted way (not FAIL, no unexplained core, and no
 // more displaced pixels than the bound lets through), measured over the whole catalogue
-// (docs/tolerance-model.md, "What is left"). Three kinds:
+// (docs/tolerance-model.md, "What is left"). Four kinds:
 // - a declared map SMALLER than the one drawn, on the candidate's own views, widens the texel
 //   footprint until it takes in the whole change: at 256² under grazing_light's sun 8 degrees up one
 //   512-texel map texel lies along the ground over about 7 px (1 / sin 8°), so a swapped tile inside
@@ -196,6 +211,10 @@ struct SceneUnderTest : test::CatalogueScene {
 // - camera_at_light, whose camera sits at the light: no cast shadow is visible, and a mutant changes
 //   only slivers along silhouettes (1 to 4 px unexplained), as the engines' correct renders show
 //   them (4 px, OpenSceneGraph SoftShadowMap);
+// - a tile swapped where the declared footprint (a 512-texel own map, an 8-texel filter, all the
+//   largest keys) takes in most of its change: what is left unexplained is a run along the boundary
+//   (0 to 13 px in one 9 x 9 window), as thin as the runs correct renders leave (up to 12), so the
+//   local-glitch bound (thresholds.hpp, kLocalGlitch) cannot tell it from them either;
 // - sun_horizon under all the largest keys at once (a 512-texel own map, whose texels are a metre
 //   wide over 600 m of ground): a 1-px shift leaves 23 px unexplained, every one displaced, just
 //   below that bound (0.92 % of the edges; correct renders reach 0.78 %).
@@ -216,8 +235,24 @@ constexpr KnownGap kKnownGaps[] = {
     {"camera_at_light", "swapped-tile",
      "ours,slope-0,slope-0-own,slope-8,constant-6.4cm,constant-1m,normal-offset-4-texels,depth-bias-1%,distance-bias-1m,"
      "filter-8,map-512,map-512-pack,largest"},
+    {"camera_at_light", "swapped-tile-2nd",
+     "ours,slope-0,slope-0-own,slope-8,constant-6.4cm,constant-1m,normal-offset-4-texels,depth-bias-1%,distance-bias-1m,"
+     "filter-8,map-512,map-512-pack,largest"},
     {"sun_horizon", "shifted-1px", "largest"},
+    {"directional_light", "swapped-tile-2nd", "largest"},
+    {"sun_horizon", "swapped-tile-3rd", "filter-8,map-512,largest"},
 };
+
+// The resolving power's probe of a mutant's kind (resolving_power.hpp); none for the tiles placed
+// elsewhere than the busiest place, which the probe does not try, and the all-* masks.
+std::optional<conform::ProbeKind> probe_kind_of(const std::string& mutant) {
+  if (mutant == "shifted-1px") return conform::ProbeKind::Shift1;
+  if (mutant == "shifted-2px") return conform::ProbeKind::Shift2;
+  if (mutant == "grown-1px") return conform::ProbeKind::Grown1;
+  if (mutant == "shrunk-1px" || mutant == "shrunk-2px") return conform::ProbeKind::Shrunk1;
+  if (mutant == "swapped-tile") return conform::ProbeKind::Tile8;
+  return std::nullopt;
+}
 
 bool known_gap(const std::string& scene, const std::string& mutant, const std::string& declaration) {
   for (const KnownGap& g : kKnownGaps)
@@ -231,7 +266,13 @@ class DeclarationGrid : public ::testing::TestWithParam<const char*> {};
 TEST_P(DeclarationGrid, TheControlPassesAndNoDeclarationLetsAMutantPass) {
   SceneUnderTest s(GetParam());
   const conform::CaseJudgement control = s.judged("control", s.control, grid().front().json);
-  ASSERT_EQ(control.comparison.judgement.verdict, compare::Verdict::Pass) << "the control (our render, honestly declared)";
+  ASSERT_EQ(control.comparison.decision.verdict, compare::Verdict::Pass) << "the control (our render, honestly declared)";
+  // Under our own honest declaration a case resolves 1-px shifts, but where no cast shadow is in
+  // view (then no shift changes a decided pixel).
+  ASSERT_TRUE(control.resolving_power);
+  const conform::ResolvingPower& power = *control.resolving_power;
+  EXPECT_FALSE(power.blind_to(conform::ProbeKind::Shift1)) << power.summary();
+  EXPECT_EQ(power.sees_nothing_of(conform::ProbeKind::Shift1), s.scene.name == "camera_at_light") << power.summary();
   // The reference's decided pixels (255): a mutant is judged where it changes one of them.
   const Image8 decided = outputs::read_image8(s.reference / "decided.png", 1);
   for (const Mutant& m : mutants()) {
@@ -244,18 +285,28 @@ TEST_P(DeclarationGrid, TheControlPassesAndNoDeclarationLetsAMutantPass) {
     for (const Declaration& d : grid()) {
       const conform::CaseJudgement j = s.judged(std::string(m.name) + "-" + d.name, mask, d.json);
       const compare::MaskMetrics& t = j.comparison.total;
+      // The tiles' densest windows, the local-glitch bound's margin from below (thresholds.hpp).
+      if (std::string(m.name).rfind("swapped-tile", 0) == 0)
+        std::printf("%s %s declared %s: %s, %zu px unexplained, densest 9 x 9 window %zu\n", s.scene.name.c_str(), m.name,
+                    d.name.c_str(), compare::to_string(j.comparison.decision.verdict), t.unexplained, t.densest_unexplained);
       if (known_gap(s.scene.name, m.name, d.name)) {
-        EXPECT_NE(j.comparison.judgement.verdict, compare::Verdict::Fail)
+        EXPECT_NE(j.comparison.decision.verdict, compare::Verdict::Fail)
             << m.name << " declared " << d.name << " FAILs now: remove it from kKnownGaps";
+        // Never silently: the case says it is blind to the kind of error it lets through.
+        ASSERT_TRUE(j.resolving_power);
+        if (const std::optional<conform::ProbeKind> kind = probe_kind_of(m.name))
+          EXPECT_TRUE(j.resolving_power->blind_to(*kind) || j.resolving_power->sees_nothing_of(*kind))
+              << m.name << " declared " << d.name << " passes, but the case says: " << j.resolving_power->summary();
         EXPECT_EQ(t.unexplained_core, 0u) << m.name << " declared " << d.name << ": not the predicted kind of gap";
         EXPECT_LE(t.displaced, compare::kDisplaced.displaced_fail * static_cast<double>(t.edge_pixels))
             << m.name << " declared " << d.name << ": not the predicted kind of gap";
         continue;
       }
-      EXPECT_EQ(j.comparison.judgement.verdict, compare::Verdict::Fail)
-          << m.name << " declared " << d.name << ": " << compare::to_string(j.comparison.judgement.verdict) << " with "
+      EXPECT_EQ(j.comparison.decision.verdict, compare::Verdict::Fail)
+          << m.name << " declared " << d.name << ": " << compare::to_string(j.comparison.decision.verdict) << " with "
           << t.unexplained << " px unexplained of " << t.wrong << " wrong (" << 100 * t.unexplained_ratio() << " % of "
-          << t.edge_pixels << " edge px, core " << t.unexplained_core << ", " << t.displaced << " displaced)";
+          << t.edge_pixels << " edge px, core " << t.unexplained_core << ", " << t.displaced << " displaced, densest 9 x 9 window "
+          << t.densest_unexplained << ")";
     }
   }
 }
@@ -275,11 +326,11 @@ TEST_P(DeclarationGrid, DeclaringLessNeverExplainsMore) {
         if (i > 0) {
           EXPECT_GE(j.comparison.total.unexplained, before_unexplained)
               << m.name << ": declaring " << chain[i].name << " instead of " << chain[i - 1].name << " explained more";
-          EXPECT_GE(j.comparison.judgement.verdict, before)
+          EXPECT_GE(j.comparison.decision.verdict, before)
               << m.name << ": declaring " << chain[i].name << " instead of " << chain[i - 1].name << " improved the verdict";
         }
         before_unexplained = j.comparison.total.unexplained;
-        before = j.comparison.judgement.verdict;
+        before = j.comparison.decision.verdict;
       }
     }
   }
@@ -300,16 +351,16 @@ TEST(Staircases, ADeclaredPackMapSizeIsCheckedAgainstTheMasksOwnStaircases) {
   ASSERT_EQ(coarse.declaration.shadow_map_size, 512);
   ASSERT_TRUE(coarse.declaration.light_views_from_pack);
   const conform::CaseJudgement drawn = s.judged("staircases-512", coarse.masks.at(0), at_512);
-  EXPECT_EQ(drawn.comparison.judgement.verdict, compare::Verdict::Pass);
+  EXPECT_EQ(drawn.comparison.decision.verdict, compare::Verdict::Pass);
   EXPECT_NE(drawn.causes.find("512-texel map on the pack's grid is not contradicted"), std::string::npos) << drawn.causes;
   const conform::CaseJudgement finer = s.judged("staircases-finer", s.control, at_512);
-  EXPECT_EQ(finer.comparison.judgement.verdict, compare::Verdict::Pass) << "a correct render, wrongly declared";
+  EXPECT_EQ(finer.comparison.decision.verdict, compare::Verdict::Pass) << "a correct render, wrongly declared";
   EXPECT_NE(finer.causes.find("is contradicted"), std::string::npos) << finer.causes;
   Image8 moved = s.control;
   shifted(1)(moved);
   const conform::CaseJudgement shift = s.judged("staircases-shifted", moved, at_512);
   EXPECT_NE(shift.causes.find("is contradicted"), std::string::npos) << shift.causes;
-  EXPECT_EQ(shift.comparison.judgement.verdict, compare::Verdict::Fail)
+  EXPECT_EQ(shift.comparison.decision.verdict, compare::Verdict::Fail)
       << shift.comparison.total.unexplained << " px unexplained (" << 100 * shift.comparison.total.unexplained_ratio()
       << " % of the edges)";
 }
@@ -334,9 +385,9 @@ TEST(PeterPanning, AConstantBiasDeclaredHonestlyStillFailsOnItsLeak) {
     const conform::CaseJudgement j = judge.judge(&prepared, {reference, dir, "shadowmap", false, {}});
     const compare::MaskMetrics& m = j.comparison.total;
     std::printf("contact_shadow, constant bias %.3f m declared: %s, %zu px false light, %zu explained by bias, %zu unexplained "
-                "(%.2f %% of %zu edge px, core %zu)\n", metres, compare::to_string(j.comparison.judgement.verdict), m.false_light,
+                "(%.2f %% of %zu edge px, core %zu)\n", metres, compare::to_string(j.comparison.decision.verdict), m.false_light,
                 m.explained_bias, m.unexplained, 100 * m.unexplained_ratio(), m.edge_pixels, m.unexplained_core);
-    EXPECT_EQ(j.comparison.judgement.verdict, metres == 0 ? compare::Verdict::Pass : compare::Verdict::Fail)
+    EXPECT_EQ(j.comparison.decision.verdict, metres == 0 ? compare::Verdict::Pass : compare::Verdict::Fail)
         << metres << " m declared: " << m.false_light << " px false light, " << m.explained_bias << " explained by bias, "
         << m.unexplained << " unexplained (" << 100 * m.unexplained_ratio() << " % of " << m.edge_pixels << " edge px)";
   }
@@ -369,10 +420,10 @@ TEST(ContactLeak, ACorrectMapsLeakBehindABoxOnAGrazingGroundIsExplained) {
       const conform::CaseJudgement j = judge.judge(&prepared, {reference, dir, technique, false, {}});
       const compare::MaskMetrics& m = j.comparison.total;
       std::printf("grazing_light at 1024², %s, %d texels: %s, %zu px false light, %zu explained by bias, %zu unexplained "
-                  "(%.2f %% of %zu edge px, core %zu)\n", technique, size, compare::to_string(j.comparison.judgement.verdict),
+                  "(%.2f %% of %zu edge px, core %zu)\n", technique, size, compare::to_string(j.comparison.decision.verdict),
                   m.false_light, m.explained_bias, m.unexplained, 100 * m.unexplained_ratio(), m.edge_pixels,
                   m.unexplained_core);
-      EXPECT_NE(j.comparison.judgement.verdict, compare::Verdict::Fail) << technique << " at " << size << " texels";
+      EXPECT_NE(j.comparison.decision.verdict, compare::Verdict::Fail) << technique << " at " << size << " texels";
       EXPECT_EQ(m.unexplained_core, 0u) << technique << " at " << size << " texels";
       EXPECT_GT(m.explained_bias, 0u) << technique << " at " << size << " texels: the leak is the bias's";
     }
@@ -403,8 +454,8 @@ TEST(PerLightDeclarations, AnEntryReachesItsLightAndBuysNothing) {
                               R"("depth_bias": 0.01, "filter_radius_texels": 8, "light_views": "own", "shadow_map_size": 512)";
   const std::string entry_for_1 = R"(, "lights": [{}, {)" + largest + "}]";
   // Our masks: PASS with or without the entry.
-  EXPECT_EQ(judged("plain", ours.masks[0], ours.masks[1], "").comparison.judgement.verdict, compare::Verdict::Pass);
-  EXPECT_EQ(judged("entry", ours.masks[0], ours.masks[1], entry_for_1).comparison.judgement.verdict, compare::Verdict::Pass);
+  EXPECT_EQ(judged("plain", ours.masks[0], ours.masks[1], "").comparison.decision.verdict, compare::Verdict::Pass);
+  EXPECT_EQ(judged("entry", ours.masks[0], ours.masks[1], entry_for_1).comparison.decision.verdict, compare::Verdict::Pass);
   // Both masks shifted by a pixel: light 0 is judged the same with or without light 1's entry, and
   // light 1 under its entry (the larger footprint explains more of its shift).
   Image8 shifted_0 = ours.masks[0], shifted_1 = ours.masks[1];
@@ -424,7 +475,7 @@ TEST(PerLightDeclarations, AnEntryReachesItsLightAndBuysNothing) {
   Image8 dark = ours.masks[1];
   for_surface(dark, [](std::uint8_t& v) { v = kMaskShadowed; });
   const conform::CaseJudgement bought = judged("all-shadowed", ours.masks[0], dark, entry_for_1);
-  EXPECT_EQ(bought.comparison.judgement.verdict, compare::Verdict::Fail)
+  EXPECT_EQ(bought.comparison.decision.verdict, compare::Verdict::Fail)
       << bought.comparison.per_light.at(1).metrics.unexplained << " px unexplained on light 1";
 }
 

@@ -49,7 +49,7 @@ conform::CaseJudgement render_and_judge(const std::string& scene_name, const std
   renderer::write_outputs(r, test::llvmpipe_renderer().info(), scene, dir);
   conform::Judge judge;
   conform::CaseJudgement j = judge.judge(&prepared, {reference, dir, technique, true, {}});
-  const compare::Judgement& v = j.comparison.judgement;
+  const compare::Decision& v = j.comparison.decision;
   std::printf("%s x %s, %d random taps, %s: %s", scene_name.c_str(), technique.c_str(), taps, variant.name,
               compare::to_string(v.verdict));
   if (j.comparison.visibility_total)
@@ -65,22 +65,22 @@ class RandomKernel : public ::testing::TestWithParam<int> {};
 // soft_penumbra: a rect light over a plate and a ball, the penumbra the soft techniques exist for.
 TEST_P(RandomKernel, PcssPassesAndItsFaultsFailOnTheSoftPenumbra) {
   const int taps = GetParam();
-  EXPECT_EQ(render_and_judge("soft_penumbra", "pcss", taps, {"control", {}}).comparison.judgement.verdict,
+  EXPECT_EQ(render_and_judge("soft_penumbra", "pcss", taps, {"control", {}}).comparison.decision.verdict,
             compare::Verdict::Pass);
   for (const Variant& v : {Variant{"half-light-size", [](Faults& f) { f.soft.light_size_scale = 0.5; }},
                            Variant{"twice-light-size", [](Faults& f) { f.soft.light_size_scale = 2.0; }},
                            Variant{"blocker-at-receiver", [](Faults& f) { f.soft.blocker_depth_from_receiver = true; }}})
-    EXPECT_EQ(render_and_judge("soft_penumbra", "pcss", taps, v).comparison.judgement.verdict, compare::Verdict::Fail)
+    EXPECT_EQ(render_and_judge("soft_penumbra", "pcss", taps, v).comparison.decision.verdict, compare::Verdict::Fail)
         << v.name << " with " << taps << " random taps";
 }
 
 // directional_light: flat ground under a sun, where a missing bias shows as acne.
 TEST_P(RandomKernel, PcfPassesAndItsAcneFailsUnderTheSun) {
   const int taps = GetParam();
-  EXPECT_EQ(render_and_judge("directional_light", "shadowmap-pcf", taps, {"control", {}}).comparison.judgement.verdict,
+  EXPECT_EQ(render_and_judge("directional_light", "shadowmap-pcf", taps, {"control", {}}).comparison.decision.verdict,
             compare::Verdict::Pass);
   const Variant acne{"no-polygon-offset", [](Faults& f) { f.shadow_map.no_polygon_offset = true; }};
-  EXPECT_EQ(render_and_judge("directional_light", "shadowmap-pcf", taps, acne).comparison.judgement.verdict,
+  EXPECT_EQ(render_and_judge("directional_light", "shadowmap-pcf", taps, acne).comparison.decision.verdict,
             compare::Verdict::Fail);
 }
 

@@ -77,15 +77,15 @@ conform::ExtraTechnique variant_of(const Row& r) {
 
 std::string numbers(const conform::CaseResult& c) {
   char buf[256];
-  if (!c.comparison) {
+  if (!c.comparison()) {
     std::snprintf(buf, sizeof buf, "%s (%s)", conform::to_string(c.status), c.error.c_str());
     return buf;
   }
-  const compare::MaskMetrics& m = c.comparison->total;
+  const compare::MaskMetrics& m = c.comparison()->total;
   std::snprintf(buf, sizeof buf, "%-5s %7.3f %% wrong, largest region %zu px", conform::to_string(c.status),
                 m.wrong_percent(), m.largest_region);
   std::string out = buf;
-  if (const auto& v = c.comparison->visibility_total) {  // a soft row: the lit fraction's evidence
+  if (const auto& v = c.comparison()->visibility_total) {  // a soft row: the lit fraction's evidence
     std::snprintf(buf, sizeof buf, "; lit fraction mean error %.3f (bound %.3f), %.2f %% unexplained, core %zu px",
                   v->mean_penumbra_error(), v->mean_error_fail(), 100.0 * v->unexplained_ratio(), v->unexplained_core);
     out += buf;
@@ -195,8 +195,8 @@ int run_at(const Size& size) {
       const conform::CaseResult& c = *control_cases.at(control_key(scene));
       const bool caught = v.status == Status::Fail && green(c.status);
       if (const KnownMiss* k = known_miss(row.name, size.name)) {
-        const bool as_predicted = v.status == Status::Pass && green(c.status) && v.comparison &&
-                                  v.comparison->visibility_total && v.comparison->visibility_total->unexplained == 0;
+        const bool as_predicted = v.status == Status::Pass && green(c.status) && v.comparison() &&
+                                  v.comparison()->visibility_total && v.comparison()->visibility_total->unexplained == 0;
         missed += !as_predicted;
         std::printf("%-38s %-28s variant %s, control %s   %s: %s\n", std::string(row.name).c_str(), scene.c_str(),
                     numbers(v).c_str(), conform::to_string(c.status),
@@ -256,7 +256,7 @@ int survey() {
         const bool listed = std::find(required.begin(), required.end(), scene) != required.end();
         char buf[128];
         std::snprintf(buf, sizeof buf, listed ? "**%s** %.3g %%" : "%s %.3g %%", scene.c_str(),
-                      v->comparison->total.wrong_percent());
+                      v->comparison()->total.wrong_percent());
         text += (text.empty() ? "" : ", ") + std::string(buf);
       }
       caught_on[std::string(r->name)] = text.empty() ? "NOT CAUGHT" : text;

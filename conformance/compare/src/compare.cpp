@@ -76,6 +76,7 @@ MaskMetrics& MaskMetrics::operator+=(const MaskMetrics& o) {
   edge_pixels += o.edge_pixels;
   invariant_pixels += o.invariant_pixels;
   displaced += o.displaced;
+  densest_unexplained = std::max(densest_unexplained, o.densest_unexplained);
   return *this;
 }
 
@@ -126,6 +127,22 @@ std::size_t count_cores_listed(const std::uint8_t* flagged, const std::vector<st
     cores += core;
   }
   return cores;
+}
+
+// The most flagged pixels in the (2 kClusterRadius + 1)² window centred on one of the listed ones
+// (`flagged` marks exactly those), clipped to the image: 81 reads per listed pixel.
+std::size_t densest_listed(const std::uint8_t* flagged, const std::vector<std::size_t>& list, int w, int h) {
+  const std::size_t stride = static_cast<std::size_t>(w);
+  std::size_t densest = 0;
+  for (const std::size_t i : list) {
+    const int x = static_cast<int>(i % stride), y = static_cast<int>(i / stride);
+    std::size_t n = 0;
+    for (int yy = std::max(0, y - kClusterRadius); yy <= std::min(h - 1, y + kClusterRadius); ++yy)
+      for (int xx = std::max(0, x - kClusterRadius); xx <= std::min(w - 1, x + kClusterRadius); ++xx)
+        n += flagged[static_cast<std::size_t>(yy) * stride + static_cast<std::size_t>(xx)] != 0;
+    densest = std::max(densest, n);
+  }
+  return densest;
 }
 
 // 8-connected regions of the listed wrong pixels (`codes` non-zero exactly there; cleared as the
@@ -366,6 +383,7 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
   // The shapes of the unexplained pixels: cores, a displacement that makes them right, regions.
   if (!wrong.empty()) {
     m.unexplained_core = count_cores_listed(wp.flagged.get(), wp.unexplained, w, h);
+    m.densest_unexplained = densest_listed(wp.flagged.get(), wp.unexplained, w, h);
     // The same over the false light alone (an expected failure's predicted kind, conform.cpp).
     for (const std::size_t i : wp.unexplained) wp.flagged[i] = wp.codes[i] == kFalseLight;
     m.unexplained_false_light_core = count_cores_listed(wp.flagged.get(), wp.unexplained_false_light, w, h);
@@ -392,8 +410,8 @@ const char* to_string(Verdict v) {
   return "?";
 }
 
-Judgement judge(const MaskMetrics& m, const Threshold& t, const std::string& displaced_how) {
-  Judgement j;
+Decision decide(const MaskMetrics& m, const Threshold& t, const std::string& displaced_how) {
+  Decision j;
   const auto raise = [&](Verdict v, std::string why) {
     j.verdict = std::max(j.verdict, v);
     j.reasons.push_back(std::move(why));
@@ -410,6 +428,9 @@ Judgement judge(const MaskMetrics& m, const Threshold& t, const std::string& dis
                              percent(ratio_to_edges(m.displaced, m.edge_pixels)) + " of " + edges +
                              " come right when the shadows are moved back" + (displaced_how.empty() ? "" : " (" + displaced_how + ")") +
                              ": displaced shadows > " + percent(kDisplaced.displaced_fail) + " (fail bound)");
+  if (t.bands && m.densest_unexplained > kLocalGlitch.densest_fail)
+    raise(Verdict::Fail, std::to_string(m.densest_unexplained) + " unexplained px in one 9 x 9 window: a local glitch > " +
+                             std::to_string(kLocalGlitch.densest_fail) + " (fail bound)");
   if (m.explained_ratio() > t.explained_warn)
     raise(Verdict::QualityWarning, "explained wrong " + std::to_string(m.explained_texel + m.explained_bias) + " px = " +
                                        percent(m.explained_ratio()) + " of " + edges + " > " + percent(t.explained_warn) +
@@ -476,12 +497,12 @@ FolderComparison compare_folders(const std::filesystem::path& reference_dir,
     displaced_how += (displaced_how.empty() ? "" : "; ") + (out.masks.size() > 1 ? out.masks[i] + ": " : std::string()) +
                      describe(d.move);
   }
-  out.judgement = judge(out.total, threshold, displaced_how);
-  if (out.visibility_total) judge_visibility(*out.visibility_total, out.judgement);
+  out.decision = decide(out.total, threshold, displaced_how);
+  if (out.visibility_total) decide_visibility(*out.visibility_total, out.decision);
   return out;
 }
 
-void judge_visibility(const VisibilityMetrics& m, Judgement& j) {
+void decide_visibility(const VisibilityMetrics& m, Decision& j) {
   char buf[320];
   const auto fail = [&](const std::string& reason) {
     j.verdict = Verdict::Fail;

@@ -22,7 +22,7 @@ TEST(CompareMask, IdenticalMasksHaveNoWrongPixels) {
   EXPECT_EQ(c.metrics.decided, 64u);
   EXPECT_EQ(c.metrics.decided_surface, 63u);
   EXPECT_EQ(c.metrics.regions, 0u);
-  EXPECT_EQ(judge(c.metrics, kExactGeometry).verdict, Verdict::Pass);
+  EXPECT_EQ(decide(c.metrics, kExactGeometry).verdict, Verdict::Pass);
 }
 
 TEST(CompareMask, CountsEachKindOnDecidedPixelsOnly) {
@@ -104,20 +104,20 @@ TEST(Judge, EachBoundGivesItsVerdict) {
   MaskMetrics m;
   m.edge_pixels = 1000;
   m.unexplained = 20;  // 2 % of the edges: at the bound
-  EXPECT_EQ(judge(m, t).verdict, Verdict::Pass);
+  EXPECT_EQ(decide(m, t).verdict, Verdict::Pass);
   m.unexplained = 21;
-  Judgement j = judge(m, t);
+  Decision j = decide(m, t);
   EXPECT_EQ(j.verdict, Verdict::Fail);
   ASSERT_EQ(j.reasons.size(), 1u);
   EXPECT_NE(j.reasons[0].find("unexplained wrong 21 px"), std::string::npos) << j.reasons[0];
   m.unexplained = 0;
   m.explained_texel = 400;
   m.explained_bias = 100;  // half the edges: at the quality bound
-  EXPECT_EQ(judge(m, t).verdict, Verdict::Pass);
+  EXPECT_EQ(decide(m, t).verdict, Verdict::Pass);
   m.explained_bias = 101;
-  EXPECT_EQ(judge(m, t).verdict, Verdict::QualityWarning);
+  EXPECT_EQ(decide(m, t).verdict, Verdict::QualityWarning);
   m.unexplained_core = 1;  // one thick core is structural, whatever the ratios
-  j = judge(m, t);
+  j = decide(m, t);
   EXPECT_EQ(j.verdict, Verdict::Fail);
   EXPECT_NE(j.reasons[0].find("core"), std::string::npos) << j.reasons[0];
 }
@@ -125,7 +125,7 @@ TEST(Judge, EachBoundGivesItsVerdict) {
 TEST(Judge, UnexplainedErrorsWithoutAnyBoundaryAreAFailure) {
   MaskMetrics m;
   m.wrong = m.unexplained = 1;
-  EXPECT_EQ(judge(m, kShadowMap).verdict, Verdict::Fail);
+  EXPECT_EQ(decide(m, kShadowMap).verdict, Verdict::Fail);
 }
 
 TEST(CompareMask, CountsEdgesAndThickCores) {
@@ -142,7 +142,44 @@ TEST(CompareMask, CountsEdgesAndThickCores) {
   // Core: the whole 5 × 5 block around it inside the image and wrong: x in 2..5 (x < 2 reaches the
   // border, x > 5 the right half, which is right), y in 4..7: 4 × 4 = 16.
   EXPECT_EQ(c.metrics.unexplained_core, 16u);
-  EXPECT_EQ(judge(c.metrics, kShadowMap).verdict, Verdict::Fail);
+  EXPECT_EQ(decide(c.metrics, kShadowMap).verdict, Verdict::Fail);
+}
+
+// A local glitch is many unexplained pixels in one place. Along a long boundary (a 64-px edge, 128
+// edge pixels), a run two pixels thick and 40 long is no glitch (the ratio bound is given room here:
+// 80 px is 62 % of the edges), its densest 9 × 9
+// window holds 18. 20 pixels packed in a 5 × 4 block FAIL by the window alone.
+TEST(CompareMask, ALocalGlitchFailsWhereABoundaryRunDoesNot) {
+  const Threshold roomy{"test", true, 1.0, 1.0, "a ratio bound out of the way"};
+  Image8 ref = grey(64, 64, 255);
+  for (int y = 32; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) set(ref, x, y, 0);
+  Image8 run = ref;
+  for (int y = 30; y < 32; ++y)  // two rows of false shadow above the boundary
+    for (int x = 10; x < 50; ++x) set(run, x, y, 0);
+  const MaskComparison thin = compare_mask(ref, grey(64, 64, 255), run);
+  EXPECT_EQ(thin.metrics.unexplained, 80u);
+  EXPECT_EQ(thin.metrics.densest_unexplained, 18u);
+  EXPECT_EQ(thin.metrics.unexplained_core, 0u);
+  // (A whole run so placed is a displaced shadow, which its own bound judges: not a glitch.)
+  for (const std::string& reason : decide(thin.metrics, roomy).reasons)
+    EXPECT_EQ(reason.find("local glitch"), std::string::npos) << "a run two pixels thick is no glitch: " << reason;
+
+  Image8 blob = ref;
+  for (int y = 10; y < 14; ++y)  // 4 rows of 5: no 5 x 5 core, all in one window
+    for (int x = 20; x < 25; ++x) set(blob, x, y, 0);
+  const MaskComparison glitch = compare_mask(ref, grey(64, 64, 255), blob);
+  EXPECT_EQ(glitch.metrics.unexplained, 20u);
+  EXPECT_EQ(glitch.metrics.unexplained_core, 0u);
+  EXPECT_EQ(glitch.metrics.densest_unexplained, 20u);
+  const Decision d = decide(glitch.metrics, roomy);
+  EXPECT_EQ(d.verdict, Verdict::Fail);
+  ASSERT_EQ(d.reasons.size(), 1u);
+  EXPECT_NE(d.reasons[0].find("local glitch"), std::string::npos) << d.reasons[0];
+  // Exact techniques have no band for a tile to hide in, and a terminator's z-fight wedge that grows
+  // with the resolution: the bound is the banded families' (thresholds.hpp).
+  const Threshold exact{"test-exact", false, 1.0, 1.0, "no bands, a ratio bound out of the way"};
+  EXPECT_EQ(decide(glitch.metrics, exact).verdict, Verdict::Pass);
 }
 
 TEST(CompareMask, AnExplainerTakesErrorsOutOfTheUnexplainedAndColoursThem) {
@@ -179,7 +216,7 @@ TEST(CompareMask, TheNoCastShadowInvariantJudgesUndecidedPixelsToo) {
   const MaskComparison c = compare_mask(ref, undecided, cand, "mask", 0, o);
   EXPECT_EQ(c.metrics.wrong, 1u);
   EXPECT_EQ(c.metrics.invariant_pixels, 1u);
-  EXPECT_EQ(judge(c.metrics, kExactGeometry).verdict, Verdict::Fail);
+  EXPECT_EQ(decide(c.metrics, kExactGeometry).verdict, Verdict::Fail);
 }
 
 TEST(Thresholds, EveryRendererTechniqueHasOneAndEachHasAReason) {
@@ -248,7 +285,7 @@ TEST_F(Folders, SeveralLightsAreSummedAndAMissingOneRefused) {
   const FolderComparison c = compare_folders(root / "ref", root / "cand", kExactGeometry);
   EXPECT_EQ(c.total.false_shadow, 16u);
   EXPECT_EQ(c.total.decided_surface, 32u);
-  EXPECT_EQ(c.judgement.verdict, Verdict::Fail);
+  EXPECT_EQ(c.decision.verdict, Verdict::Fail);
 }
 
 TEST_F(Folders, RefusesBadFiles) {

@@ -61,7 +61,7 @@ TEST(Displacement, AShadowMovedOnePixelIsFoundAndFailsWhereTheFootprintTakesMost
   EXPECT_EQ(c.displacement.move.dy, 0);
   EXPECT_EQ(describe(c.displacement.move), "shadows moved 1 px right");
   EXPECT_LT(c.displacement.wrong_after, c.displacement.wrong_before);
-  const Judgement j = judge(c.metrics, kShadowMap, describe(c.displacement.move));
+  const Decision j = decide(c.metrics, kShadowMap, describe(c.displacement.move));
   EXPECT_EQ(j.verdict, Verdict::Fail);
   ASSERT_FALSE(j.reasons.empty());
   EXPECT_NE(j.reasons.back().find("displaced shadows"), std::string::npos) << j.reasons.back();
@@ -69,7 +69,7 @@ TEST(Displacement, AShadowMovedOnePixelIsFoundAndFailsWhereTheFootprintTakesMost
   // The same disc unmoved: nothing wrong, nothing displaced (the control).
   const MaskComparison same = compared(ref, ref, &kMostly);
   EXPECT_EQ(same.metrics.displaced, 0u);
-  EXPECT_EQ(judge(same.metrics, kShadowMap).verdict, Verdict::Pass);
+  EXPECT_EQ(decide(same.metrics, kShadowMap).verdict, Verdict::Pass);
 }
 
 TEST(Displacement, AGrownShadowIsShrunkBack) {
@@ -107,13 +107,13 @@ TEST(Displacement, ExplainingLessNeverImprovesTheVerdict) {
   const Image8 ref = scene(0), cand = scene(1);
   const MaskComparison all = compared(ref, cand, &kAll), most = compared(ref, cand, &kMostly);
   EXPECT_EQ(all.metrics.displaced, 0u) << "nothing unexplained, nothing displaced";
-  EXPECT_EQ(judge(all.metrics, kShadowMap).verdict, Verdict::Pass);
+  EXPECT_EQ(decide(all.metrics, kShadowMap).verdict, Verdict::Pass);
   EXPECT_GT(most.metrics.displaced, 0u);
-  EXPECT_EQ(judge(most.metrics, kShadowMap).verdict, Verdict::Fail);
+  EXPECT_EQ(decide(most.metrics, kShadowMap).verdict, Verdict::Fail);
   const MaskComparison none = compared(ref, cand, nullptr);
   EXPECT_GT(none.metrics.unexplained_ratio(), kShadowMap.unexplained_fail);
   EXPECT_GE(none.metrics.displaced, most.metrics.displaced);
-  EXPECT_EQ(judge(none.metrics, kShadowMap).verdict, Verdict::Fail);
+  EXPECT_EQ(decide(none.metrics, kShadowMap).verdict, Verdict::Fail);
 }
 
 // The plain definition, every move on the whole image (displacement.cpp judges each move on the

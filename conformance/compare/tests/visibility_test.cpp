@@ -50,8 +50,8 @@ TEST(Visibility, TheSameFractionPassesWithNoError) {
   EXPECT_EQ(c.metrics.penumbra, static_cast<std::size_t>((kW - 2) * kH)) << "0 and 1 are not penumbra";
   EXPECT_EQ(c.metrics.unexplained, 0u);
   EXPECT_LE(c.metrics.max_error, 0.5 / 255 + 1e-6);
-  Judgement j;
-  judge_visibility(c.metrics, j);
+  Decision j;
+  decide_visibility(c.metrics, j);
   EXPECT_EQ(j.verdict, Verdict::Pass);
 }
 
@@ -62,8 +62,8 @@ TEST(Visibility, AnErrorWithinSamplingIsTolerated) {
   EXPECT_EQ(c.metrics.beyond_sampling, 0u);
   EXPECT_EQ(c.metrics.unexplained, 0u);
   // ... but a uniform 0.2 over the whole penumbra is no sampling noise: the mean-error bound fails it.
-  Judgement j;
-  judge_visibility(c.metrics, j);
+  Decision j;
+  decide_visibility(c.metrics, j);
   EXPECT_EQ(j.verdict, Verdict::Fail);
   ASSERT_EQ(j.reasons.size(), 1u);
   EXPECT_NE(j.reasons[0].find("mean error over the penumbra"), std::string::npos) << j.reasons[0];
@@ -77,8 +77,8 @@ TEST(Visibility, ABlockBeyondSamplingIsAnUnexplainedCore) {
   const VisibilityComparison c = compare_visibility(r, grey(255), cand, grey(255), kGrid, nullptr, 0);
   EXPECT_GT(c.metrics.unexplained, 0u);
   EXPECT_GT(c.metrics.unexplained_core, 0u);
-  Judgement j;
-  judge_visibility(c.metrics, j);
+  Decision j;
+  decide_visibility(c.metrics, j);
   EXPECT_EQ(j.verdict, Verdict::Fail);
   // Too light: the false-light colour.
   EXPECT_EQ(c.error.at(6, 5, 2) > c.error.at(6, 5, 0), true);
@@ -133,12 +133,12 @@ Image8 random_estimate(const std::vector<float>& truth, int taps, std::uint32_t 
   }
   return img;
 }
-Judgement judged(const VisibilityComparison& c) {
-  Judgement j;
-  judge_visibility(c.metrics, j);
+Decision judged(const VisibilityComparison& c) {
+  Decision j;
+  decide_visibility(c.metrics, j);
   return j;
 }
-bool says(const Judgement& j, const char* what) {
+bool says(const Decision& j, const char* what) {
   for (const std::string& r : j.reasons)
     if (r.find(what) != std::string::npos) return true;
   return false;
@@ -158,7 +158,7 @@ TEST(VisibilityRandom, AnHonestRandomEstimatePassesDeclaredRandom) {
   const Image8 cand = random_estimate(r, 16, 1);
   const VisibilityComparison c =
       compare_visibility(r, wide_grey(255), cand, wide_grey(255), visibility_bounds(8, 4, outputs::Sampling::Random), nullptr, 0);
-  const Judgement j = judged(c);
+  const Decision j = judged(c);
   EXPECT_EQ(j.verdict, Verdict::Pass) << (j.reasons.empty() ? "" : j.reasons[0]);
   // Its noise is what the binomial says (E|e| ~ 0.8 sigma, sigma = sqrt(f (1 - f) / 16) averaged
   // over the ramp: 0.8 * 0.39 / 4 = 0.079), and the local means remove two thirds of it.
@@ -170,7 +170,7 @@ TEST(VisibilityRandom, AWrongWidthFailsUnderRandomSampling) {
   // Half the penumbra's width (a light of half the size), estimated as honestly as above.
   const auto truth = wide_ramp();
   const Image8 cand = random_estimate(wide_ramp(0.5), 16, 2);
-  const Judgement j = judged(compare_visibility(truth, wide_grey(255), cand, wide_grey(255),
+  const Decision j = judged(compare_visibility(truth, wide_grey(255), cand, wide_grey(255),
                                                 visibility_bounds(8, 4, outputs::Sampling::Random), nullptr, 0));
   EXPECT_EQ(j.verdict, Verdict::Fail);
   EXPECT_TRUE(says(j, "wrong width")) << (j.reasons.empty() ? "" : j.reasons[0]);
@@ -186,13 +186,13 @@ TEST(VisibilityRandom, NoiseALocalMeanRemovesIsAWarningNotAWrongWidth) {
   Image8 cand = wide_grey(0);
   for (std::size_t i = 0; i < r.size(); ++i)
     cand.pixels[i] = static_cast<std::uint8_t>(std::lround(255.0 * std::clamp(static_cast<double>(noisy[i]), 0.0, 1.0)));
-  const Judgement random = judged(compare_visibility(r, wide_grey(255), cand, wide_grey(255),
+  const Decision random = judged(compare_visibility(r, wide_grey(255), cand, wide_grey(255),
                                                      visibility_bounds(8, 4, outputs::Sampling::Random), nullptr, 0));
   EXPECT_EQ(random.verdict, Verdict::QualityWarning);
   EXPECT_TRUE(says(random, "noise")) << (random.reasons.empty() ? "" : random.reasons[0]);
   EXPECT_FALSE(says(random, "wrong width"));
   // Declared a grid, the same pixels are a wrong penumbra: the declaration is what says "noise".
-  const Judgement grid = judged(compare_visibility(r, wide_grey(255), cand, wide_grey(255),
+  const Decision grid = judged(compare_visibility(r, wide_grey(255), cand, wide_grey(255),
                                                    visibility_bounds(8, 4, outputs::Sampling::Grid), nullptr, 0));
   EXPECT_EQ(grid.verdict, Verdict::Fail);
 }
@@ -221,12 +221,12 @@ TEST(VisibilityTexels, ForgiveAPenumbraAFewTexelsWide) {
   EXPECT_EQ(asked, static_cast<int>(c.metrics.penumbra)) << "each penumbra pixel asked once";
   EXPECT_NEAR(c.metrics.mean_penumbra_texel_error(), 0.1, 1e-12);
   EXPECT_NEAR(c.metrics.mean_error_fail(), std::hypot(kMeanBound, 0.1), 1e-12);
-  Judgement j;
-  judge_visibility(c.metrics, j);
+  Decision j;
+  decide_visibility(c.metrics, j);
   EXPECT_EQ(j.verdict, Verdict::Pass) << (j.reasons.empty() ? "" : j.reasons[0]);
   // Without a map (no texel shift) the same pixels are a wrong penumbra.
-  Judgement without;
-  judge_visibility(compare_visibility(r, grey(255), cand, grey(255), kGrid, nullptr, 0).metrics, without);
+  Decision without;
+  decide_visibility(compare_visibility(r, grey(255), cand, grey(255), kGrid, nullptr, 0).metrics, without);
   EXPECT_EQ(without.verdict, Verdict::Fail);
 }
 
@@ -234,8 +234,8 @@ TEST(VisibilityTexels, DoNotForgiveAWrongWidthAFineMapResolves) {
   // The same error where the map's half texel moves the truth by only 0.02: FAIL, the texel error named.
   const auto r = ramp();
   const VisibilityTexelShift fine = [](std::size_t, int, int) { return 0.02; };
-  Judgement j;
-  judge_visibility(compare_visibility(r, grey(255), fraction(r, 0.1), grey(255), kGrid, nullptr, 0, &fine).metrics, j);
+  Decision j;
+  decide_visibility(compare_visibility(r, grey(255), fraction(r, 0.1), grey(255), kGrid, nullptr, 0, &fine).metrics, j);
   EXPECT_EQ(j.verdict, Verdict::Fail);
   EXPECT_TRUE(says(j, "texel error 0.010")) << (j.reasons.empty() ? "" : j.reasons[0]);
 }
@@ -282,7 +282,7 @@ TEST_F(VisibilityFolders, JudgesTheFractionAndWritesItsErrorImage) {
   FolderComparison c = compare_folders(root / "ref", root / "cand", kShadowMapPcf, options);
   ASSERT_TRUE(c.visibility_total.has_value());
   EXPECT_EQ(c.visibility_total->unexplained, 0u);
-  EXPECT_EQ(c.judgement.verdict, Verdict::Pass);
+  EXPECT_EQ(c.decision.verdict, Verdict::Pass);
   const std::vector<std::string> written = write_error_images(c, root / "out");
   EXPECT_EQ(written, (std::vector<std::string>{"error.png", "visibility_error.png"}));
   // Without a tolerance the fraction is not judged (a light without an area).

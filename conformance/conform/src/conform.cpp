@@ -60,7 +60,7 @@ struct Run {
   std::vector<std::filesystem::path> reference_dirs;
   std::filesystem::path cache;
   int threads = 1;  // --jobs, or the cores spare when the run starts (before our own threads load them)
-  std::unique_ptr<renderer::Renderer> gl;  // null: an engine team's candidates are judged
+  std::unique_ptr<renderer::Renderer> our_renderer;  // null: an engine team's candidates are judged
   // The index in `scenes` of the control case's scene when it is not this shard's own (judged for
   // the control alone), else none.
   std::optional<std::size_t> control_only;
@@ -91,7 +91,7 @@ std::vector<std::string> plan_techniques(const ConformOptions& o) {
   }
   for (const ExtraTechnique& e : o.extra_techniques)
     if (!renderer::find_technique(e.renders))
-      throw std::invalid_argument("variant '" + e.name + "' renders unknown technique '" + e.renders + "'");
+      throw std::invalid_argument("extra technique '" + e.name + "' renders unknown technique '" + e.renders + "'");
   return out;
 }
 
@@ -193,12 +193,12 @@ void open_renderer(Run& run) {
   if (run.o.candidate_dir) return;
   // llvmpipe's rasteriser threads; an explicit LP_NUM_THREADS in the environment wins.
   if (!std::getenv("LP_NUM_THREADS")) ::setenv("LP_NUM_THREADS", std::to_string(run.threads).c_str(), 1);
-  run.gl = std::make_unique<renderer::Renderer>(run.o.gl, run.o.backend);
+  run.our_renderer = std::make_unique<renderer::Renderer>(run.o.gl_api, run.o.backend);
   ConformResult& r = run.result;
-  r.gl_vendor = run.gl->info().vendor;
-  r.gl_renderer = run.gl->info().renderer;
-  r.gl_version = run.gl->info().version;
-  run.say("OpenGL: " + r.gl_renderer + " (" + r.gl_version + ", " + renderer::to_string(run.o.gl) + ")");
+  r.gl_vendor = run.our_renderer->info().vendor;
+  r.gl_renderer = run.our_renderer->info().renderer;
+  r.gl_version = run.our_renderer->info().version;
+  run.say("OpenGL: " + r.gl_renderer + " (" + r.gl_version + ", " + renderer::to_string(run.o.gl_api) + ")");
 }
 
 // One case: draw (ours) or find (an engine's) the candidate, judge it, write its error images.
@@ -215,22 +215,17 @@ CaseResult run_case(Run& run, std::size_t si, const std::string& technique) {
                                   [&](const ExtraTechnique& e) { return e.name == technique; });
   const ExtraTechnique* extra = found == o.extra_techniques.end() ? nullptr : &*found;
   const std::string judged_as = extra ? extra->judged_as : technique;
-  if (const auto e = s.expect.find(judged_as); e != s.expect.end()) {
-    c.expected_pass = e->second.pass;
-    c.expected_warning = e->second.warn;
-    c.why = e->second.why;
-    c.predicted_errors = e->second.errors;
-  }
+  if (const auto e = s.expect.find(judged_as); e != s.expect.end()) c.expected = e->second;
   try {
-    if (run.gl) {
+    if (run.our_renderer) {
       c.candidate_dir = std::filesystem::absolute(o.out / "renders" / s.name / technique);
-      renderer::RenderOptions render_options = o.variants;
+      renderer::RenderOptions render_options = o.render_options;
       if (extra) render_options.faults = extra->faults;
       auto t = Clock::now();
-      const renderer::RenderResult r = run.gl->render(run.prepared[si], extra ? extra->renders : technique, render_options);
+      const renderer::RenderResult r = run.our_renderer->render(run.prepared[si], extra ? extra->renders : technique, render_options);
       phases.render += since(t);
       t = Clock::now();
-      renderer::write_outputs(r, run.gl->info(), s, c.candidate_dir);
+      renderer::write_outputs(r, run.our_renderer->info(), s, c.candidate_dir);
       phases.write += since(t);
       c.notes = r.notes;
       c.frame_ms = r.median_frame_ms();
@@ -238,26 +233,21 @@ CaseResult run_case(Run& run, std::size_t si, const std::string& technique) {
       c.candidate_dir = std::filesystem::absolute(candidate_folder(*o.candidate_dir, s.name, technique));
     }
     auto t = Clock::now();
-    CaseToJudge what{c.reference_dir, c.candidate_dir, judged_as, run.gl != nullptr,
+    CaseToJudge what{c.reference_dir, c.candidate_dir, judged_as, run.our_renderer != nullptr,
                      std::filesystem::absolute(o.out / "models" / s.name / judged_as)};
-    CaseJudgement j = run.judge.judge(&run.prepared[si], what);
+    c.judgement = run.judge.judge(&run.prepared[si], what);
     phases.judge += since(t);
-    c.declaration = std::move(j.declaration);
-    c.status = j.status;
-    c.signature = std::move(j.signature);
-    c.unmet_expectation = std::move(j.unmet_expectation);
-    c.causes = std::move(j.causes);
-    c.comparison = std::move(j.comparison);
-    if (!run.gl) {
+    c.status = c.judgement->status;
+    if (!run.our_renderer) {
       std::vector<std::filesystem::path> read = {c.candidate_dir / outputs::kCandidateFile, c.candidate_dir / "shaded.png"};
-      for (const std::string& m : c.comparison->masks) read.push_back(c.candidate_dir / m);
+      for (const std::string& m : c.comparison()->masks) read.push_back(c.candidate_dir / m);
       for (const LinkedInput& l : inputs_outside(*o.candidate_dir, read)) c.read_through_links.emplace_back(l.file, l.resolves_to);
     }
     t = Clock::now();
-    const std::filesystem::path error_dir = run.gl ? c.candidate_dir : std::filesystem::absolute(o.out / "errors" / s.name / technique);
-    c.error_images = compare::write_error_images(*c.comparison, error_dir);
+    const std::filesystem::path error_dir = run.our_renderer ? c.candidate_dir : std::filesystem::absolute(o.out / "errors" / s.name / technique);
+    c.error_images = compare::write_error_images(*c.comparison(), error_dir);
     // Keep where an engine's error images went, for the report.
-    if (!run.gl)
+    if (!run.our_renderer)
       for (auto& e : c.error_images) e = (error_dir / e).string();
     phases.error_images += since(t);
   } catch (const outputs::FileError&) {
@@ -287,7 +277,7 @@ namespace {
 // A judged case against the team's expectations files (expectations.hpp).
 void classify(CaseResult& c, const Expectations& e, const std::string& convention) {
   const ExpectationLine* line = e.line_for(c.scene, c.technique, convention);
-  c.outcome = outcome_of(c.status, c.expected_warning, line, e.flaky(case_name(c.scene, c.technique, convention)));
+  c.outcome = outcome_of(c.status, c.expected.warn, line, e.flaky(case_name(c.scene, c.technique, convention)));
   if (line) {
     c.expected_status = to_string(line->status);
     c.expected_line = line->where;

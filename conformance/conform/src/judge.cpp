@@ -1,5 +1,5 @@
-// judge.cpp — the one judge (judge.hpp): declaration, threshold, causes, lit fraction, status and
-// the expected failure's signature, in that order.
+// judge.cpp — the one judge (judge.hpp): declaration, threshold, causes, lit fraction, resolving
+// power, status and the expected failure's signature, in that order.
 #include "shadowref/conform/judge.hpp"
 
 #include <chrono>
@@ -135,7 +135,7 @@ CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJud
                                     "): a soft technique's lit fraction is judged against the scene's lights: give the scene");
     j.causes = "none (the scene is not known: every wrong pixel is unexplained)";
     j.comparison = compare::compare_folders(c.reference_dir, c.candidate_dir, threshold);
-    j.status = status_of(j.comparison.judgement.verdict, true);
+    j.status = status_of(j.comparison.decision.verdict, true);
     return j;
   }
   const scene::Scene& s = *prepared->scene;
@@ -158,8 +158,18 @@ CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJud
   if (!staircases.empty()) j.causes += "; " + staircases;
   j.comparison = compare::compare_folders(c.reference_dir, c.candidate_dir, threshold, options);
 
-  // 5. Status and signature.
-  j.status = status_of(j.comparison.judgement.verdict, j.expectation.pass);
+  // 5. What the verdict could have seen, once per reference, threshold and declaration as judged.
+  // The key is what the probes' verdicts depend on: not the technique's name, producer or version
+  // (the volume techniques and planar share one answer per scene).
+  outputs::CandidateDeclaration keyed = judged;
+  keyed.technique = keyed.producer = keyed.version = "";
+  const std::string key = c.reference_dir.string() + '\n' + std::string(threshold.name) + '\n' + outputs::declaration_text(keyed);
+  auto known = resolving_.find(key);
+  if (known == resolving_.end()) known = resolving_.emplace(key, resolving_power(c.reference_dir, s.lights.size(), threshold, options)).first;
+  j.resolving_power = known->second;
+
+  // 6. Status and signature.
+  j.status = status_of(j.comparison.decision.verdict, j.expectation.pass);
   j.unmet_expectation = unmet_expectation(j.expectation, j.status);
   if (j.status != Status::XFail) return j;
   if (j.expectation.errors != scene::PredictedErrors::Any) {
@@ -187,7 +197,7 @@ CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJud
   const compare::FolderComparison against_model = compare::compare_folders(model_dir, c.candidate_dir, threshold, model_options);
   j.model_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::string ours = " (our " + j.technique + ")";
-  if (against_model.judgement.verdict == compare::Verdict::Fail) {
+  if (against_model.decision.verdict == compare::Verdict::Fail) {
     j.status = Status::Fail;
     j.signature = "expected failure seen, but also wrong elsewhere: " + std::to_string(against_model.total.unexplained) +
                   " px unexplained against the technique's own model of its failure" + ours;

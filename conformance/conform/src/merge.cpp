@@ -196,9 +196,9 @@ ConformResult merged_result(const json& first, std::vector<json>& cases, const E
     k.scene = text_of(c, "scene");
     k.technique = text_of(c, "technique");
     k.status = status_from_string(text_of(c, "status")).value_or(Status::Error);
-    k.expected_warning = text_of(c, "expected") == "warn";
+    k.expected.warn = text_of(c, "expected") == "warn";
     const ExpectationLine* line = e.line_for(k.scene, k.technique, r.convention);
-    k.outcome = outcome_of(k.status, k.expected_warning, line, e.flaky(case_name(k.scene, k.technique, r.convention)));
+    k.outcome = outcome_of(k.status, k.expected.warn, line, e.flaky(case_name(k.scene, k.technique, r.convention)));
     c.erase("expectation");
     if (!e.empty()) {
       c["expectation"] = {{"outcome", to_string(k.outcome)}};

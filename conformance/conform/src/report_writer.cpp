@@ -54,6 +54,18 @@ json expectation_json(const CaseResult& c) {
   return e;
 }
 
+// What a case's verdict could have seen (resolving_power.hpp): the summary, the kinds it is blind
+// to, and each probe's verdict.
+json resolving_power_json(const ResolvingPower& r) {
+  json blind = json::array(), probes = json::array();
+  json unseen = json::array();
+  for (const ProbeKind k : r.blind) blind.push_back(to_string(k));
+  for (const ProbeKind k : r.unseen) unseen.push_back(to_string(k));
+  for (const Probe& p : r.probes)
+    probes.push_back({{"probe", p.name}, {"verdict", compare::to_string(p.verdict)}, {"wrong", p.wrong}, {"unexplained", p.unexplained}});
+  return {{"summary", r.summary()}, {"blind_to", blind}, {"unseen", unseen}, {"probes", probes}};
+}
+
 // One case as report.json holds it, its images copied into the staged report folder.
 json case_json(const CaseResult& c, const outputs::StagedFolder& staged, std::set<std::string>& scenes_copied,
                const ConformResult& r, bool with_expectations) {
@@ -63,52 +75,56 @@ json case_json(const CaseResult& c, const outputs::StagedFolder& staged, std::se
   k["scene_file"] = fs::absolute(c.scene_file).string();
   k["technique"] = c.technique;
   k["status"] = to_string(c.status);
-  k["expected"] = !c.expected_pass ? "fail" : c.expected_warning ? "warn" : "pass";
-  k["why"] = c.why;
-  if (!c.signature.empty()) k["signature"] = c.signature;
+  k["expected"] = !c.expected.pass ? "fail" : c.expected.warn ? "warn" : "pass";
+  k["why"] = c.expected.why;
+  if (c.judgement && !c.judgement->signature.empty()) k["signature"] = c.judgement->signature;
   k["reference_dir"] = c.reference_dir.string();
   k["candidate_dir"] = c.candidate_dir.string();
   k["frame_ms"] = c.frame_ms;
   k["seconds"] = c.seconds;
   k["notes"] = c.notes;
-  k["causes"] = c.causes;
+  k["causes"] = c.judgement ? c.judgement->causes : "";
+  if (c.judgement && c.judgement->resolving_power) k["resolving_power"] = resolving_power_json(*c.judgement->resolving_power);
   k["host"] = host_name();
   if (r.plan.shards > 1) k["shard"] = r.plan.shard_of.at(c.scene) + 1;
   if (with_expectations) k["expectation"] = expectation_json(c);
-  if (!c.unmet_expectation.empty()) k["unmet_expectation"] = c.unmet_expectation;
+  if (c.judgement && !c.judgement->unmet_expectation.empty()) k["unmet_expectation"] = c.judgement->unmet_expectation;
   if (!c.error.empty()) k["error"] = c.error;
   if (!c.read_through_links.empty()) {
     json links = json::array();
     for (const auto& [file, target] : c.read_through_links) links.push_back({{"file", file}, {"resolves_to", target}});
     k["read_through_links"] = links;
   }
-  k["candidate"] = json::parse(outputs::declaration_text(c.declaration));
-  k["candidate"]["defaulted"] = c.declaration.defaulted;
-  if (!c.comparison) return k;
-  k["comparison"] = report::to_json(*c.comparison);
+  // An ERROR case before a verdict records the declaration's defaults, as every case has one.
+  const outputs::CandidateDeclaration declared = c.judgement ? c.judgement->declaration : outputs::CandidateDeclaration{};
+  k["candidate"] = json::parse(outputs::declaration_text(declared));
+  k["candidate"]["defaulted"] = declared.defaulted;
+  if (!c.judgement) return k;
+  const compare::FolderComparison& comparison = c.judgement->comparison;
+  k["comparison"] = report::to_json(comparison);
   // The images the page shows, per light: reference mask, candidate mask, error, candidate shaded.
   const std::string base = "img/" + c.scene + "/" + c.technique + "/";
   json lights = json::array();
-  for (std::size_t i = 0; i < c.comparison->masks.size(); ++i) {
-    const std::string& m = c.comparison->masks[i];
+  for (std::size_t i = 0; i < comparison.masks.size(); ++i) {
+    const std::string& m = comparison.masks[i];
     json l;
     l["mask"] = m;
     l["reference"] = copy_in(c.reference_dir / m, staged, "img/" + c.scene + "/reference_" + m);
-    const std::string d = outputs::decided_name(i, c.comparison->masks.size());
+    const std::string d = outputs::decided_name(i, comparison.masks.size());
     l["decided"] = copy_in(c.reference_dir / d, staged, "img/" + c.scene + "/reference_" + d);
     l["candidate"] = copy_in(c.candidate_dir / m, staged, base + "candidate_" + m);
     const fs::path err = fs::path(c.error_images[i]).is_absolute() ? fs::path(c.error_images[i])
                                                                    : c.candidate_dir / c.error_images[i];
     l["error"] = copy_in(err, staged, base + fs::path(c.error_images[i]).filename().string());
-    l["metrics"] = report::to_json(c.comparison->per_light[i].metrics);
-    if (i < c.comparison->visibility.size() && c.comparison->visibility[i]) {
+    l["metrics"] = report::to_json(comparison.per_light[i].metrics);
+    if (i < comparison.visibility.size() && comparison.visibility[i]) {
       // Soft shadows: the candidate's lit fraction and its error in visibility units.
-      const std::size_t n = c.comparison->masks.size();
+      const std::size_t n = comparison.masks.size();
       const std::string vis = outputs::visibility_name(i, n);
       const std::string vis_err = outputs::per_light_name("visibility_error", "png", i, n);
       l["candidate_visibility"] = copy_in(c.candidate_dir / vis, staged, base + "candidate_" + vis);
       l["visibility_error"] = copy_in(err.parent_path() / vis_err, staged, base + vis_err);
-      l["visibility"] = report::to_json(c.comparison->visibility[i]->metrics);
+      l["visibility"] = report::to_json(comparison.visibility[i]->metrics);
     }
     lights.push_back(l);
   }
@@ -137,7 +153,7 @@ json plan_json(const ConformResult& r, const ConformOptions& o) {
 }
 
 json declarations_json(const ConformOptions& o) {
-  const renderer::RenderOptions& v = o.variants;
+  const renderer::RenderOptions& v = o.render_options;
   return {{"mode", o.candidate_dir ? "candidate-dir" : "render"},
           {"backend", o.candidate_dir ? json() : json(renderer::to_string(o.backend))},
           {"shadow_map_size", o.shadow_map_size},
@@ -215,7 +231,7 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
     j["inputs_read_through_links"] = linked;  // each case's read_through_links names them
   }
   j["backend"] = o.candidate_dir ? json() : json(renderer::to_string(o.backend));
-  j["gl_api"] = o.candidate_dir ? json() : json(renderer::to_string(o.gl));
+  j["gl_api"] = o.candidate_dir ? json() : json(renderer::to_string(o.gl_api));
   j["gl"] = {{"vendor", r.gl_vendor}, {"renderer", r.gl_renderer}, {"version", r.gl_version}};
   j["convention"] = r.convention;
   j["reference"] = {{"producer", "shadowref reference (Embree 3)"},

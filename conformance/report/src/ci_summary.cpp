@@ -57,6 +57,20 @@ void write_file(const std::string& content, const std::filesystem::path& file) {
 
 }  // namespace
 
+BlindCases blind_cases(const json& report) {
+  BlindCases b;
+  std::map<std::string, std::size_t> kinds;
+  for (const json& c : report.value("cases", json::array())) {
+    if (!c.contains("resolving_power")) continue;
+    ++b.judged;
+    const json& blind = c["resolving_power"].value("blind_to", json::array());
+    b.blind += !blind.empty();
+    for (const json& k : blind) ++kinds[k.get<std::string>()];
+  }
+  for (const auto& [k, n] : kinds) b.kinds += (b.kinds.empty() ? "" : ", ") + k + ": " + std::to_string(n);
+  return b;
+}
+
 std::string render_junit(const json& report) {
   const json cases = report.value("cases", json::array());
   std::size_t failures = 0, errors = 0, skipped = 0;
@@ -77,6 +91,9 @@ std::string render_junit(const json& report) {
     const std::string st = text(c, "status");
     x << "  <testcase classname=\"" << escape_html(text(c, "scene")) << "\" name=\"" << escape_html(text(c, "technique"))
       << "\" time=\"" << c.value("seconds", 0.0) << "\">";
+    if (c.contains("resolving_power"))
+      x << "<properties><property name=\"resolving_power\" value=\""
+        << escape_html(c["resolving_power"].value("summary", "")) << "\"/></properties>";
     const std::string o = outcome(c);
     if ((o == "expected" || o == "flake") && st != "PASS" && st != "XFAIL")
       x << "<skipped message=\"" << escape_html((o == "flake" ? "flaky: " + st : "known failure: " + expected_by(c)) + ": " + reasons(c)) << "\"/>";
@@ -142,6 +159,12 @@ std::string render_markdown(const json& report) {
     }
     m << "\n";
   }
+  const BlindCases blind = blind_cases(report);
+  if (blind.judged)
+    m << "\nResolving power: " << blind.blind << " of " << blind.judged
+      << " judged cases are blind to a probe of the reference's own masks under their declaration"
+      << (blind.blind ? " (" + cell(blind.kinds) + "): " + std::string(kHowToSharpen) : std::string(": none lets a probe that changes a decided pixel pass"))
+      << "\n";
   bool any = false;
   for (const json& c : cases) {
     const std::string st = text(c, "status");

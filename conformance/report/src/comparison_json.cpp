@@ -32,6 +32,7 @@ nlohmann::json to_json(const compare::MaskMetrics& m) {
           {"unexplained_false_light", m.unexplained_false_light},
           {key(ErrorClass::Acne), m.unexplained_acne},
           {"unexplained_core", m.unexplained_core},
+          {"densest_unexplained", m.densest_unexplained},
           {"edge_pixels", m.edge_pixels},
           {"unexplained_percent_of_edges", 100.0 * m.unexplained_ratio()},
           {"explained_percent_of_edges", 100.0 * m.explained_ratio()},
@@ -72,6 +73,8 @@ nlohmann::json to_json(const compare::Threshold& t) {
           {"unexplained_core_fail", 0},
           {"displaced_fail_percent_of_edges", 100.0 * compare::kDisplaced.displaced_fail},
           {"displaced_why", compare::kDisplaced.why},
+          {"densest_unexplained_fail", compare::kLocalGlitch.densest_fail},
+          {"densest_unexplained_why", compare::kLocalGlitch.why},
           {"why", t.why}};
 }
 
@@ -92,8 +95,8 @@ nlohmann::json to_json(const compare::FolderComparison& c) {
                                       {"shadow_errors_moved_back", d.wrong_after}};
   }
   nlohmann::json j;
-  j["verdict"] = compare::to_string(c.judgement.verdict);
-  j["reasons"] = c.judgement.reasons;
+  j["verdict"] = compare::to_string(c.decision.verdict);
+  j["reasons"] = c.decision.reasons;
   j["threshold"] = c.threshold ? to_json(*c.threshold) : nlohmann::json();
   j["total"] = to_json(c.total);
   j["masks"] = masks;

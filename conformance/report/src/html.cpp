@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "shadowref/outputs/atomic_file.hpp"
+#include "shadowref/report/ci_summary.hpp"
 
 namespace shadowref::report {
 namespace {
@@ -321,6 +322,11 @@ void summary_section(std::ostringstream& h, const json& r, const json& cases) {
   h << "</div><p class=\"notes\">PASS: within the technique's threshold. XFAIL: a known limitation the catalogue "
        "expects, detected (its why is in the case). FAIL and XPASS (an expected failure that did not fail) are "
        "failures of the run; WARN is within the looser quality bound.</p>";
+  if (const BlindCases b = blind_cases(r); b.judged)
+    h << "<p class=\"notes\"><b>Resolving power:</b> " << b.blind << " of " << b.judged
+      << " judged cases are blind to a probe of the reference's own masks under their declaration"
+      << (b.blind ? " (" + escape_html(b.kinds) + "): " + escape_html(kHowToSharpen) : std::string(": none lets a probe that changes a decided pixel pass"))
+      << ".</p>";
   std::vector<std::string> scenes, techniques;
   if (r.contains("scenes")) scenes = r["scenes"].get<std::vector<std::string>>();
   if (r.contains("techniques")) techniques = r["techniques"].get<std::vector<std::string>>();
@@ -425,6 +431,15 @@ void case_info(std::ostringstream& h, const json& c) {
   if (!str(c, "unmet_expectation", "").empty())
     h << "<div class=\"why\"><b>expectation not met:</b> " << escape_html(str(c, "unmet_expectation")) << "</div>";
   if (!str(c, "causes", "").empty()) h << "<div class=\"notes\">causes judged: " << escape_html(str(c, "causes")) << "</div>";
+  if (c.contains("resolving_power")) {
+    const json& rp = c["resolving_power"];
+    const bool blind = !rp.value("blind_to", json::array()).empty();
+    h << "<div class=\"" << (blind ? "why" : "notes") << "\"><b>resolving power:</b> " << escape_html(str(rp, "summary"))
+      << (blind ? std::string(" (a probe of the reference's own masks that changes decided pixels and does not FAIL here: an error of that kind would "
+                              "have passed too)")
+                : std::string())
+      << "</div>";
+  }
   if (c.contains("error")) h << "<p class=\"error\">" << escape_html(str(c, "error")) << "</p>";
   if (c.contains("candidate")) {
     const json& d = c["candidate"];

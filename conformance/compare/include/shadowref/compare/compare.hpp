@@ -70,6 +70,9 @@ struct MaskMetrics {
                                     // shadowed, no surface): the length of every boundary, in pixels
   std::size_t invariant_pixels = 0; // undecided pixels judged because the scene's invariant holds there
   std::size_t displaced = 0;        // unexplained pixels right once the mask's shadows are moved back (displacement.hpp)
+  // The most unexplained pixels in one (2 kClusterRadius + 1)² window centred on one of them: where
+  // they lie, not how many (a local glitch is many in one place; resolution error is spread along edges).
+  std::size_t densest_unexplained = 0;
 
   // wrong / decided_surface (0 when nothing is decided).
   double wrong_fraction() const;
@@ -88,6 +91,11 @@ struct MaskMetrics {
 // at 1024² (measured: a 3 × 3 block, once, on ground_sphere); a 5 × 5 block is still far inside any
 // blatant error (an 8 × 8 swapped tile holds 16 such cores at any resolution).
 inline constexpr int kCoreRadius = 2;
+
+// The window of MaskMetrics::densest_unexplained: 9 × 9 pixels, just over an 8 × 8 tile (the size of
+// the local glitch a tiled GPU, a wrong texel fetch or a broken cache line leaves), so that one such
+// tile fits whole in the window centred on any of its pixels near its middle.
+inline constexpr int kClusterRadius = 4;
 
 // The unexplained cores of a w × h image of flags (non-zero: unexplained), `flagged_count` of them:
 // the flagged pixels whose whole (2 kCoreRadius + 1)² neighbourhood, inside the image, is flagged.
@@ -137,7 +145,7 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
 enum class Verdict { Pass, QualityWarning, Fail };
 const char* to_string(Verdict v);  // "pass", "warning", "fail"
 
-struct Judgement {
+struct Decision {
   Verdict verdict = Verdict::Pass;
   std::vector<std::string> reasons;  // one line per bound exceeded, with the numbers; empty on pass
 };
@@ -145,7 +153,7 @@ struct Judgement {
 // The verdict of `metrics` against `threshold` (thresholds.hpp; displaced shadows against
 // kDisplaced, `displaced_how` saying the moves in its reason): FAIL beyond a fail bound, a quality
 // warning beyond a pass bound, PASS otherwise.
-Judgement judge(const MaskMetrics& metrics, const Threshold& threshold, const std::string& displaced_how = "");
+Decision decide(const MaskMetrics& metrics, const Threshold& threshold, const std::string& displaced_how = "");
 
 // A reference folder (mask.png or mask_<i>.png, decided.png or decided_<i>.png) against a
 // candidate folder with the same mask names.
@@ -156,7 +164,7 @@ struct FolderComparison {
   // Soft shadows: per light, the comparison of its lit fraction (nullopt: not judged), and the sum.
   std::vector<std::optional<VisibilityComparison>> visibility;
   std::optional<VisibilityMetrics> visibility_total;
-  Judgement judgement;
+  Decision decision;
   const Threshold* threshold = nullptr;
 };
 
@@ -167,8 +175,8 @@ FolderComparison compare_folders(const std::filesystem::path& reference_dir,
                                  const CompareOptions& options = {});
 
 // The verdict of a soft technique's fractions (thresholds.hpp, kPenumbra): FAIL on any unexplained
-// core, or beyond the unexplained-ratio or mean-error bound; merged into `judgement`.
-void judge_visibility(const VisibilityMetrics& metrics, Judgement& judgement);
+// core, or beyond the unexplained-ratio or mean-error bound; merged into `decision`.
+void decide_visibility(const VisibilityMetrics& metrics, Decision& decision);
 
 // Writes error.png (one light) or error_<i>.png into `dir`, and visibility_error.png
 // (visibility_error_<i>.png) for judged fractions; returns the names written.

@@ -90,7 +90,7 @@ double visibility_sampling_tolerance(int reference_samples, int candidate_taps);
 // at most uniform over one step, of mean 1/(4n): 1/(4n) + 1/(4n') (the 8-bit step is negligible).
 double visibility_mean_error_bound(int reference_samples, int candidate_taps);
 
-// What sampling alone may leave in a light's fraction (its judgement, judge_visibility):
+// What sampling alone may leave in a light's fraction (its decision, decide_visibility):
 struct VisibilityBounds {
   double tolerance = -1;         // a pixel's |e| within sampling; negative: a light without area, not judged
   double mean_error_bound = 0;   // the mean |e| over the penumbra: beyond it a wrong width (grid), noise (random)

@@ -16,6 +16,7 @@
 
 #include "shadowref/compare/compare.hpp"
 #include "shadowref/conform/expectations.hpp"
+#include "shadowref/conform/judge.hpp"
 #include "shadowref/conform/shard_plan.hpp"
 #include "shadowref/conform/status.hpp"
 #include "shadowref/convention.hpp"
@@ -48,12 +49,12 @@ struct ConformOptions {
   int shadow_map_size = 0;                      // texels per side of our shadow maps; 0: automatic
   // Our renders' correct variants (renderer::RenderOptions: random taps, depth faces, guard band,
   // normal offset); its faults are the teeth's to set, per extra technique.
-  renderer::RenderOptions variants;
+  renderer::RenderOptions render_options;
   // Every scene rendered at another resolution (an engine's own): scale factor, or [W, H] (0: keep).
   double resolution_scale = 1.0;
   int width = 0, height = 0;
   renderer::Driver backend = renderer::Driver::Llvmpipe;
-  renderer::GlApi gl = renderer::GlApi::OSMesa;
+  renderer::GlApi gl_api = renderer::GlApi::OSMesa;
   std::filesystem::path out = "conformance-out";
   std::filesystem::path cache;                  // empty: <out>/reference-cache
   ReferenceSettings reference;
@@ -77,18 +78,14 @@ struct ConformOptions {
 struct CaseResult {
   std::string scene;
   std::filesystem::path scene_file;
-  std::string technique;
-  bool expected_pass = true;
-  bool expected_warning = false;                // the catalogue expects a quality warning (a WARN is no warning of the run)
-  std::string why;                              // the catalogue's why (expected failures and warnings)
-  std::string unmet_expectation;                // an expectation the verdict did not meet (status.hpp), or ""
-  std::string causes;                           // which causes may explain wrong pixels (judge.hpp), in words
-  scene::PredictedErrors predicted_errors = scene::PredictedErrors::Any;  // the catalogue's "errors"
-  std::string signature;                        // how an expected failure was checked to be the predicted one
+  std::string technique;                        // as run (an extra technique's own name)
+  // The catalogue's expectation for the technique judged, known before the case runs: an ERROR
+  // case reports it too. When judged, it is the judgement's own `expectation`.
+  scene::Expectation expected;
   Status status = Status::Error;
-  std::optional<compare::FolderComparison> comparison;
+  // What the one judge found (judge.hpp); absent when the case ended in ERROR before a verdict.
+  std::optional<CaseJudgement> judgement;
   std::string error;                            // ERROR: what went wrong
-  outputs::CandidateDeclaration declaration;    // candidate.json (or its defaults) of the candidate
   std::filesystem::path reference_dir, candidate_dir;
   std::vector<std::string> error_images;        // in candidate_dir (ours) or out/errors/...
   std::vector<std::string> notes;               // the renderer's notes
@@ -101,6 +98,9 @@ struct CaseResult {
   // and `expected_status` its status, when the case has one.
   Outcome outcome = Outcome::Green;
   std::string expected_status, expected_line;
+
+  // The judgement's comparison, or null before a verdict.
+  const compare::FolderComparison* comparison() const { return judgement ? &judgement->comparison : nullptr; }
 };
 
 // Where a run's time went, in seconds of wall time summed over the cases (bench/README.md reports

@@ -10,7 +10,9 @@
 //      checked against the candidate's own staircases (staircases.hpp);
 //   4. for a soft technique, judges the lit fraction of every light with an area in visibility
 //      units (compare/visibility.hpp) with the same cause model's bands;
-//   5. gives the case's status under the scene file's expectation (status.hpp), and for an expected
+//   5. asks what the verdict could have seen: the known blatant errors of the reference's own masks
+//      under the same declaration (resolving_power.hpp);
+//   6. gives the case's status under the scene file's expectation (status.hpp), and for an expected
 //      failure checks its signature: the errors' predicted kind, and, for a candidate that is not
 //      our own render, the technique's own model of its failure (our renderer's masks of it).
 // Nothing else decides a verdict: the same folders, reference and scene give the same verdict,
@@ -20,9 +22,11 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "shadowref/compare/compare.hpp"
+#include "shadowref/conform/resolving_power.hpp"
 #include "shadowref/conform/status.hpp"
 #include "shadowref/outputs/candidate.hpp"
 #include "shadowref/scene/prepared_scene.hpp"
@@ -62,6 +66,9 @@ struct CaseJudgement {
   std::string unmet_expectation;               // status.hpp's unmet_expectation
   std::string causes;                          // which causes may explain wrong pixels, in words
   double model_seconds = 0;                    // spent drawing the technique's model (inside the judging)
+  // What the verdict could have seen under this declaration (resolving_power.hpp); absent when the
+  // scene is not known.
+  std::optional<ResolvingPower> resolving_power;
 };
 
 // The judge of a run: the cause model of each prepared scene (its BVH) and the renderer that draws
@@ -86,6 +93,8 @@ class Judge {
   std::filesystem::path draw_model(const scene::PreparedScene& prepared, const std::string& technique,
                                    const std::filesystem::path& reference_dir, const std::filesystem::path& dir);
   std::map<const scene::PreparedScene*, std::unique_ptr<reference::CauseModel>> causes_;
+  // Per reference folder, threshold and declaration as judged: the probes do not depend on the candidate.
+  std::map<std::string, ResolvingPower> resolving_;
   std::unique_ptr<renderer::Renderer> model_gl_;
 };
 

@@ -1,0 +1,184 @@
+// resolving_power.cpp — the probes of resolving_power.hpp: the reference's own masks with one
+// blatant error each, judged as the candidate was.
+#include "shadowref/conform/resolving_power.hpp"
+
+#include <algorithm>
+#include <array>
+#include <utility>
+
+#include "shadowref/outputs/file_names.hpp"
+#include "shadowref/outputs/image.hpp"
+#include "shadowref/outputs/image_io.hpp"
+
+namespace shadowref::conform {
+namespace {
+
+using outputs::Image8;
+using outputs::kMaskLit;
+using outputs::kMaskNoSurface;
+using outputs::kMaskShadowed;
+
+std::uint8_t& at(Image8& m, int x, int y) { return m.pixels[static_cast<std::size_t>(y * m.width + x)]; }
+std::uint8_t at(const Image8& m, int x, int y) { return m.pixels[static_cast<std::size_t>(y * m.width + x)]; }
+
+// Every surface pixel takes the answer of the surface pixel (dx, dy) behind it: the shadows move by
+// (dx, dy), silhouettes stay put.
+Image8 shifted(const Image8& was, int dx, int dy) {
+  Image8 m = was;
+  for (int y = 0; y < m.height; ++y)
+    for (int x = 0; x < m.width; ++x) {
+      const int u = x - dx, v = y - dy;
+      if (u < 0 || v < 0 || u >= m.width || v >= m.height) continue;
+      if (at(was, x, y) != kMaskNoSurface && at(was, u, v) != kMaskNoSurface) at(m, x, y) = at(was, u, v);
+    }
+  return m;
+}
+
+// The shadows grown (`grow`) or shrunk by 1 px: a surface pixel takes `grow ? shadowed : lit` when
+// a surface pixel of its 3 × 3 neighbourhood has it.
+Image8 morphed(const Image8& was, bool grow) {
+  Image8 m = was;
+  const std::uint8_t into = grow ? kMaskShadowed : kMaskLit;
+  for (int y = 0; y < m.height; ++y)
+    for (int x = 0; x < m.width; ++x) {
+      if (at(was, x, y) == kMaskNoSurface) continue;
+      for (int v = std::max(0, y - 1); v <= std::min(m.height - 1, y + 1); ++v)
+        for (int u = std::max(0, x - 1); u <= std::min(m.width - 1, x + 1); ++u)
+          if (at(was, u, v) == into) at(m, x, y) = into;
+    }
+  return m;
+}
+
+// An 8 × 8 tile swapped with the one 8 px to its right, where that changes most pixels.
+Image8 swapped_tile(const Image8& was) {
+  Image8 m = was;
+  int best = -1, bx = 0, by = 0;
+  for (int y = 0; y + 8 <= m.height; y += 4)
+    for (int x = 0; x + 16 <= m.width; x += 4) {
+      int differ = 0;
+      for (int v = 0; v < 8; ++v)
+        for (int u = 0; u < 8; ++u) differ += at(was, x + u, y + v) != at(was, x + u + 8, y + v);
+      if (differ > best) best = differ, bx = x, by = y;
+    }
+  for (int v = 0; v < 8 && best >= 0; ++v)
+    for (int u = 0; u < 8; ++u) std::swap(at(m, bx + u, by + v), at(m, bx + u + 8, by + v));
+  return m;
+}
+
+struct ProbeSpec {
+  ProbeKind kind;
+  std::string name;
+  int dx = 0, dy = 0;
+};
+
+std::vector<ProbeSpec> probe_specs() {
+  std::vector<ProbeSpec> out;
+  constexpr std::array<std::pair<int, int>, 8> kDirections{{{1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}, {-1, -1}, {0, -1}, {1, -1}}};
+  const auto words = [](int dx, int dy) {
+    std::string w = dx > 0 ? "right" : dx < 0 ? "left" : "";
+    if (dy) w += std::string(w.empty() ? "" : " and ") + (dy > 0 ? "down" : "up");
+    return w;
+  };
+  for (const int n : {1, 2})
+    for (const auto& [dx, dy] : kDirections)
+      out.push_back({n == 1 ? ProbeKind::Shift1 : ProbeKind::Shift2,
+                     "shifted " + std::to_string(n) + " px " + words(dx, dy), n * dx, n * dy});
+  out.push_back({ProbeKind::Grown1, "grown 1 px"});
+  out.push_back({ProbeKind::Shrunk1, "shrunk 1 px"});
+  out.push_back({ProbeKind::Tile8, "an 8x8 tile swapped"});
+  return out;
+}
+
+Image8 probed(const Image8& mask, const ProbeSpec& p) {
+  switch (p.kind) {
+    case ProbeKind::Shift1:
+    case ProbeKind::Shift2: return shifted(mask, p.dx, p.dy);
+    case ProbeKind::Grown1: return morphed(mask, true);
+    case ProbeKind::Shrunk1: return morphed(mask, false);
+    case ProbeKind::Tile8: return swapped_tile(mask);
+  }
+  return mask;
+}
+
+constexpr std::array<ProbeKind, 5> kKinds{ProbeKind::Shift1, ProbeKind::Shift2, ProbeKind::Grown1, ProbeKind::Shrunk1,
+                                          ProbeKind::Tile8};
+
+}  // namespace
+
+const char* to_string(ProbeKind k) {
+  switch (k) {
+    case ProbeKind::Shift1: return "1-px shifts";
+    case ProbeKind::Shift2: return "2-px shifts";
+    case ProbeKind::Grown1: return "1-px growth";
+    case ProbeKind::Shrunk1: return "1-px shrinkage";
+    case ProbeKind::Tile8: return "8x8 tiles";
+  }
+  return "?";
+}
+
+bool ResolvingPower::blind_to(ProbeKind k) const { return std::find(blind.begin(), blind.end(), k) != blind.end(); }
+bool ResolvingPower::sees_nothing_of(ProbeKind k) const { return std::find(unseen.begin(), unseen.end(), k) != unseen.end(); }
+
+std::string ResolvingPower::summary() const {
+  const auto list = [](const std::vector<std::string>& items) {
+    std::string s;
+    for (std::size_t i = 0; i < items.size(); ++i) s += (i == 0 ? "" : i + 1 == items.size() ? " and " : ", ") + items[i];
+    return s;
+  };
+  std::vector<std::string> blind_words, resolved_words, unseen_words;
+  for (const ProbeKind k : blind) {
+    std::size_t changing = 0, pass = 0;
+    for (const Probe& p : probes)
+      if (p.kind == k && p.wrong > 0) ++changing, pass += p.verdict != compare::Verdict::Fail;
+    blind_words.push_back(std::string(to_string(k)) + (changing > 1 ? " (" + std::to_string(pass) + " of " + std::to_string(changing) + " pass)" : ""));
+  }
+  for (const ProbeKind k : resolved) resolved_words.push_back(to_string(k));
+  for (const ProbeKind k : unseen) unseen_words.push_back(to_string(k));
+  std::string s = blind.empty() ? "" : "blind to " + list(blind_words) + " under this declaration";
+  if (!resolved.empty()) s += (s.empty() ? "" : "; ") + std::string("resolves ") + list(resolved_words);
+  if (!unseen.empty()) s += (s.empty() ? "" : "; ") + std::string("no decided pixel changes under ") + list(unseen_words);
+  return s;
+}
+
+ResolvingPower resolving_power(const std::filesystem::path& reference_dir, std::size_t lights,
+                               const compare::Threshold& threshold, const compare::CompareOptions& options) {
+  compare::CompareOptions o = options;
+  o.visibility.clear();  // the masks alone (resolving_power.hpp)
+  if (!threshold.bands) o.explain = nullptr;
+  std::vector<Image8> masks, decided;
+  for (std::size_t i = 0; i < lights; ++i) {
+    masks.push_back(outputs::read_image8(reference_dir / outputs::mask_name(i, lights), 1));
+    decided.push_back(outputs::read_image8(reference_dir / outputs::decided_name(i, lights), 1, masks.back().width,
+                                           masks.back().height));
+  }
+  // The displaced-shadow search is the costly part of a comparison and can only raise a verdict to
+  // FAIL: a probe that FAILs without it is judged without it, the same verdict at a fraction of the cost.
+  compare::CompareOptions quick = o;
+  quick.displacement_up_to = -1;
+  const auto judged = [&](const ProbeSpec& spec, const std::vector<Image8>& probes, const compare::CompareOptions& with) {
+    compare::MaskMetrics total;
+    for (std::size_t i = 0; i < lights; ++i) total += compare::compare_mask(masks[i], decided[i], probes[i], spec.name, i, with).metrics;
+    return total;
+  };
+  ResolvingPower r;
+  for (const ProbeSpec& spec : probe_specs()) {
+    std::vector<Image8> probes;
+    for (std::size_t i = 0; i < lights; ++i) probes.push_back(probed(masks[i], spec));
+    compare::MaskMetrics total = judged(spec, probes, quick);
+    compare::Verdict verdict = compare::decide(total, threshold).verdict;
+    if (verdict != compare::Verdict::Fail && total.unexplained > 0) {
+      total = judged(spec, probes, o);
+      verdict = compare::decide(total, threshold).verdict;
+    }
+    r.probes.push_back({spec.kind, spec.name, verdict, total.wrong, total.unexplained});
+  }
+  for (const ProbeKind k : kKinds) {
+    bool changes = false, all_fail = true;
+    for (const Probe& p : r.probes)
+      if (p.kind == k && p.wrong > 0) changes = true, all_fail = all_fail && p.verdict == compare::Verdict::Fail;
+    (!changes ? r.unseen : all_fail ? r.resolved : r.blind).push_back(k);
+  }
+  return r;
+}
+
+}  // namespace shadowref::conform
