@@ -191,6 +191,23 @@ Image8 read_image8(const std::filesystem::path& file, int channels, int width, i
   return image;
 }
 
+Image8 decode_png8(const std::string& bytes, const std::string& name) {
+  const auto bad = [&](const std::string& what) { return InputError(InputError::Kind::BadInput, name + ": " + what); };
+  png::Reader r(png::Reader::FromMemory{}, bytes);
+  if (!r.why().empty()) throw bad("cannot decode as PNG: " + r.why());
+  if (static_cast<std::size_t>(r.width()) * static_cast<std::size_t>(r.height()) > kMaxPixels)
+    throw bad(std::to_string(r.width()) + " x " + std::to_string(r.height()) + " pixels: larger than 16384 x 16384");
+  if (r.channels() < 1 || r.channels() > 4) throw bad("has " + std::to_string(r.channels()) + " channels, expected 1 to 4");
+  if (r.bit_depth() != 8) throw bad("pixel format uint" + std::to_string(r.bit_depth()) + ", expected 8-bit unsigned");
+  Image8 image;
+  image.width = r.width();
+  image.height = r.height();
+  image.channels = r.channels();
+  image.pixels.resize(image.pixel_count() * static_cast<std::size_t>(image.channels));
+  if (!r.read(image.pixels.data())) throw bad("cannot read pixels (truncated or corrupt?): " + r.why());
+  return image;
+}
+
 std::vector<float> read_exr(const std::filesystem::path& file, int width, int height) {
   const auto bad = [&](const std::string& what) { return InputError(InputError::Kind::BadInput, file.string() + ": " + what); };
   std::error_code ec;

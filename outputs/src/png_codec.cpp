@@ -82,6 +82,17 @@ bool read_rows(Reader::State& s, png_bytepp rows) {
 
 Reader::Reader(const std::filesystem::path& file) : state_(new State) {
   state_->file = std::fopen(file.c_str(), "rb");
+  open();
+}
+
+// fmemopen in "r" mode reads the buffer and never writes it.
+Reader::Reader(FromMemory, const std::string& bytes) : state_(new State) {
+  state_->file = bytes.empty() ? nullptr : fmemopen(const_cast<char*>(bytes.data()), bytes.size(), "rb");
+  if (bytes.empty()) errno = EINVAL;
+  open();
+}
+
+void Reader::open() {
   if (!state_->file) {
     why_ = std::strerror(errno);
     return;

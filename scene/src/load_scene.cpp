@@ -11,12 +11,15 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <limits>
 #include <numbers>
 #include <sstream>
 #include <system_error>
 
 #include "json_node.hpp"
+#include "receiver_check.hpp"
+#include "shadowref/scene/gltf_scene.hpp"
 #include "shadowref/scene/camera.hpp"
 #include "shadowref/scene/identifier.hpp"
 #include "shadowref/scene/path_within.hpp"
@@ -323,17 +326,8 @@ void read_object(const JsonNode& n, std::size_t index, const std::filesystem::pa
     }
   }
   scene.objects.push_back(std::move(obj));
-  if (scene.objects.back().receiver) {
-    // Planar shadows need a plane: every vertex within rounding of the first triangle's plane.
-    const auto plane = receiver_plane(scene);
-    const auto b = bounds(scene);
-    const double tolerance = 1e-5 * std::max(1.0, (b[1] - b[0]).norm());  // float positions: ~1e-7 relative, with margin
-    bool planar = plane.has_value();
-    if (planar)
-      for (const auto& p : scene.objects.back().mesh.positions)
-        planar = planar && std::abs(signed_distance(*plane, Vec3<double>(p.cast<double>()))) <= tolerance;
-    if (!planar) n.fail_at("receiver", "the receiver must be planar (all its vertices on one plane)");
-  }
+  if (scene.objects.back().receiver && !detail::receiver_is_planar(scene))
+    n.fail_at("receiver", "the receiver must be planar (all its vertices on one plane)");
 }
 
 void read_expect(const JsonNode& n, Scene& scene) {
@@ -419,6 +413,12 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& file,
 }
 
 Scene load_scene(const std::filesystem::path& file, const LoadOptions& options) {
+  if (is_gltf_scene_file(file)) {
+    // An engine team's own glTF scene (gltf_scene.hpp): what it holds and is not read, said once.
+    GltfScene g = read_gltf_scene(file);
+    for (const std::string& line : g.not_read) std::cerr << "shadowref: warning: " << file.string() << ": " << line << "\n";
+    return std::move(g.scene);
+  }
   std::ifstream in(file, std::ios::binary);
   if (!in) throw SceneError(file.string() + ": cannot open the scene file");
   std::ostringstream text;

@@ -33,6 +33,11 @@ Image8 read_image8(const std::filesystem::path& file, int channels);
 // the header before any pixel is decoded, so a decompression bomb costs no memory.
 Image8 read_image8(const std::filesystem::path& file, int channels, int width, int height);
 
+// PNG bytes held in memory (an image embedded in a glTF file) as an 8-bit image with the stream's
+// own 1 to 4 channels, by the same reader and checks as read_image8; `name` stands for the file in
+// messages. Throws InputError(BadInput) "<name>: <what>".
+Image8 decode_png8(const std::string& bytes, const std::string& name);
+
 // Reads a single-channel float image (the reference's visibility.exr) that must be width × height.
 // Throws InputError(BadInput) for a missing, unreadable or mis-sized file.
 std::vector<float> read_exr(const std::filesystem::path& file, int width, int height);
