@@ -167,6 +167,7 @@ json punctual_light(const scene::Scene& s, std::size_t i, Mat4<double>& at) {
       extras["corner"] = vec3(l.corner);
       extras["edge_u"] = vec3(l.edge_u);
       extras["edge_v"] = vec3(l.edge_v);
+      extras["samples"] = l.samples;  // the soft-shadow ground truth's samples × samples grid (read back by scene/gltf_scene.hpp)
       extras["size"] = {{"edge_u_length", l.edge_u.norm()},
                         {"edge_v_length", l.edge_v.norm()},
                         {"equal_area_square_side", std::sqrt(l.edge_u.cross(l.edge_v).norm())}};

@@ -36,7 +36,7 @@ nlohmann::json object_gltf(const scene::Object& o);
 //   the lights: KHR_lights_punctual, light i = the scene's light i (extras.mask_file): point, spot
 //     (outerConeAngle = the pack's cone half-angle, innerConeAngle 0) and directional, shining along
 //     their node's -z; a rect light is a point light at its centre (what hard techniques are judged
-//     with) with its parallelogram in extras.
+//     with) with its parallelogram (and samples) in extras, in scene coordinates: scene/gltf_scene.hpp reads the file back as the same scene.
 // Cost: one prepare_scene() in the gl convention and the meshes' bytes.
 nlohmann::json scene_gltf(const scene::Scene& s);
 

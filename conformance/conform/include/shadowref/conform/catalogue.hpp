@@ -36,7 +36,8 @@ std::vector<std::filesystem::path> select_scenes(const std::filesystem::path& ca
 
 // What every command's --scenes takes (select_scenes over split_list), said once for their --help.
 inline constexpr const char* kScenesHelp =
-    "comma-separated globs over the catalogue's scene names, or scene files (e.g. ground_sphere,soft_*); "
+    "comma-separated globs over the catalogue's scene names, or scene files: JSON, or your own glTF 2.0 scene "
+    "(.gltf, .glb: a camera, KHR_lights_punctual lights; docs/scene-format.md) (e.g. ground_sphere,soft_*,my_level.gltf); "
     "default: every scene not tagged 'large'";
 
 // Splits "a,b, c" into {"a", "b", "c"} (empty items dropped).
