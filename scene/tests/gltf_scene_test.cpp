@@ -98,6 +98,34 @@ class Gltf {
     return g;
   }
 
+  // An image held in the buffer (as a .glb holds it), its bytes 4-aligned; returns the image index.
+  int image_in_buffer(const std::string& png) {
+    while (bytes_.size() % 4) bytes_.push_back('\0');
+    doc_["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", bytes_.size()}, {"byteLength", png.size()}});
+    bytes_ += png;
+    doc_["images"].push_back({{"bufferView", doc_["bufferViews"].size() - 1}, {"mimeType", "image/png"}});
+    return static_cast<int>(doc_["images"].size() - 1);
+  }
+
+  // The document as a binary .glb: the JSON chunk and the buffer as its BIN chunk, each padded to 4 bytes.
+  fs::path write_glb(const std::string& stem = "level") {
+    const fs::path dir = fs::path(::testing::TempDir()) / ("shadowref-gltf-scene-" + std::to_string(::getpid()) + "-" +
+                                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir);
+    std::string bin = bytes_;
+    while (bin.size() % 4) bin.push_back('\0');
+    doc_["buffers"] = {{{"byteLength", bin.size()}}};
+    std::string text = doc_.dump();
+    while (text.size() % 4) text.push_back(' ');
+    const auto u32 = [](std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+    const std::string glb = u32(0x46546C67) + u32(2) + u32(static_cast<std::uint32_t>(12 + 8 + text.size() + 8 + bin.size())) +
+                            u32(static_cast<std::uint32_t>(text.size())) + u32(0x4E4F534A) + text +
+                            u32(static_cast<std::uint32_t>(bin.size())) + u32(0x004E4942) + bin;
+    const fs::path file = dir / (stem + ".glb");
+    std::ofstream(file, std::ios::binary) << glb;
+    return file;
+  }
+
   fs::path write(const std::string& stem = "level", const std::string& ext = ".gltf") {
     const fs::path dir = fs::path(::testing::TempDir()) / ("shadowref-gltf-scene-" + std::to_string(::getpid()) + "-" +
                                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
@@ -286,6 +314,30 @@ TEST(GltfScene, MaskMaterialGivesTheAlphaMask) {
   EXPECT_EQ(o.alpha->vertex_alpha, (std::vector<float>{1, 0.5f, 0.25f}));
   EXPECT_NEAR(o.color.z(), 0.6, kTol);
   EXPECT_TRUE(r.not_read.empty()) << r.not_read.front();
+}
+
+// A binary .glb whose mask image lies in its BIN chunk (a buffer view, read range-checked).
+TEST(GltfScene, GlbWithItsMaskInTheBinaryChunk) {
+  Gltf g;
+  g.camera();
+  g.light({{"type", "directional"}});
+  g.doc()["images"] = json::array();
+  const int image = g.image_in_buffer(outputs::encode_png(outputs::Image8{2, 1, 2, {255, 7, 255, 9}}));
+  g.doc()["textures"] = {{{"source", image}}};
+  g.doc()["materials"] = {{{"alphaMode", "MASK"}, {"alphaCutoff", 0.25}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
+  const int uv = g.floats({0, 0, 0, 1, 1, 0}, 3, "VEC2");
+  g.node({{"name", "card"}, {"mesh", g.triangle_mesh({{"attributes", {{"TEXCOORD_0", uv}}}, {"material", 0}})}});
+  const fs::path file = g.write_glb("binary_level");
+  const Scene s = load_scene(file);
+  EXPECT_EQ(s.name, "binary_level");
+  ASSERT_EQ(s.objects.size(), 1u);
+  ASSERT_TRUE(s.objects[0].alpha);
+  EXPECT_EQ(s.objects[0].alpha->texture->alpha, (std::vector<std::uint8_t>{7, 9}));
+  EXPECT_EQ(s.objects[0].alpha->cutoff, 0.25);
+  // The image's buffer view claiming bytes past the buffer's end: one line, no read outside it.
+  g.doc()["bufferViews"][g.doc()["images"][0]["bufferView"].get<std::size_t>()]["byteLength"] = 1 << 20;
+  const std::string e = error_of(g.write_glb("binary_level"));
+  EXPECT_NE(e.find("past the end of its buffer"), std::string::npos) << e;
 }
 
 TEST(GltfScene, MaskCutoffDefaultsToOneHalfAndFactorAlphaIsVertexAlpha) {

@@ -44,7 +44,8 @@
 //
 // Every refusal is a SceneError whose what() is one line "<file>: <what is wrong>" (a JSON path
 // where the problem is in an extras object), exit code 4 on the command line. External buffers and
-// images must lie in the glTF file's folder or below it (gltf_model.hpp); nothing is written.
+// images must lie in the glTF file's folder or below it (gltf_model.hpp; LoadOptions does not lift
+// this); nothing is written.
 // The scene carries no expectations: every technique is expected to pass it.
 #pragma once
 
