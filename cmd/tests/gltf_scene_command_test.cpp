@@ -132,6 +132,38 @@ TEST_F(GltfSceneCommand, RaisedAlphaCutoffFailsBesideItsControl) {
   EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
 }
 
+// `export` of a glTF scene whose buffer is an external file: the pack's scenes/ carries both, and
+// `conform --catalogue <pack>/scenes` (the pack README's own command) finds and judges it.
+TEST_F(GltfSceneCommand, ExportOfAGltfSceneStandsAlone) {
+  json g = read(exported("ground_sphere"));
+  const std::string uri = g["buffers"][0]["uri"];
+  const std::string base64 = uri.substr(uri.find(',') + 1);
+  std::string bytes;  // RFC 4648 decoding, enough for the pack's padded base64
+  int bits = 0, value = 0;
+  for (const char c : base64) {
+    const auto at = std::string("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/").find(c);
+    if (at == std::string::npos) break;
+    value = (value << 6) | static_cast<int>(at);
+    if ((bits += 6) >= 8) bytes.push_back(static_cast<char>((value >> (bits -= 8)) & 0xff));
+  }
+  const fs::path level = root_ / "level";
+  fs::create_directories(level / "bin");
+  std::ofstream(level / "bin" / "geometry.bin", std::ios::binary) << bytes;
+  g["buffers"][0]["uri"] = "bin/geometry.bin";
+  write(level / "my_level.gltf", g);
+  const test::CommandResult e = test::run_command({SHADOWREF_EXE, "export", "--scenes", (level / "my_level.gltf").string(), "--out",
+                                                   (root_ / "level-pack").string(), "--cache", (root_ / "cache").string()});
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  EXPECT_TRUE(fs::is_regular_file(root_ / "level-pack" / "scenes" / "bin" / "geometry.bin"));
+  EXPECT_TRUE(fs::is_regular_file(root_ / "level-pack" / "my_level" / "scene.gltf"));
+  const test::CommandResult r = test::run_command({SHADOWREF_EXE, "conform", "--catalogue", (root_ / "level-pack" / "scenes").string(),
+                                                   "--techniques", "planar", "--out", (root_ / "level-out").string(), "--cache",
+                                                   (root_ / "cache").string(), "--quiet"});
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("1 cases: 1 PASS"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("my_level"), std::string::npos) << r.out;
+}
+
 TEST_F(GltfSceneCommand, SkinIsOneLineAndExitFour) {
   const fs::path file = exported("ground_sphere");
   json g = read(file);
