@@ -7,6 +7,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -443,6 +446,32 @@ void check_extensions(const tinygltf::Model& model, const fs::path& file, std::s
 bool is_gltf_scene_file(const fs::path& file) {
   const std::string ext = lower(file.extension().string());
   return ext == ".gltf" || ext == ".glb";
+}
+
+bool holds_camera_and_light(const fs::path& file) {
+  if (!is_gltf_scene_file(file)) return false;
+  std::ifstream in(file, std::ios::binary);
+  std::string text;
+  if (lower(file.extension().string()) == ".glb") {
+    // GLB: a 12-byte header, then the JSON chunk's length and type ("JSON"), then the JSON.
+    char head[20];
+    if (!in.read(head, sizeof head)) return false;
+    std::uint32_t words[5];
+    std::memcpy(words, head, sizeof words);
+    if (words[0] != 0x46546C67u || words[4] != 0x4E4F534Au || words[3] > (std::uint32_t{64} << 20)) return false;
+    text.resize(words[3]);
+    if (!in.read(text.data(), static_cast<std::streamsize>(text.size()))) return false;
+  } else {
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+  if (!j.is_object()) return false;
+  const auto cameras = j.find("cameras");
+  const nlohmann::json* lights = nullptr;
+  if (const auto e = j.find("extensions"); e != j.end() && e->is_object())
+    if (const auto k = e->find("KHR_lights_punctual"); k != e->end() && k->is_object())
+      if (const auto l = k->find("lights"); l != k->end()) lights = &*l;
+  return cameras != j.end() && cameras->is_array() && !cameras->empty() && lights && lights->is_array() && !lights->empty();
 }
 
 GltfScene read_gltf_scene(const fs::path& file) {

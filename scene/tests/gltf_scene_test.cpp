@@ -171,6 +171,19 @@ TEST(GltfScene, LoadsThroughLoadSceneWithItsStemAsName) {
   EXPECT_FALSE(is_gltf_scene_file("a/b.json"));
 }
 
+// What a catalogue folder counts as a glTF scene: a camera and a light; a mesh file has neither.
+TEST(GltfScene, HoldsCameraAndLightTellsAScenesFromAMeshFile) {
+  Gltf g = Gltf::minimal();
+  EXPECT_TRUE(holds_camera_and_light(g.write("scene_file")));
+  EXPECT_TRUE(holds_camera_and_light(g.write_glb("scene_file")));
+  g.doc().erase("cameras");
+  EXPECT_FALSE(holds_camera_and_light(g.write("mesh_file")));
+  const fs::path junk = g.write("junk");
+  std::ofstream(junk) << "{ not json";
+  EXPECT_FALSE(holds_camera_and_light(junk));
+  EXPECT_FALSE(holds_camera_and_light(junk.parent_path() / "absent.gltf"));
+}
+
 TEST(GltfScene, CameraLooksAlongItsNodesMinusZ) {
   Gltf g;
   // Turned 90 degrees about +y: −z becomes −x; no extras.resolution, aspectRatio 1.5 → 384 × 256.

@@ -70,6 +70,12 @@ struct GltfScene {
 // True for a path whose extension is .gltf or .glb (any case): a scene load_scene reads as glTF.
 bool is_gltf_scene_file(const std::filesystem::path& file);
 
+// True when `file` is a glTF file (is_gltf_scene_file) whose JSON (a .glb's JSON chunk) lists a
+// camera and a KHR_lights_punctual light: a scene, not a mesh file a JSON scene names (which has
+// neither). Reads the JSON only, no buffer; false for anything unreadable. What a catalogue folder
+// counts as its glTF scenes (conform/catalogue.hpp).
+bool holds_camera_and_light(const std::filesystem::path& file);
+
 // Reads and validates the glTF scene at `file`. Throws SceneError.
 GltfScene read_gltf_scene(const std::filesystem::path& file);
 

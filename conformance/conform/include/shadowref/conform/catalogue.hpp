@@ -1,7 +1,9 @@
 // shadowref/conform/catalogue.hpp — which scene files a conformance run takes.
 //
 // The catalogue is a folder of scene files (conformance/scenes/*.json; a folder may also hold glTF
-// scenes, *.gltf and *.glb, as a pack's scenes/ does for one exported from a glTF). A selection is a
+// scenes, *.gltf and *.glb with a camera and a light, as a pack's scenes/ does for one exported from
+// a glTF: scene/gltf_scene.hpp's holds_camera_and_light; a glTF mesh file beside a JSON scene is
+// none). A selection is a
 // comma-separated list of patterns: an existing file path is taken as it is; anything else is a
 // shell glob (fnmatch: *, ?, [..]) matched against the catalogue's file names, with or without
 // their extension ("ground_*", "*light*", "my_level.gltf"). Without patterns, every scene except those tagged "large" (the default
