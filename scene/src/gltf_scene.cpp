@@ -142,6 +142,7 @@ void read_camera(const tinygltf::Model& model, const fs::path& file, const Place
   }
   Camera& c = s.camera;
   c.position = column(at.world, 3);
+  if (!c.position.allFinite()) refuse(file, where + ": the camera's position is not finite");
   c.target = c.position + unit_axis(at.world, 2, -1.0, file, where);
   c.up = unit_axis(at.world, 1, 1.0, file, where);
   c.fovy_deg = p.yfov * 180.0 / std::numbers::pi;
