@@ -219,8 +219,11 @@ json scene_gltf(const scene::Scene& s) {
     json material = {{"name", o.name},
                      {"pbrMetallicRoughness",
                       {{"baseColorFactor", {o.color.x(), o.color.y(), o.color.z(), 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}}};
-    // An open mesh (a card, a ground quad) is seen from both sides, as the reference sees it.
-    if (!prepared.casters[i].closed) material["doubleSided"] = true;
+    // A masked object is a foliage card or a fence, authored double-sided as engines' alpha-tested
+    // content is. Every other mesh is single-sided (glTF's default), an open one too: a single-sided
+    // card still casts from both sides in the reference, so an engine whose depth pass culls its
+    // lit front faces casts nothing of it, and shows that.
+    if (o.alpha) material["doubleSided"] = true;
     if (o.alpha) {
       // glTF's own alpha test, the rule of scene/alpha_mask.hpp: alpha = baseColorFactor.a × the
       // texture's alpha × COLOR_0.a, opaque when >= alphaCutoff; NEAREST with REPEAT, TEXCOORD_0.

@@ -97,7 +97,8 @@ TEST(GltfWriter, AMaskedCardCarriesItsMaskCutoffVertexAlphaAndNormals) {
   const json& material = g["materials"][1];
   EXPECT_EQ(material["alphaMode"], "MASK");
   EXPECT_EQ(material["alphaCutoff"], 0.3);
-  EXPECT_EQ(material["doubleSided"], true);  // an open card, seen from both sides as the reference sees it
+  EXPECT_EQ(material["doubleSided"], true);  // a masked card: alpha-tested foliage is authored double-sided
+  EXPECT_FALSE(g["materials"][0].contains("doubleSided"));  // the open ground, unmasked: single-sided
   EXPECT_FALSE(g["materials"][0].contains("alphaMode"));
   const json& texture = material["pbrMetallicRoughness"]["baseColorTexture"];
   EXPECT_EQ(texture["texCoord"], 0);

@@ -24,8 +24,9 @@ nlohmann::json object_gltf(const scene::Object& o);
 
 // The whole scene as a glTF 2.0 document:
 //   every object: a node without transform, in the scene's object order, its colour as a
-//     material (metallic 0, roughness 1; counter-clockwise outside; doubleSided for an open mesh,
-//     which the reference sees from both sides), extras.receiver; a masked object
+//     material (metallic 0, roughness 1; counter-clockwise outside; doubleSided only for a masked
+//     object, as alpha-tested foliage is authored; an open card without a mask is single-sided,
+//     and casts from both sides in the reference all the same), extras.receiver; a masked object
 //     (scene/alpha_mask.hpp) with alphaMode MASK, its alphaCutoff, its mask as baseColorTexture
 //     (an embedded grey + alpha PNG whose alpha is the mask; sampler NEAREST, REPEAT; TEXCOORD_0)
 //     and its vertex alpha as COLOR_0's alpha (RGB 1);
