@@ -78,7 +78,7 @@ void register_reference_command(CLI::App& app, int& exit_code) {
       "reference",
       "Render a scene's ray-traced ground truth (Embree): mask.png, visibility.exr, decided.png, shaded.png "
       "(mask_<i>.png etc. per light when there are several).");
-  cmd->add_option("--scene", args->scene, "the scene file (JSON)")->required();
+  cmd->add_option("--scene", args->scene, "the scene file: JSON, or a glTF 2.0 scene (.gltf, .glb; docs/scene-format.md)")->required();
   cmd->add_flag("--allow-meshes-outside", args->allow_meshes_outside,
                 "let the scene's mesh files lie outside its folder (absolute paths, '../'): for local use; a catalogue or a "
                 "pack never needs it, and conform and export always refuse such scenes");

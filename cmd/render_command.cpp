@@ -98,7 +98,7 @@ void register_render_command(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand(
       "render", "Render a scene with one shadow technique in OpenGL (Mesa llvmpipe / softpipe) into masks and a picture.");
-  cmd->add_option("--scene", args->scene, "scene file (JSON)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--scene", args->scene, "scene file: JSON, or a glTF 2.0 scene (.gltf, .glb; docs/scene-format.md)")->required()->check(CLI::ExistingFile);
   cmd->add_flag("--allow-meshes-outside", args->allow_meshes_outside,
                 "let the scene's mesh files lie outside its folder (absolute paths, '../'): for local use; a catalogue or a "
                 "pack never needs it, and conform and export always refuse such scenes");

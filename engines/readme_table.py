@@ -59,6 +59,9 @@ def block(table):
     lines += ["", "Causes:", ""]
     for c, text in table["causes"].items():
         lines.append(f"- **{letters[c]}** ({c}): {text}")
+    nj = table.get("not_judged")
+    if nj:
+        lines += ["", f"Not judged on these engines yet: {', '.join(nj['scenes'])}. {nj['why']}"]
     lines += ["", END]
     return "\n".join(lines)
 

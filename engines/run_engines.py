@@ -12,6 +12,9 @@ verdict that changed, a scene added or lost — fails, with the report to look a
 --runs renders and judges only the runs whose names match (for working on one harness); the test
 runs them all.
 
+Scenes in verdicts.json's `not_judged` are rendered by the harnesses that render every scene but not
+judged: the harnesses cannot yet give the engine what those scenes need (its `why` says what).
+
 --record rewrites the verdicts of verdicts.json from this run, keeping each *why* and *cause* whose
 verdict did not change and emptying the others (engines/readme_table.py then refuses a non-PASS
 without them until someone has looked at the report and written them).
@@ -70,11 +73,17 @@ def render(r, exes, pack, out, work):
         sys.exit(f"{r['run']}: the harness failed (exit {p.returncode}):\n{p.stdout}")
 
 
-def judge(r, shadowref, pack, candidates, out, cache):
-    cmd = [shadowref, "conform", "--catalogue", pack / "scenes", "--candidate-dir", candidates,
-           "--technique", r["technique"], "--out", out, "--cache", cache, "--quiet"]
+def judged_scenes(r, pack, not_judged):
+    """The scenes a run is judged on: its own list, or every scene of the pack but those no harness
+    renders faithfully yet (verdicts.json's not_judged says which and why)."""
     if r.get("scenes"):
-        cmd += ["--scenes", ",".join(r["scenes"])]
+        return r["scenes"]
+    return [f.stem for f in sorted((pack / "scenes").glob("*.json")) if f.stem not in not_judged]
+
+
+def judge(r, shadowref, pack, candidates, out, cache, scenes):
+    cmd = [shadowref, "conform", "--catalogue", pack / "scenes", "--candidate-dir", candidates,
+           "--technique", r["technique"], "--out", out, "--cache", cache, "--quiet", "--scenes", ",".join(scenes)]
     p = run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if p.returncode not in (0, 1, 2):  # 0 pass, 1 warnings, 2 failures: all verdicts; others are errors
         sys.exit(f"{r['run']}: shadowref conform failed (exit {p.returncode}):\n{p.stdout}")
@@ -135,7 +144,8 @@ def main():
         t0 = time.monotonic()
         candidates, verdict_dir = work / "renders" / r["run"], work / "verdicts" / r["run"]
         render(r, exes, pack, candidates, work)
-        observed = judge(r, a.shadowref.resolve(), pack, candidates, verdict_dir, cache)
+        scenes = judged_scenes(r, pack, set(table.get("not_judged", {}).get("scenes", [])))
+        observed = judge(r, a.shadowref.resolve(), pack, candidates, verdict_dir, cache, scenes)
         diff = differences(r["verdicts"], observed)
         counts = {}
         for status in observed.values():

@@ -36,6 +36,10 @@ std::string describe(const Faults& f) {
   on(s.cube == CubeFault::ZFacesSwapped, "shadow_map.cube=z_faces_swapped");
   on(s.cube == CubeFault::YFacesUpsideDown, "shadow_map.cube=y_faces_upside_down");
   on(s.half_texel_offset, "shadow_map.half_texel_offset");
+  on(s.alpha == AlphaFault::Ignored, "shadow_map.alpha=ignored");
+  on(s.alpha == AlphaFault::CutoffHalf, "shadow_map.alpha=cutoff_half");
+  on(s.alpha == AlphaFault::VertexAlphaIgnored, "shadow_map.alpha=vertex_alpha_ignored");
+  on(s.cull_open_front_faces, "shadow_map.cull_open_front_faces");
   on(f.cascade.gap, "cascade.gap");
   on(f.cascade.slice_depth_range, "cascade.slice_depth_range");
   on(f.cascade.no_snapping, "cascade.no_snapping");

@@ -60,12 +60,20 @@ class Programs {
   mutable std::map<const MapLookup*, Program> surface_;  // by lookup, compiled when first asked
 };
 
+// The texture unit of every program's alpha mask (u_alpha_mask, an R8UI texture); the light maps use 0 to 3.
+inline constexpr GLenum kAlphaMaskUnit = GL_TEXTURE4;
+
 // Homogeneous vertices (vec4) and optional 32-bit triangle indices on the GPU.
 class GpuMesh {
  public:
   // `normals`, when not empty, is one per vertex (attribute 1: the face normals of a flat mesh).
+  // `alpha_test`, when not empty, is one per vertex (attribute 2: u, v, the threshold of
+  // scene::alpha_threshold, the vertex alpha) and `mask` the object's texture, uploaded as R8UI and
+  // bound to kAlphaMaskUnit by draw(). Without them attribute 2 keeps GL's default (0, 0, 0, 1): a
+  // threshold of 0, which every fragment passes (shaders.cpp, kAlphaTest).
   GpuMesh(const GlFunctions& gl, std::span<const Vec4<float>> vertices, std::span<const std::uint32_t> indices,
-          std::span<const Vec3<float>> normals = {});
+          std::span<const Vec3<float>> normals = {}, std::span<const Vec4<float>> alpha_test = {},
+          const scene::AlphaTexture* mask = nullptr);
   ~GpuMesh();
   GpuMesh(GpuMesh&& other) noexcept;
   GpuMesh(const GpuMesh&) = delete;
@@ -76,7 +84,7 @@ class GpuMesh {
 
  private:
   const GlFunctions* gl_;
-  GLuint vao_ = 0, vbo_ = 0, ebo_ = 0, nbo_ = 0;
+  GLuint vao_ = 0, vbo_ = 0, ebo_ = 0, nbo_ = 0, abo_ = 0, mask_ = 0;
   GLsizei count_ = 0;
   bool indexed_ = false;
 };

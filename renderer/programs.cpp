@@ -29,7 +29,10 @@ GLuint compile(const GlFunctions& gl, GLenum type, const std::vector<std::string
 
 Program link(const GlFunctions& gl, const std::vector<std::string>& fragment, const std::string& what) {
   const GLuint vs = compile(gl, GL_VERTEX_SHADER, {shaders::kSceneVertex}, "scene vertex");
-  const GLuint fs = compile(gl, GL_FRAGMENT_SHADER, fragment, what.c_str());
+  // The alpha test after the version line (or the surface program's generated header), before the body.
+  std::vector<std::string> sources = fragment;
+  sources.insert(sources.begin() + 1, shaders::alpha_test());
+  const GLuint fs = compile(gl, GL_FRAGMENT_SHADER, sources, what.c_str());
   Program p;
   p.id = gl.CreateProgram();
   gl.AttachShader(p.id, vs);
@@ -57,7 +60,8 @@ Program link(const GlFunctions& gl, const std::vector<std::string>& fragment, co
   // The samplers' texture units (light_map.cpp's texture_unit); a program has at most one of them
   // and its moments.
   gl.UseProgram(p.id);
-  const std::pair<const char*, GLint> units[] = {{"u_shadow_map", 0}, {"u_packed_map", 1}, {"u_depth_map", 2}, {"u_moment_map", 3}};
+  const std::pair<const char*, GLint> units[] = {{"u_shadow_map", 0}, {"u_packed_map", 1}, {"u_depth_map", 2}, {"u_moment_map", 3},
+                                                 {"u_alpha_mask", static_cast<GLint>(kAlphaMaskUnit - GL_TEXTURE0)}};
   for (const auto& [name, unit] : units)
     if (const GLint l = loc(name); l >= 0) gl.Uniform1i(l, unit);
   gl.UseProgram(0);
@@ -67,9 +71,9 @@ Program link(const GlFunctions& gl, const std::vector<std::string>& fragment, co
 }  // namespace
 
 Programs::Programs(const GlFunctions& gl) : gl_(gl) {
-  flat = link(gl, {shaders::kFlatFragment}, "flat");
-  moments = link(gl, {shaders::kMomentsFragment}, "moments");
-  distance = link(gl, {shaders::kDistanceFragment}, "distance");
+  flat = link(gl, {shaders::kVersion, shaders::kFlatFragment}, "flat");
+  moments = link(gl, {shaders::kVersion, shaders::kMomentsFragment}, "moments");
+  distance = link(gl, {shaders::kVersion, shaders::kDistanceFragment}, "distance");
   packed_depth = link(gl, {shaders::kVersion, shaders::kDepthPacking, shaders::kPackedDepthFragmentBody}, "packed depth");
   surface();
 }

@@ -35,7 +35,8 @@ double RenderResult::median_frame_ms() const {
 // GPU meshes
 
 GpuMesh::GpuMesh(const GlFunctions& gl, std::span<const Vec4<float>> vertices,
-                 std::span<const std::uint32_t> indices, std::span<const Vec3<float>> normals)
+                 std::span<const std::uint32_t> indices, std::span<const Vec3<float>> normals,
+                 std::span<const Vec4<float>> alpha_test, const scene::AlphaTexture* mask)
     : gl_(&gl) {
   gl.GenVertexArrays(1, &vao_);
   gl.BindVertexArray(vao_);
@@ -54,6 +55,27 @@ GpuMesh::GpuMesh(const GlFunctions& gl, std::span<const Vec4<float>> vertices,
     gl.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
     gl.EnableVertexAttribArray(1);
   }
+  if (!alpha_test.empty()) {
+    gl.GenBuffers(1, &abo_);
+    gl.BindBuffer(GL_ARRAY_BUFFER, abo_);
+    gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(alpha_test.size_bytes()), alpha_test.data(), GL_STATIC_DRAW);
+    gl.VertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, 0, nullptr);
+    gl.EnableVertexAttribArray(2);
+  }
+  if (mask) {
+    // The 8-bit alphas as they are (R8UI, read by texelFetch: no filtering, no conversion); row 0
+    // of the PNG is the texture's row 0, which v = 0 addresses (scene/alpha_mask.hpp).
+    gl.GenTextures(1, &mask_);
+    gl.ActiveTexture(kAlphaMaskUnit);
+    gl.BindTexture(GL_TEXTURE_2D, mask_);
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_R8UI, mask->width, mask->height, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE,
+                  mask->alpha.data());
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    gl.ActiveTexture(GL_TEXTURE0);
+  }
   if (!indices.empty()) {
     gl.GenBuffers(1, &ebo_);
     gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
@@ -68,20 +90,28 @@ GpuMesh::GpuMesh(const GlFunctions& gl, std::span<const Vec4<float>> vertices,
 }
 
 GpuMesh::GpuMesh(GpuMesh&& o) noexcept
-    : gl_(o.gl_), vao_(o.vao_), vbo_(o.vbo_), ebo_(o.ebo_), nbo_(o.nbo_), count_(o.count_), indexed_(o.indexed_) {
-  o.vao_ = o.vbo_ = o.ebo_ = o.nbo_ = 0;
+    : gl_(o.gl_), vao_(o.vao_), vbo_(o.vbo_), ebo_(o.ebo_), nbo_(o.nbo_), abo_(o.abo_), mask_(o.mask_),
+      count_(o.count_), indexed_(o.indexed_) {
+  o.vao_ = o.vbo_ = o.ebo_ = o.nbo_ = o.abo_ = o.mask_ = 0;
   o.count_ = 0;
 }
 
 GpuMesh::~GpuMesh() {
   if (ebo_) gl_->DeleteBuffers(1, &ebo_);
   if (nbo_) gl_->DeleteBuffers(1, &nbo_);
+  if (abo_) gl_->DeleteBuffers(1, &abo_);
+  if (mask_) gl_->DeleteTextures(1, &mask_);
   if (vbo_) gl_->DeleteBuffers(1, &vbo_);
   if (vao_) gl_->DeleteVertexArrays(1, &vao_);
 }
 
 void GpuMesh::draw() const {
   if (count_ == 0) return;
+  if (mask_) {
+    gl_->ActiveTexture(kAlphaMaskUnit);
+    gl_->BindTexture(GL_TEXTURE_2D, mask_);
+    gl_->ActiveTexture(GL_TEXTURE0);
+  }
   gl_->BindVertexArray(vao_);
   if (indexed_) gl_->DrawElements(GL_TRIANGLES, count_, GL_UNSIGNED_INT, nullptr);
   else gl_->DrawArrays(GL_TRIANGLES, 0, count_);
@@ -493,8 +523,10 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_
     // derivatives flips sign on nearly edge-on triangles.
     std::vector<Vec4<float>> v;
     std::vector<Vec3<float>> n;
+    std::vector<Vec4<float>> alpha;  // a masked object's u, v, threshold, vertex alpha (GpuMesh)
     v.reserve(3 * o.mesh.triangles.size());
     n.reserve(3 * o.mesh.triangles.size());
+    const float threshold = o.alpha ? scene::alpha_threshold(o.alpha->cutoff) : 0.0f;
     for (const auto& tri : o.mesh.triangles) {
       const Vec3<double> a = o.mesh.positions[tri[0]].cast<double>(), b = o.mesh.positions[tri[1]].cast<double>(),
                          c = o.mesh.positions[tri[2]].cast<double>();
@@ -504,9 +536,10 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_
         const Vec3<float>& p = o.mesh.positions[k];
         v.emplace_back(p.x(), p.y(), p.z(), 1.0f);
         n.push_back(normal);
+        if (o.alpha) alpha.emplace_back(o.alpha->uvs[k].x(), o.alpha->uvs[k].y(), threshold, o.alpha->vertex_alpha[k]);
       }
     }
-    objects.emplace_back(gl, v, std::span<const std::uint32_t>{}, n);
+    objects.emplace_back(gl, v, std::span<const std::uint32_t>{}, n, alpha, o.alpha ? o.alpha->texture.get() : nullptr);
   }
   const Target target(gl, scene.width, scene.height, convention.float_depth);
   // Clip-space depth 0..1 for the 0..1 conventions (ARB_clip_control, core in 4.5); GL's default

@@ -11,20 +11,30 @@
 #include <vector>
 
 #include "shadow_maps/lookup.hpp"
+#include "shadowref/renderer/faults.hpp"
+#include "shadowref/scene/alpha_mask.hpp"
 
 namespace shadowref::renderer::shaders {
 
 const char* const kSceneVertex = R"glsl(#version 330 core
 layout(location = 0) in vec4 a_position;   // world space; w = 0: a point at infinity
 layout(location = 1) in vec3 a_normal;     // the face normal (objects; unused by volumes)
+layout(location = 2) in vec4 a_alpha_test; // a masked object's u, v, threshold, vertex alpha (GpuMesh);
+                                           // GL's default (0, 0, 0, 1) elsewhere: threshold 0, no test
 uniform mat4 u_clip_from_world;            // P · V (· S for planar shadows)
 uniform mat4 u_shadow_from_world;          // B · P_light · V_light (shadow maps), else anything
 out vec3 v_world;
 out vec4 v_shadow;
 flat out vec3 v_normal;
+out vec2 v_uv;
+out float v_vertex_alpha;
+flat out float v_alpha_threshold;
 invariant gl_Position;
 void main() {
   gl_Position = u_clip_from_world * a_position;
+  v_uv = a_alpha_test.xy;
+  v_alpha_threshold = a_alpha_test.z;
+  v_vertex_alpha = a_alpha_test.w;
   v_world = a_position.xyz;
   // Per vertex, interpolated perspective-correctly and divided per fragment: exact projective
   // texturing, the same as computing B · P · V · p per fragment.
@@ -33,22 +43,26 @@ void main() {
 }
 )glsl";
 
-const char* const kFlatFragment = R"glsl(#version 330 core
+const char* const kFlatFragment = R"glsl(
 uniform vec4 u_colour;
 out vec4 o_colour;
-void main() { o_colour = u_colour; }
+void main() {
+  alpha_test();
+  o_colour = u_colour;
+}
 )glsl";
 
 // vsm's light pass (Donnelly & Lauritzen 2006): the first two moments of the fragment's depth plus
 // an offset done by hand as in the packed-depth pass (shadow_maps/vsm.cpp: only its constant part),
 // as view depth along the light's axis: linear, so that averaging moments means something, and
 // without the window depth's coarse float steps near 1.
-const char* const kMomentsFragment = R"glsl(#version 330 core
+const char* const kMomentsFragment = R"glsl(
 uniform vec2 u_layer_inv_view_depth;  // 1 / view depth = x * window depth + y
 uniform float u_offset_factor;        // glPolygonOffset's, with the convention's sign
 uniform float u_offset_units;
 out vec4 o_moments;
 void main() {
+  alpha_test();
   float z = gl_FragCoord.z;
   float m = max(abs(dFdx(z)), abs(dFdy(z)));
   z += u_offset_factor * m + u_offset_units / 16777215.0;
@@ -63,13 +77,14 @@ void main() {
 // surface along each texel's ray (distance and the face's axis depth grow together along a ray). A
 // polygon offset moves only the rasterised depth, not a written one, so its model is applied by hand
 // as in the packed-depth pass: factor * m + units * 2^-24, m the distance's largest change per texel.
-const char* const kDistanceFragment = R"glsl(#version 330 core
+const char* const kDistanceFragment = R"glsl(
 in vec3 v_world;
 uniform vec3 u_light_position;
 uniform float u_distance_range;
 uniform float u_offset_factor;
 uniform float u_offset_units;
 void main() {
+  alpha_test();
   float d = distance(v_world, u_light_position) / u_distance_range;
   float m = max(abs(dFdx(d)), abs(dFdy(d)));
   gl_FragDepth = clamp(d + u_offset_factor * m + u_offset_units / 16777215.0, 0.0, 1.0);
@@ -106,6 +121,7 @@ uniform float u_offset_factor;
 uniform float u_offset_units;
 out vec4 o_colour;
 void main() {
+  alpha_test();
   float z = gl_FragCoord.z;
   float m = max(abs(dFdx(z)), abs(dFdy(z)));
   o_colour = pack_depth_rgba8(z + u_offset_factor * m + u_offset_units / kPackedDepthMax);
@@ -230,6 +246,7 @@ float shadow_visibility() {
 }
 
 void main() {
+  alpha_test();  // a masked object's holes show what lies behind them, in every camera pass
   // The face normal turned toward the camera (as the reference does), so one-sided planes work
   // from below.
   vec3 n = gl_FrontFacing ? v_normal : -v_normal;
@@ -259,6 +276,26 @@ void main() {
 }
 )glsl";
 
+// Every fragment shader's alpha test of masked objects: scene/alpha_mask.hpp's rule (its GLSL,
+// alpha_rule_glsl(), joined before this), with the teeth's AlphaFault (faults.hpp) as a uniform that
+// only a depth pass of a faulted render sets.
+const char* const kAlphaTest = R"glsl(
+in vec2 v_uv;
+in float v_vertex_alpha;
+flat in float v_alpha_threshold;
+uniform usampler2D u_alpha_mask;     // R8UI, on kAlphaMaskUnit
+uniform int u_alpha_fault;           // AlphaFault; kAlphaFaultNone in production
+void alpha_test() {
+  float threshold = v_alpha_threshold;
+  if (threshold <= 0.0 || u_alpha_fault == kAlphaFaultIgnored) return;  // FAULT: solid quads
+  if (u_alpha_fault == kAlphaFaultCutoffHalf) threshold = 127.5;       // FAULT: the cutoff taken as 0.5
+  float a = u_alpha_fault == kAlphaFaultVertexAlphaIgnored ? 1.0 : v_vertex_alpha;  // FAULT: vertex alpha ignored
+  ivec2 size = textureSize(u_alpha_mask, 0);
+  uint a8 = texelFetch(u_alpha_mask, ivec2(alpha_texel(v_uv.x, size.x), alpha_texel(v_uv.y, size.y)), 0).r;
+  if (!alpha_opaque(a8, a, threshold)) discard;
+}
+)glsl";
+
 namespace {
 
 std::string constant(const char* name, int value) {
@@ -269,6 +306,14 @@ std::string flag(const char* name, bool value) {
 }
 
 }  // namespace
+
+std::string alpha_test() {
+  std::string out = constant("kAlphaFaultNone", static_cast<int>(AlphaFault::None));
+  out += constant("kAlphaFaultIgnored", static_cast<int>(AlphaFault::Ignored));
+  out += constant("kAlphaFaultCutoffHalf", static_cast<int>(AlphaFault::CutoffHalf));
+  out += constant("kAlphaFaultVertexAlphaIgnored", static_cast<int>(AlphaFault::VertexAlphaIgnored));
+  return out + scene::alpha_rule_glsl() + kAlphaTest;
+}
 
 std::vector<std::string> surface_fragment(const MapLookup* lookup) {
   // The C++ enumerations the GLSL branches on, generated from their values here, not written twice.

@@ -14,6 +14,8 @@ namespace shadowref::renderer::shaders {
 // `u_clip_from_world` out, `invariant` so that shadow-volume caps and the surfaces they lie on
 // get bit-identical depths (the depth-pass / depth-fail tests rely on it).
 extern const char* const kSceneVertex;
+// Every fragment shader below is joined after kVersion and alpha_test() (programs.cpp) and calls
+// alpha_test() first.
 // A constant colour (depth pre-pass, stencil passes with colour writes off, planar black).
 extern const char* const kFlatFragment;
 // The packed-depth pass is three strings for glShaderSource: kVersion, kDepthPacking, its body.
@@ -27,6 +29,11 @@ extern const char* const kMomentsFragment;
 extern const char* const kDistanceFragment;
 // The depth of the light's view, packed into RGBA8.
 extern const char* const kPackedDepthFragmentBody;
+
+// Every fragment shader's alpha test, after its version line (programs.cpp joins it): the
+// AlphaFault constants, scene/alpha_mask.hpp's rule in GLSL and alpha_test(), which discards a
+// masked object's fragment below its cutoff (the teeth's u_alpha_fault aside).
+std::string alpha_test();
 
 // The surface program's fragment shader, as glShaderSource's strings: kVersion and the constants of
 // the C++ enumerations it branches on (SurfaceMode, MapLayout, the lookup's flags), the inputs, and

@@ -8,6 +8,7 @@
 #include <tiny_gltf.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -262,6 +263,82 @@ TEST(ExportSceneGltf, EveryMatrixMatchesMatricesJson) {
     }
   }
   for (int k : kinds) EXPECT_GT(k, 0) << "every light kind is covered";
+  fs::remove_all(root);
+}
+
+// The catalogue's masked scenes as an engine's loader reads them (tinygltf, stb_image for the
+// embedded PNG): glTF's own alpha test with the scene's cutoff, the mask in the image's alpha channel
+// with a NEAREST / REPEAT sampler, vertex alpha in COLOR_0, and every mesh with flat normals, each the
+// unit normal of its own triangle (docs/scene-format.md, "Alpha masks"; docs/output-contract.md).
+TEST(ExportSceneGltf, MasksCutoffsVertexAlphaAndFlatNormalsAsALoaderReadsThem) {
+  const fs::path root = fs::temp_directory_path() / ("shadowref_scene_gltf_masks_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  const test::CommandResult r = test::run_command({SHADOWREF_EXE, "export", "--scenes", "alpha_fence,alpha_vertex", "--out",
+                                                   (root / "pack").string(), "--cache", (root / "cache").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // The fence: one masked material, cutoff 0.75, its grey mask (0, 160, 255) as the image's alpha.
+  const tinygltf::Model fence = load(root / "pack" / "alpha_fence" / "scene.gltf");
+  int masked = 0;
+  for (const tinygltf::Material& mat : fence.materials) {
+    if (mat.alphaMode != "MASK") continue;
+    ++masked;
+    EXPECT_EQ(mat.alphaCutoff, 0.75);
+    const int t = mat.pbrMetallicRoughness.baseColorTexture.index;
+    ASSERT_GE(t, 0);
+    EXPECT_EQ(mat.pbrMetallicRoughness.baseColorTexture.texCoord, 0);
+    const tinygltf::Sampler& sampler = fence.samplers.at(static_cast<std::size_t>(fence.textures.at(static_cast<std::size_t>(t)).sampler));
+    EXPECT_EQ(sampler.magFilter, TINYGLTF_TEXTURE_FILTER_NEAREST);
+    EXPECT_EQ(sampler.minFilter, TINYGLTF_TEXTURE_FILTER_NEAREST);
+    EXPECT_EQ(sampler.wrapS, TINYGLTF_TEXTURE_WRAP_REPEAT);
+    EXPECT_EQ(sampler.wrapT, TINYGLTF_TEXTURE_WRAP_REPEAT);
+    const tinygltf::Image& image = fence.images.at(static_cast<std::size_t>(fence.textures.at(static_cast<std::size_t>(t)).source));
+    ASSERT_GE(image.component, 2) << "the mask must be an alpha channel";
+    std::vector<int> alphas;
+    for (std::size_t i = static_cast<std::size_t>(image.component) - 1; i < image.image.size(); i += static_cast<std::size_t>(image.component))
+      alphas.push_back(image.image[i]);
+    std::sort(alphas.begin(), alphas.end());
+    alphas.erase(std::unique(alphas.begin(), alphas.end()), alphas.end());
+    EXPECT_EQ(alphas, (std::vector<int>{0, 160, 255}));
+    EXPECT_TRUE(mat.doubleSided);
+  }
+  EXPECT_EQ(masked, 1);
+  // alpha_vertex: vertex alpha as COLOR_0 (the fade card's alone, without a texture).
+  const tinygltf::Model vertex = load(root / "pack" / "alpha_vertex" / "scene.gltf");
+  int with_colour = 0, without_texture = 0;
+  for (const tinygltf::Mesh& mesh : vertex.meshes) {
+    const tinygltf::Primitive& prim = mesh.primitives.at(0);
+    if (!prim.attributes.count("COLOR_0")) continue;
+    ++with_colour;
+    EXPECT_EQ(vertex.materials.at(static_cast<std::size_t>(prim.material)).alphaMode, "MASK") << mesh.name;
+    without_texture += prim.attributes.count("TEXCOORD_0") ? 0 : 1;
+  }
+  EXPECT_EQ(with_colour, 2);
+  EXPECT_EQ(without_texture, 1);
+  // Flat normals: each vertex's NORMAL is its triangle's unit face normal.
+  for (const tinygltf::Model* model : {&fence, &vertex})
+    for (const tinygltf::Mesh& mesh : model->meshes) {
+      const tinygltf::Primitive& prim = mesh.primitives.at(0);
+      ASSERT_TRUE(prim.attributes.count("NORMAL")) << mesh.name;
+      const std::string pos = accessor_bytes(*model, prim.attributes.at("POSITION"));
+      const std::string nor = accessor_bytes(*model, prim.attributes.at("NORMAL"));
+      ASSERT_EQ(pos.size(), nor.size());
+      std::vector<float> p(pos.size() / 4), n(nor.size() / 4);
+      std::memcpy(p.data(), pos.data(), pos.size());
+      std::memcpy(n.data(), nor.data(), nor.size());
+      for (std::size_t t = 0; t + 9 <= p.size(); t += 9) {  // unindexed in effect: the indices run 0, 1, 2, ...
+        const double ax = p[t + 3] - p[t], ay = p[t + 4] - p[t + 1], az = p[t + 5] - p[t + 2];
+        const double bx = p[t + 6] - p[t], by = p[t + 7] - p[t + 1], bz = p[t + 8] - p[t + 2];
+        double cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
+        const double len = std::sqrt(cx * cx + cy * cy + cz * cz);
+        cx /= len, cy /= len, cz /= len;
+        for (std::size_t k = 0; k < 9; k += 3) {
+          // float normals of a double cross product: 1e-6 is a few float ulps of a unit vector.
+          EXPECT_NEAR(n[t + k], cx, 1e-6) << mesh.name;
+          EXPECT_NEAR(n[t + k + 1], cy, 1e-6) << mesh.name;
+          EXPECT_NEAR(n[t + k + 2], cz, 1e-6) << mesh.name;
+        }
+      }
+    }
   fs::remove_all(root);
 }
 

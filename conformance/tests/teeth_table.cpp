@@ -188,6 +188,32 @@ constexpr Row kRows[] = {
             "a pixel and no scene tells it from the right technique's own texel quantisation, which the "
             "shadow-map threshold must allow)",
      .shadow_map_size = 128},
+    // Alpha-masked and single-sided casters (scene/alpha_mask.hpp; the catalogue's alpha_* and
+    // single_sided_cards scenes).
+    {.name = "alpha-ignored-in-depth-pass", .technique = "shadowmap",
+     .faults = on([](Faults& f) { f.shadow_map.alpha = renderer::AlphaFault::Ignored; }), .convention = "gl",
+     .scenes = "alpha_cards alpha_fence",
+     .field_class = "masked casters drawn solid into the depth pass (three.js before r132, WebGPU #31802)",
+     .why = "every leaf card and the whole fence cast their full quads: the ground under the cards' and the "
+            "fence's holes, lit in the reference, is shadowed"},
+    {.name = "alpha-cutoff-fixed-at-half", .technique = "shadowmap",
+     .faults = on([](Faults& f) { f.shadow_map.alpha = renderer::AlphaFault::CutoffHalf; }), .convention = "gl",
+     .scenes = "alpha_cards",
+     .field_class = "the material's alpha cutoff ignored for a fixed 0.5 in the shadow pass (Godot #19752)",
+     .why = "the 0.25 card loses its 127 ring (too light) and the 0.75 card keeps its 191 ring (too dark): each "
+            "a band of texels several pixels wide"},
+    {.name = "vertex-alpha-ignored", .technique = "shadowmap",
+     .faults = on([](Faults& f) { f.shadow_map.alpha = renderer::AlphaFault::VertexAlphaIgnored; }), .convention = "gl",
+     .scenes = "alpha_vertex",
+     .field_class = "vertex alpha ignored in the shadow pass (PlayCanvas #5115)",
+     .why = "the card with vertex alpha alone casts its whole quad instead of its opaque half, and the fading "
+            "leaf keeps the texels its vertex alpha clears"},
+    {.name = "single-sided-cards-front-culled", .technique = "shadowmap",
+     .faults = on([](Faults& f) { f.shadow_map.cull_open_front_faces = true; }), .convention = "gl",
+     .scenes = "single_sided_cards",
+     .field_class = "open casters culled like closed ones in the depth pass (front faces culled)",
+     .why = "both cards face the light with their front: culled, they are missing from the map and cast no "
+            "shadow at all"},
 
     // ---- cascaded shadow maps -----------------------------------------------------------------
     {.name = "csm-gap-between-cascades", .technique = "csm",

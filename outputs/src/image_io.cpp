@@ -168,6 +168,8 @@ Image8 read_image8(const std::filesystem::path& file, int channels, int width, i
     throw InputError(InputError::Kind::SizeMismatch, file.string() + ": candidate is " + std::to_string(spec.width) + "x" +
                                                          std::to_string(spec.height) + ", reference is " + std::to_string(width) +
                                                          "x" + std::to_string(height));
+  if (channels == 0 && (spec.channels < 1 || spec.channels > 4)) throw bad("has " + std::to_string(spec.channels) + " channels, expected 1 to 4");
+  if (channels == 0) channels = spec.channels;  // as the file has them
   if (spec.channels != channels)
     throw bad("has " + std::to_string(spec.channels) + " channel(s), expected " + std::to_string(channels) +
               (channels == 1 ? " (8-bit grey: 255 lit, 0 shadowed, 128 no surface)" : ""));
@@ -189,6 +191,23 @@ Image8 read_image8(const std::filesystem::path& file, int channels, int width, i
   return image;
 }
 
+Image8 decode_png8(const std::string& bytes, const std::string& name) {
+  const auto bad = [&](const std::string& what) { return InputError(InputError::Kind::BadInput, name + ": " + what); };
+  png::Reader r(png::Reader::FromMemory{}, bytes);
+  if (!r.why().empty()) throw bad("cannot decode as PNG: " + r.why());
+  if (static_cast<std::size_t>(r.width()) * static_cast<std::size_t>(r.height()) > kMaxPixels)
+    throw bad(std::to_string(r.width()) + " x " + std::to_string(r.height()) + " pixels: larger than 16384 x 16384");
+  if (r.channels() < 1 || r.channels() > 4) throw bad("has " + std::to_string(r.channels()) + " channels, expected 1 to 4");
+  if (r.bit_depth() != 8) throw bad("pixel format uint" + std::to_string(r.bit_depth()) + ", expected 8-bit unsigned");
+  Image8 image;
+  image.width = r.width();
+  image.height = r.height();
+  image.channels = r.channels();
+  image.pixels.resize(image.pixel_count() * static_cast<std::size_t>(image.channels));
+  if (!r.read(image.pixels.data())) throw bad("cannot read pixels (truncated or corrupt?): " + r.why());
+  return image;
+}
+
 std::vector<float> read_exr(const std::filesystem::path& file, int width, int height) {
   const auto bad = [&](const std::string& what) { return InputError(InputError::Kind::BadInput, file.string() + ": " + what); };
   std::error_code ec;
@@ -206,6 +225,12 @@ std::vector<float> read_exr(const std::filesystem::path& file, int width, int he
   if (c.read(o.reader.get(), 1, kShadowrefFloat, pixels.data(), error, sizeof error) != 0)
     throw bad("cannot read pixels: " + first_line(error, "decoding failed"));
   return pixels;
+}
+
+std::string encode_png(const Image8& image) {
+  if (image.pixels.size() != image.pixel_count() * static_cast<std::size_t>(image.channels))
+    throw std::logic_error("image buffer does not match its size");
+  return png::encode(image);
 }
 
 void write_png(const Image8& image, const std::filesystem::path& file) {

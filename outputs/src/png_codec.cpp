@@ -12,13 +12,14 @@
 namespace shadowref::outputs::png {
 
 std::string encode(const Image8& image) {
-  if (image.channels != 1 && image.channels != 3)
-    throw std::logic_error("a PNG is written with 1 or 3 channels, not " + std::to_string(image.channels));
+  if (image.channels < 1 || image.channels > 4)
+    throw std::logic_error("a PNG is written with 1 to 4 channels, not " + std::to_string(image.channels));
   png_image png{};
   png.version = PNG_IMAGE_VERSION;
   png.width = static_cast<png_uint_32>(image.width);
   png.height = static_cast<png_uint_32>(image.height);
-  png.format = image.channels == 3 ? PNG_FORMAT_RGB : PNG_FORMAT_GRAY;
+  constexpr png_uint_32 kFormats[] = {PNG_FORMAT_GRAY, PNG_FORMAT_GA, PNG_FORMAT_RGB, PNG_FORMAT_RGBA};
+  png.format = kFormats[image.channels - 1];
   // Fast: a conformance run writes several images per case, and at 1024² a full deflate was a
   // quarter of the run's CPU time (bench/README.md, "conform at 1024²"); masks are large flat
   // regions, which the fast level still compresses well. No colour-space chunk: the masks are
@@ -81,6 +82,17 @@ bool read_rows(Reader::State& s, png_bytepp rows) {
 
 Reader::Reader(const std::filesystem::path& file) : state_(new State) {
   state_->file = std::fopen(file.c_str(), "rb");
+  open();
+}
+
+// fmemopen in "r" mode reads the buffer and never writes it.
+Reader::Reader(FromMemory, const std::string& bytes) : state_(new State) {
+  state_->file = bytes.empty() ? nullptr : fmemopen(const_cast<char*>(bytes.data()), bytes.size(), "rb");
+  if (bytes.empty()) errno = EINVAL;
+  open();
+}
+
+void Reader::open() {
   if (!state_->file) {
     why_ = std::strerror(errno);
     return;

@@ -20,7 +20,7 @@
 
 namespace shadowref::outputs::png {
 
-// `image` (1 or 3 channels, row 0 at the top) as a PNG stream: no row filters and a fast deflate
+// `image` (1 to 4 channels: grey, grey + alpha, RGB, RGBA; row 0 at the top) as a PNG stream: no row filters and a fast deflate
 // (PNG_IMAGE_FLAG_FAST), no colour-space chunk. Throws std::runtime_error with libpng's reason.
 std::string encode(const Image8& image);
 
@@ -30,6 +30,10 @@ std::string encode(const Image8& image);
 class Reader {
  public:
   explicit Reader(const std::filesystem::path& file);
+  // The same over PNG bytes in memory (an image embedded in a glTF file), which must outlive the
+  // reader.
+  struct FromMemory {};
+  Reader(FromMemory, const std::string& bytes);
   ~Reader();
   Reader(const Reader&) = delete;
   Reader& operator=(const Reader&) = delete;
@@ -47,6 +51,8 @@ class Reader {
   struct State;  // libpng's structures and the message buffer its error handler fills (png_codec.cpp)
 
  private:
+  void open();  // the header from state_->file, or why_
+
   State* state_ = nullptr;
   std::string why_;
   int width_ = 0, height_ = 0, channels_ = 0, bit_depth_ = 0;

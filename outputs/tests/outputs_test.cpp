@@ -228,6 +228,26 @@ TEST(ImageIo, ABrokenPngIsAPngErrorNotAnotherFormatsAbort) {
   EXPECT_THROW(read_image8(d / "mask.png", 1), InputError);
 }
 
+// PNG bytes in memory (a glTF's embedded mask): the same reader, the file's own channels, one-line
+// errors naming what the caller names.
+TEST(ImageIo, PngBytesInMemoryDecodeAsTheFileWould) {
+  const Image8 ga{3, 2, 2, {255, 0, 255, 10, 255, 20, 255, 30, 255, 40, 255, 250}};
+  const Image8 back = decode_png8(encode_png(ga), "embedded");
+  EXPECT_EQ(back.width, 3);
+  EXPECT_EQ(back.height, 2);
+  EXPECT_EQ(back.channels, 2);
+  EXPECT_EQ(back.pixels, ga.pixels);
+  for (const std::string& bad : {std::string(), std::string("not a png"), encode_png(ga).substr(0, 40)}) {
+    try {
+      (void)decode_png8(bad, "level.gltf: image 0");
+      ADD_FAILURE() << "decoded " << bad.size() << " bytes of garbage";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("level.gltf: image 0: ", 0), 0u) << e.what();
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(StagedFolder, CommitReplacesAndAbandonLeavesTheOldFolder) {
   const fs::path d = fresh_dir("staged");
   const fs::path target = d / "result";

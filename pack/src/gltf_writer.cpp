@@ -5,9 +5,12 @@
 #include <cstdint>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "shadowref/convention.hpp"
 #include "shadowref/outputs/file_names.hpp"
+#include "shadowref/outputs/image.hpp"
+#include "shadowref/outputs/image_io.hpp"
 #include "shadowref/pack/matrix_json.hpp"
 #include "shadowref/scene/prepared_scene.hpp"
 
@@ -36,33 +39,63 @@ std::string base64(const std::string& bytes) {
   return out;
 }
 
-// glTF 2.0 meshes appended into one embedded buffer: float positions and uint32 indices (both
-// 4-byte elements, so every buffer view stays aligned without padding).
+// glTF 2.0 meshes appended into one embedded buffer, flat: every triangle its own three vertices
+// with its face normal (glTF asks a loader without normals for flat ones, and some smooth shared
+// vertices instead), and a masked object's TEXCOORD_0 and COLOR_0 beside them. Every element is a
+// 4-byte float or uint32, so every buffer view stays aligned without padding.
 struct GltfMeshes {
   std::string buffer;
   json buffer_views = json::array();
   json accessors = json::array();
   json meshes = json::array();
 
+  // Appends `values` (count elements of `type`, float or uint32 components) as a buffer view and
+  // its accessor; returns the accessor's index.
+  template <class T>
+  std::size_t append(const std::vector<T>& values, std::size_t count, const char* type, int component_type, int target,
+                     json extra = json::object()) {
+    const std::size_t offset = buffer.size();
+    buffer.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+    buffer_views.push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", buffer.size() - offset}, {"target", target}});
+    json accessor = {{"bufferView", buffer_views.size() - 1}, {"componentType", component_type}, {"count", count}, {"type", type}};
+    accessor.update(extra);
+    accessors.push_back(accessor);
+    return accessors.size() - 1;
+  }
+
   // Appends o's mesh with `material` (none when negative); returns the mesh index.
   int add(const scene::Object& o, int material = -1) {
-    const std::size_t position_offset = buffer.size();
+    std::vector<float> positions, normals, uvs, colours;
+    std::vector<std::uint32_t> indices;
     Vec3<float> lo = o.mesh.positions.front(), hi = lo;
-    for (const auto& p : o.mesh.positions) {
-      buffer.append(reinterpret_cast<const char*>(p.data()), 3 * sizeof(float));
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
+    for (const auto& tri : o.mesh.triangles) {
+      // The face normal as the renderer computes it: (v1 − v0) × (v2 − v0) in double, made unit.
+      const Vec3<double> a = o.mesh.positions[tri[0]].cast<double>(), b = o.mesh.positions[tri[1]].cast<double>(),
+                         c = o.mesh.positions[tri[2]].cast<double>();
+      const Vec3<double> cr = (b - a).cross(c - a);
+      const Vec3<float> n = cr.squaredNorm() > 0 ? Vec3<float>(cr.normalized().cast<float>()) : Vec3<float>(0, 1, 0);
+      for (const std::uint32_t k : tri) {
+        const Vec3<float>& p = o.mesh.positions[k];
+        indices.push_back(static_cast<std::uint32_t>(positions.size() / 3));
+        positions.insert(positions.end(), {p.x(), p.y(), p.z()});
+        normals.insert(normals.end(), {n.x(), n.y(), n.z()});
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+        if (o.alpha) {
+          uvs.insert(uvs.end(), {o.alpha->uvs[k].x(), o.alpha->uvs[k].y()});
+          colours.insert(colours.end(), {1.0f, 1.0f, 1.0f, o.alpha->vertex_alpha[k]});
+        }
+      }
     }
-    const std::size_t index_offset = buffer.size();
-    for (const auto& tri : o.mesh.triangles) buffer.append(reinterpret_cast<const char*>(tri.data()), 3 * sizeof(std::uint32_t));
-    const std::size_t view = buffer_views.size();
-    buffer_views.push_back({{"buffer", 0}, {"byteOffset", position_offset}, {"byteLength", index_offset - position_offset}, {"target", 34962}});
-    buffer_views.push_back({{"buffer", 0}, {"byteOffset", index_offset}, {"byteLength", buffer.size() - index_offset}, {"target", 34963}});
-    const std::size_t accessor = accessors.size();
-    accessors.push_back({{"bufferView", view}, {"componentType", 5126}, {"count", o.mesh.positions.size()}, {"type", "VEC3"},
-                         {"min", {lo.x(), lo.y(), lo.z()}}, {"max", {hi.x(), hi.y(), hi.z()}}});
-    accessors.push_back({{"bufferView", view + 1}, {"componentType", 5125}, {"count", 3 * o.mesh.triangles.size()}, {"type", "SCALAR"}});
-    json primitive = {{"attributes", {{"POSITION", accessor}}}, {"indices", accessor + 1}, {"mode", 4}};
+    const std::size_t vertices = positions.size() / 3;
+    json attributes;
+    attributes["POSITION"] = append(positions, vertices, "VEC3", 5126, 34962,
+                                    {{"min", {lo.x(), lo.y(), lo.z()}}, {"max", {hi.x(), hi.y(), hi.z()}}});
+    attributes["NORMAL"] = append(normals, vertices, "VEC3", 5126, 34962);
+    if (o.alpha && !o.alpha->texture->file.empty()) attributes["TEXCOORD_0"] = append(uvs, vertices, "VEC2", 5126, 34962);
+    if (o.alpha && o.alpha->has_vertex_alpha) attributes["COLOR_0"] = append(colours, vertices, "VEC4", 5126, 34962);
+    const std::size_t index_accessor = append(indices, indices.size(), "SCALAR", 5125, 34963);
+    json primitive = {{"attributes", attributes}, {"indices", index_accessor}, {"mode", 4}};
     if (material >= 0) primitive["material"] = material;
     meshes.push_back({{"name", o.name}, {"primitives", {primitive}}});
     return static_cast<int>(meshes.size() - 1);
@@ -75,6 +108,16 @@ struct GltfMeshes {
     g["meshes"] = meshes;
   }
 };
+
+// A mask as the PNG a glTF loader reads it: grey + alpha, the grey white (the material's colour
+// stays baseColorFactor's) and the alpha the mask's, whatever the scene's file held (a grey mask has
+// no alpha channel, which glTF would read as opaque).
+std::string mask_png(const scene::AlphaTexture& t) {
+  outputs::Image8 image{t.width, t.height, 2, {}};
+  image.pixels.reserve(2 * t.alpha.size());
+  for (const std::uint8_t a : t.alpha) image.pixels.insert(image.pixels.end(), {std::uint8_t{255}, a});
+  return outputs::encode_png(image);
+}
 
 // The camera, exactly as matrices.json's gl convention has it: its glTF camera and its node.
 void add_camera(const scene::Scene& s, json& g, json& nodes) {
@@ -124,6 +167,7 @@ json punctual_light(const scene::Scene& s, std::size_t i, Mat4<double>& at) {
       extras["corner"] = vec3(l.corner);
       extras["edge_u"] = vec3(l.edge_u);
       extras["edge_v"] = vec3(l.edge_v);
+      extras["samples"] = l.samples;  // the soft-shadow ground truth's samples × samples grid (read back by scene/gltf_scene.hpp)
       extras["size"] = {{"edge_u_length", l.edge_u.norm()},
                         {"edge_v_length", l.edge_v.norm()},
                         {"equal_area_square_side", std::sqrt(l.edge_u.cross(l.edge_v).norm())}};
@@ -168,10 +212,31 @@ json scene_gltf(const scene::Scene& s) {
   g["asset"] = {{"version", "2.0"}, {"generator", "shadowref export"}};
   json nodes = json::array();
   json materials = json::array();
-  for (const scene::Object& o : s.objects) {
-    materials.push_back({{"name", o.name},
-                         {"pbrMetallicRoughness",
-                          {{"baseColorFactor", {o.color.x(), o.color.y(), o.color.z(), 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}}});
+  json images = json::array(), textures = json::array();
+  const scene::PreparedScene prepared = scene::prepare_scene(s, kDefaultConvention);
+  for (std::size_t i = 0; i < s.objects.size(); ++i) {
+    const scene::Object& o = s.objects[i];
+    json material = {{"name", o.name},
+                     {"pbrMetallicRoughness",
+                      {{"baseColorFactor", {o.color.x(), o.color.y(), o.color.z(), 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}}};
+    // A masked object is a foliage card or a fence, authored double-sided as engines' alpha-tested
+    // content is. Every other mesh is single-sided (glTF's default), an open one too: a single-sided
+    // card still casts from both sides in the reference, so an engine whose depth pass culls its
+    // lit front faces casts nothing of it, and shows that.
+    if (o.alpha) material["doubleSided"] = true;
+    if (o.alpha) {
+      // glTF's own alpha test, the rule of scene/alpha_mask.hpp: alpha = baseColorFactor.a × the
+      // texture's alpha × COLOR_0.a, opaque when >= alphaCutoff; NEAREST with REPEAT, TEXCOORD_0.
+      material["alphaMode"] = "MASK";
+      material["alphaCutoff"] = o.alpha->cutoff;
+      if (!o.alpha->texture->file.empty()) {
+        textures.push_back({{"sampler", 0}, {"source", images.size()}});
+        images.push_back({{"name", o.name + "_mask"}, {"mimeType", "image/png"},
+                          {"uri", "data:image/png;base64," + base64(mask_png(*o.alpha->texture))}});
+        material["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", textures.size() - 1}, {"texCoord", 0}};
+      }
+    }
+    materials.push_back(material);
     const int mesh = m.add(o, static_cast<int>(materials.size() - 1));
     nodes.push_back({{"name", o.name}, {"mesh", mesh}, {"extras", {{"receiver", o.receiver}, {"shape", o.shape}}}});
   }
@@ -190,6 +255,12 @@ json scene_gltf(const scene::Scene& s) {
   g["scenes"] = {{{"name", s.name}, {"nodes", scene_nodes}}};
   g["nodes"] = nodes;
   g["materials"] = materials;
+  if (!images.empty()) {
+    // NEAREST (9728) both ways, REPEAT (10497) on both axes: the rule's texel.
+    g["samplers"] = {{{"magFilter", 9728}, {"minFilter", 9728}, {"wrapS", 10497}, {"wrapT", 10497}}};
+    g["images"] = images;
+    g["textures"] = textures;
+  }
   if (!lights.empty()) {
     g["extensionsUsed"] = {"KHR_lights_punctual"};
     g["extensions"] = {{"KHR_lights_punctual", {{"lights", lights}}}};

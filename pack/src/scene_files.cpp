@@ -17,15 +17,28 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-// The scene file, and the mesh files it names next to it (the same relative paths).
+// The scene file, and the mesh and mask files it names next to it (the same relative paths): a JSON
+// scene's mesh files and masks, a .gltf scene's external buffers and images (not data: URIs).
 void copy_scene_file(const fs::path& f, const fs::path& scenes) {
   fs::copy_file(f, scenes / f.filename(), fs::copy_options::overwrite_existing);
   std::ifstream in(f);
   const json sj = json::parse(in, nullptr, false);
+  for (const char* key : {"buffers", "images"})
+    if (sj.is_object() && sj.contains(key) && sj[key].is_array())
+      for (const auto& b : sj[key]) {
+        if (!b.is_object() || !b.contains("uri") || !b["uri"].is_string()) continue;
+        const fs::path rel = b["uri"].get<std::string>();
+        std::error_code ec;
+        if (rel.string().rfind("data:", 0) == 0 || !fs::is_regular_file(f.parent_path() / rel, ec)) continue;
+        fs::create_directories((scenes / rel).parent_path());
+        fs::copy_file(f.parent_path() / rel, scenes / rel, fs::copy_options::overwrite_existing);
+      }
   if (sj.is_object() && sj.contains("objects"))
     for (const auto& o : sj["objects"])
-      if (o.contains("shape") && o["shape"].contains("file")) {
-        const fs::path rel = o["shape"]["file"].get<std::string>();
+      for (const json* file : {o.contains("shape") && o["shape"].contains("file") ? &o["shape"]["file"] : nullptr,
+                               o.contains("alpha_texture") ? &o["alpha_texture"] : nullptr}) {
+        if (!file) continue;
+        const fs::path rel = file->get<std::string>();
         fs::create_directories((scenes / rel).parent_path());
         fs::copy_file(f.parent_path() / rel, scenes / rel, fs::copy_options::overwrite_existing);
       }

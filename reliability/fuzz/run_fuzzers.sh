@@ -3,14 +3,14 @@
 # folder of their own and runs each for a bounded time on a copy of its seed corpus.
 #
 #   reliability/fuzz/run_fuzzers.sh [--smoke | --seconds N | --build-only] [--build-dir DIR] [--jobs J] [TARGET...]
-#     --smoke       8 s per target (7 targets: 56 s of fuzzing; what `ctest` runs)
+#     --smoke       8 s per target (8 targets: 64 s of fuzzing; what `ctest` runs)
 #     --build-only  configure and build the targets, fuzz nothing (what the main build runs, so
 #                   that the test command's fuzz_smoke finds them built)
 #     --seconds N   N s per target
 #     --runs N      N executions per target, however long it takes (the long run in
 #                   reliability/README.md: --runs 1000000)
 #     --build-dir   default build/fuzz
-#     TARGET        scene_fuzzer obj_fuzzer gltf_fuzzer mask_compare_fuzzer math_args_fuzzer
+#     TARGET        scene_fuzzer obj_fuzzer gltf_fuzzer gltf_scene_fuzzer mask_compare_fuzzer math_args_fuzzer
 #                   candidate_fuzzer convention_fuzzer (default: all)
 # Exit: 0 nothing found, 1 a target crashed, leaked, hung or ran out of memory (the input is kept
 # in DIR/artifacts/, and the log in DIR/logs/), 77 clang or libFuzzer is not installed (skipped).
@@ -37,7 +37,7 @@ while [ $# -gt 0 ]; do
   esac
   shift
 done
-[ ${#targets[@]} -gt 0 ] || targets=(scene_fuzzer obj_fuzzer gltf_fuzzer mask_compare_fuzzer math_args_fuzzer candidate_fuzzer
+[ ${#targets[@]} -gt 0 ] || targets=(scene_fuzzer obj_fuzzer gltf_fuzzer gltf_scene_fuzzer mask_compare_fuzzer math_args_fuzzer candidate_fuzzer
                                convention_fuzzer)
 
 cxx="$(command -v clang++ || command -v clang++-14 || true)"

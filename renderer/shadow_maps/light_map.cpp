@@ -33,8 +33,9 @@
 // Fault switches (faults.hpp, ShadowMapFaults), each one `if` below where the bug would be: the
 // compare reversed or not flipped for reversed-Z, the map cleared to 1, the offset's sign, no bias
 // matrix or the −1..1 one, no offset (acne) or a large constant one (peter-panning), casters out of
-// the camera's view culled, a light fit that clips casters, cube faces swapped or upside down, and a
-// half-texel offset; for the cascades (CascadeFaults) a gap between them, depth ranges clipped to
+// the camera's view culled, a light fit that clips casters, cube faces swapped or upside down, a
+// half-texel offset, the alpha test of masked casters ignored or misread (AlphaFault, a uniform of the
+// depth programs' shared alpha_test) and open cards culled like closed casters; for the cascades (CascadeFaults) a gap between them, depth ranges clipped to
 // the slices, no texel snapping, and a fit to the frustum behind the camera. There is no
 // border-colour switch: every fit holds every vertex with a margin (light_fit.hpp; a cascade, its
 // slice with kCascadeMarginTexels), so no catalogue fragment maps outside its map or within a PCF tap
@@ -371,8 +372,13 @@ void draw_depth_pass(const Frame& frame, const LightFit& lc, const std::vector<M
       if (faults.cull_casters_outside_view && frame.outside_camera_view(i)) continue;
       if (cull && frame.closed(i)) gl.Enable(GL_CULL_FACE);
       else gl.Disable(GL_CULL_FACE);
+      if (!frame.closed(i) && faults.cull_open_front_faces) {  // FAULT: an open card culled as a closed caster
+        gl.CullFace(GL_FRONT);
+        gl.Enable(GL_CULL_FACE);
+      }
       if (frame.closed(i) && !drawn.closed_faces) record_drawn_state(gl, p, drawn);
       frame.objects[i].draw();
+      if (!frame.closed(i) && faults.cull_open_front_faces) gl.CullFace(faces == outputs::DepthFaces::Front ? GL_BACK : GL_FRONT);
     }
   }
 }
@@ -454,11 +460,15 @@ LightMap draw_light_map(Frame& frame, std::size_t light, const LightFit& lc, con
   GLuint fbo = 0;
   const GLuint depth_rb = allocate_targets(frame, map, static_cast<GLsizei>(lc.views.size()), lookup, fbo);
   const Program& p = set_depth_pass_state(frame, lc, map, lookup);
+  // FAULT (AlphaFault): how the depth pass treats masked casters; set back to none below, since the
+  // program is shared with passes the fault is not about.
+  gl.Uniform1i(p.at(gl, "u_alpha_fault"), static_cast<int>(frame.faults().shadow_map.alpha));
   DrawnMap drawn;
   drawn.lookup = std::string(lookup.name);
   drawn.distance = map.distance_range > 0;
   gl.GetTexLevelParameteriv(GL_TEXTURE_2D_ARRAY, 0, GL_TEXTURE_WIDTH, &drawn.texels);
   draw_depth_pass(frame, lc, projections, map, lookup, p, drawn);
+  gl.Uniform1i(p.at(gl, "u_alpha_fault"), static_cast<int>(AlphaFault::None));
   frame.result.drawn_maps.push_back(std::move(drawn));
   gl.Disable(GL_CULL_FACE);
   gl.CullFace(GL_BACK);

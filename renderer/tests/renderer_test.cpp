@@ -21,6 +21,9 @@
 #include "shadowref/outputs/techniques.hpp"
 #include "shadowref/renderer/renderer.hpp"
 #include "shadowref/scene/load_scene.hpp"
+#include "shadowref/scene/camera.hpp"
+#include "shadowref/outputs/image_io.hpp"
+#include <nlohmann/json.hpp>
 
 namespace shadowref::renderer {
 namespace {
@@ -342,6 +345,76 @@ TEST(Renderer, EveryMapDeclarationSaysWhatItsDepthPassDrew) {
     }
   }
   EXPECT_EQ(lights_checked, 7 * 4 * 6);
+}
+
+// The alpha rule's GLSL (scene::alpha_rule_glsl, shaders.cpp's alpha_test) against its C++
+// (scene/alpha_mask.hpp), texel by texel: a masked card seen straight down fills the image, with
+// nothing behind it, so a pixel shows no surface exactly where the camera pass discarded. Every
+// pixel centre away from a texel's edge must agree with the C++ rule at that point. The texels hold
+// the values around the threshold (cutoff 0.2: exactly 51 in float, so 51 is opaque and 50 is not),
+// and the coordinates run past 1 so that REPEAT is exercised.
+TEST(Renderer, AlphaRuleInGlslAgreesWithTheCppTexelByTexel) {
+  namespace fs = std::filesystem;
+  constexpr int kTexels = 16;
+  constexpr double kRepeat = 1.5;  // uv from 0 to 1.5: the texture and half of it again
+  const fs::path dir = fs::path(::testing::TempDir()) / "shadowref-alpha-rule";
+  fs::create_directories(dir);
+  Image8 png{kTexels, kTexels, 2, {}};
+  std::uint32_t seed = 12345;
+  const std::uint8_t near_threshold[] = {50, 51, 52, 0, 255};
+  for (int k = 0; k < kTexels * kTexels; ++k) {
+    seed = seed * 1664525u + 1013904223u;  // Numerical Recipes' LCG: deterministic
+    const std::uint8_t a = (seed >> 28) < 10 ? near_threshold[(seed >> 24) % 5] : static_cast<std::uint8_t>(seed >> 24);
+    png.pixels.insert(png.pixels.end(), {std::uint8_t{200}, a});
+  }
+  outputs::write_png(png, dir / "mask.png");
+  // The camera 10 above the card's centre, image top toward -z (v = 0); the card's 2 × 2 square
+  // spans 2.4 / 2 of the view.
+  const nlohmann::json doc = {
+      {"name", "alpha_rule"},
+      {"resolution", {240, 240}},
+      {"camera", {{"position", {0, 10, 0}}, {"target", {0, 0, 0}}, {"up", {0, 0, -1}}, {"fovy_deg", 13.69}, {"near", 1}}},
+      {"lights", {{{"type", "directional"}, {"direction", {0, 1, 0}}}}},
+      {"objects",
+       {{{"name", "card"},
+         {"shape", {{"type", "plane"}, {"size", {2, 2}}}},
+         {"uvs", {{0, 0}, {kRepeat, 0}, {kRepeat, kRepeat}, {0, kRepeat}}},
+         {"alpha_texture", "mask.png"},
+         {"alpha_cutoff", 0.2}}}}};
+  const scene::Scene s = scene::parse_scene(doc.dump(), dir / "scene.json");
+  const scene::AlphaMask& mask = *s.objects[0].alpha;
+  const Mat4<double> world_from_clip = (scene::projection_matrix<double>(s.camera, s.width, s.height).value() *
+                                        scene::view_matrix<double>(s.camera).value()).inverse();
+  for (const char* technique : {"planar", "shadowmap", "volume-zfail"}) {
+    SCOPED_TRACE(technique);
+    const RenderResult r = renderer().render(s, technique, fast_options());
+    int compared = 0, discarded = 0, wrong = 0;
+    std::vector<int> texels_seen(kTexels * kTexels, 0);
+    for (int y = 0; y < s.height; ++y)
+      for (int x = 0; x < s.width; ++x) {
+        const Vec2<double> ndc = scene::pixel_to_ndc<double>(x, y, 0.5, 0.5, s.width, s.height);
+        const Vec4<double> a = world_from_clip * Vec4<double>(ndc.x(), ndc.y(), -1, 1);
+        const Vec4<double> b = world_from_clip * Vec4<double>(ndc.x(), ndc.y(), 0, 1);
+        const Vec3<double> o = a.head<3>() / a.w(), d = b.head<3>() / b.w() - o;
+        const Vec3<double> p = o + (-o.y() / d.y()) * d;
+        if (std::abs(p.x()) >= 1 || std::abs(p.z()) >= 1) continue;
+        const double u = (p.x() + 1) / 2 * kRepeat, v = (p.z() + 1) / 2 * kRepeat;
+        // Away from a texel's edge by a tenth of a texel: float interpolation decides the edge itself.
+        const double fu = u * kTexels - std::floor(u * kTexels), fv = v * kTexels - std::floor(v * kTexels);
+        if (fu < 0.1 || fu > 0.9 || fv < 0.1 || fv > 0.9) continue;
+        const int i = scene::alpha_texel(static_cast<float>(u), kTexels), j = scene::alpha_texel(static_cast<float>(v), kTexels);
+        const bool opaque = scene::alpha_opaque(mask.texture->at(i, j), 1.0f, scene::alpha_threshold(mask.cutoff));
+        const std::uint8_t got = r.masks[0].pixels[static_cast<std::size_t>(y * s.width + x)];
+        ++compared;
+        ++texels_seen[static_cast<std::size_t>(j * kTexels + i)];
+        discarded += got == outputs::kMaskNoSurface ? 1 : 0;
+        if ((got == outputs::kMaskNoSurface) == opaque) ++wrong;
+      }
+    EXPECT_EQ(wrong, 0) << "of " << compared;
+    EXPECT_EQ(std::count(texels_seen.begin(), texels_seen.end(), 0), 0) << "every texel must be compared";
+    EXPECT_GT(discarded, compared / 10);
+    EXPECT_LT(discarded, compared * 9 / 10);
+  }
 }
 
 TEST(Renderer, UnknownTechniqueIsRefused) {

@@ -1,19 +1,25 @@
 // load_scene.cpp — scene files → Scene (load_scene.hpp). Parsing and validation in one pass:
 // each part of the document is read through a JsonNode that knows its path, so every error
 // names the file and the JSON path.
+#include "shadowref/outputs/errors.hpp"
+#include "shadowref/outputs/image_io.hpp"
 #include "shadowref/outputs/limits.hpp"
 #include "shadowref/scene/load_scene.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <limits>
 #include <numbers>
 #include <sstream>
 #include <system_error>
 
 #include "json_node.hpp"
+#include "receiver_check.hpp"
+#include "shadowref/scene/gltf_scene.hpp"
 #include "shadowref/scene/camera.hpp"
 #include "shadowref/scene/identifier.hpp"
 #include "shadowref/scene/path_within.hpp"
@@ -203,9 +209,87 @@ Eigen::Matrix4d read_transform(const JsonNode& n) {
   return m.matrix();
 }
 
+// The mask texture's alpha (alpha_mask.hpp): a PNG's alpha channel, or its grey when it has none,
+// read by the project's one image reader (outputs/image_io.hpp).
+std::shared_ptr<const AlphaTexture> read_alpha_texture(const JsonNode& f, const std::filesystem::path& scene_dir,
+                                                       const LoadOptions& options) {
+  const std::filesystem::path rel = f.string();
+  if (rel.empty()) f.fail("must not be empty");
+  std::string extension = rel.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (extension != ".png") f.fail("'" + rel.string() + "' is not a PNG (.png): a mask is a PNG's alpha, or its grey");
+  const std::filesystem::path path = mesh_path(f, rel, scene_dir, options);
+  outputs::Image8 image;
+  try {
+    image = outputs::read_image8(path, 0);
+  } catch (const outputs::InputError& e) {
+    f.fail(e.what());
+  }
+  if (image.channels == 3) f.fail(path.string() + ": an RGB image without alpha (expected grey, grey + alpha or RGBA)");
+  if (image.width > kMaxAlphaTextureSize || image.height > kMaxAlphaTextureSize)
+    f.fail(path.string() + ": larger than " + std::to_string(kMaxAlphaTextureSize) + " texels on a side");
+  auto texture = std::make_shared<AlphaTexture>();
+  texture->file = path;
+  texture->width = image.width;
+  texture->height = image.height;
+  texture->alpha.resize(image.pixel_count());
+  const std::size_t c = static_cast<std::size_t>(image.channels);
+  for (std::size_t i = 0; i < texture->alpha.size(); ++i) texture->alpha[i] = image.pixels[i * c + c - 1];
+  return texture;
+}
+
+// An object's mask (alpha_mask.hpp) from its uvs, alpha_texture, alpha_cutoff and vertex_alpha keys;
+// nullopt when it has neither a texture nor vertex alpha.
+std::optional<AlphaMask> read_alpha_mask(const JsonNode& n, std::size_t vertices, const std::filesystem::path& scene_dir,
+                                         const LoadOptions& options) {
+  const bool texture = n.has("alpha_texture"), vertex = n.has("vertex_alpha");
+  if (!texture && !vertex) {
+    if (n.has("alpha_cutoff")) n.fail_at("alpha_cutoff", "needs alpha_texture or vertex_alpha (nothing to compare it with)");
+    return std::nullopt;
+  }
+  AlphaMask mask;
+  const JsonNode cutoff = n.required("alpha_cutoff");
+  mask.cutoff = cutoff.number();
+  if (!(mask.cutoff >= 0 && mask.cutoff <= 1)) cutoff.fail("must be in [0, 1]");
+  mask.texture = texture ? read_alpha_texture(n.child("alpha_texture"), scene_dir, options)
+                         : std::make_shared<const AlphaTexture>();
+  const auto per_vertex = [&](const JsonNode& a) {
+    if (a.array_size() != vertices)
+      a.fail("has " + std::to_string(a.array_size()) + " entries, the mesh has " + std::to_string(vertices) +
+             " vertices (one per vertex, in the mesh's order)");
+  };
+  if (texture) {
+    const JsonNode uvs = n.required("uvs");
+    per_vertex(uvs);
+    for (std::size_t i = 0; i < vertices; ++i) {
+      const JsonNode e = uvs.element(i);
+      const Vec2<double> uv = e.vec2();
+      if (!(uv.cwiseAbs().maxCoeff() <= kMaxAlphaUv)) e.fail("must be within [-64, 64] (alpha_mask.hpp, kMaxAlphaUv)");
+      mask.uvs.push_back(uv.cast<float>());
+    }
+  } else {
+    if (n.has("uvs")) n.fail_at("uvs", "needs alpha_texture (texture coordinates with nothing to look up)");
+    mask.uvs.assign(vertices, Vec2<float>::Zero());
+  }
+  if (vertex) {
+    const JsonNode va = n.child("vertex_alpha");
+    per_vertex(va);
+    mask.has_vertex_alpha = true;
+    for (std::size_t i = 0; i < vertices; ++i) {
+      const JsonNode e = va.element(i);
+      const double a = e.number();
+      if (!(a >= 0 && a <= 1)) e.fail("must be in [0, 1]");
+      mask.vertex_alpha.push_back(static_cast<float>(a));
+    }
+  } else {
+    mask.vertex_alpha.assign(vertices, 1.0f);
+  }
+  return mask;
+}
+
 void read_object(const JsonNode& n, std::size_t index, const std::filesystem::path& scene_dir, const LoadOptions& options,
                  Scene& scene) {
-  n.expect_object({"name", "shape", "transform", "receiver", "color"});
+  n.expect_object({"name", "shape", "transform", "receiver", "color", "uvs", "alpha_texture", "alpha_cutoff", "vertex_alpha"});
   Object obj;
   obj.name = "objects[" + std::to_string(index) + "]";
   if (n.has("name")) {  // a file name when exported (meshes/<name>.obj)
@@ -228,6 +312,8 @@ void read_object(const JsonNode& n, std::size_t index, const std::filesystem::pa
   if (mirror)
     for (auto& t : obj.mesh.triangles) std::swap(t[1], t[2]);
   if (obj.mesh.triangles.empty()) shape_node.fail("the mesh has no triangles");
+  obj.alpha = read_alpha_mask(n, obj.mesh.positions.size(), scene_dir, options);
+  if (!obj.alpha && n.has("uvs")) n.fail_at("uvs", "needs alpha_texture (texture coordinates with nothing to look up)");
   if (auto c = n.optional("color")) {
     const Vec3<double> color = c->vec3();
     if (!(color.minCoeff() >= 0 && color.maxCoeff() <= 1)) c->fail("every component must be in [0, 1]");
@@ -240,17 +326,8 @@ void read_object(const JsonNode& n, std::size_t index, const std::filesystem::pa
     }
   }
   scene.objects.push_back(std::move(obj));
-  if (scene.objects.back().receiver) {
-    // Planar shadows need a plane: every vertex within rounding of the first triangle's plane.
-    const auto plane = receiver_plane(scene);
-    const auto b = bounds(scene);
-    const double tolerance = 1e-5 * std::max(1.0, (b[1] - b[0]).norm());  // float positions: ~1e-7 relative, with margin
-    bool planar = plane.has_value();
-    if (planar)
-      for (const auto& p : scene.objects.back().mesh.positions)
-        planar = planar && std::abs(signed_distance(*plane, Vec3<double>(p.cast<double>()))) <= tolerance;
-    if (!planar) n.fail_at("receiver", "the receiver must be planar (all its vertices on one plane)");
-  }
+  if (scene.objects.back().receiver && !detail::receiver_is_planar(scene))
+    n.fail_at("receiver", "the receiver must be planar (all its vertices on one plane)");
 }
 
 void read_expect(const JsonNode& n, Scene& scene) {
@@ -336,6 +413,12 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& file,
 }
 
 Scene load_scene(const std::filesystem::path& file, const LoadOptions& options) {
+  if (is_gltf_scene_file(file)) {
+    // An engine team's own glTF scene (gltf_scene.hpp): what it holds and is not read, said once.
+    GltfScene g = read_gltf_scene(file);
+    for (const std::string& line : g.not_read) std::cerr << "shadowref: warning: " << file.string() << ": " << line << "\n";
+    return std::move(g.scene);
+  }
   std::ifstream in(file, std::ios::binary);
   if (!in) throw SceneError(file.string() + ": cannot open the scene file");
   std::ostringstream text;

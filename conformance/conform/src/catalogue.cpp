@@ -1,5 +1,6 @@
 // catalogue.cpp — where the data is (built or installed) and selecting scene files by glob (catalogue.hpp).
 #include "shadowref/conform/catalogue.hpp"
+#include "shadowref/scene/gltf_scene.hpp"
 
 #include <fnmatch.h>
 
@@ -63,7 +64,7 @@ std::vector<std::filesystem::path> select_scenes(const std::filesystem::path& ca
   std::vector<std::filesystem::path> all;
   if (std::filesystem::is_directory(catalogue, ec))
     for (const auto& e : std::filesystem::directory_iterator(catalogue))
-      if (e.is_regular_file() && e.path().extension() == ".json") all.push_back(e.path());
+      if (e.is_regular_file() && (e.path().extension() == ".json" || scene::holds_camera_and_light(e.path()))) all.push_back(e.path());
   std::sort(all.begin(), all.end());
   std::set<std::filesystem::path> chosen;
   if (patterns.empty()) {

@@ -69,15 +69,30 @@ std::uint64_t file_hash(const std::filesystem::path& file) {
   return known[file] = f.h;
 }
 
-// Mesh files named by the scene file (objects[].shape.file, relative to the scene).
+// The files a scene file names, relative to it: a JSON scene's mesh files and masks
+// (objects[].shape.file, objects[].alpha_texture), a .gltf scene's external buffers and images (a
+// URI that is not a data: URI). A .glb is read as one file (its JSON chunk is not parsed here).
 std::vector<std::filesystem::path> mesh_files(const std::filesystem::path& scene_file, const std::string& text) {
   std::vector<std::filesystem::path> out;
   const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
-  if (!j.is_object() || !j.contains("objects") || !j["objects"].is_array()) return out;
-  for (const auto& o : j["objects"])
-    if (o.is_object() && o.contains("shape") && o["shape"].is_object() && o["shape"].contains("file") &&
-        o["shape"]["file"].is_string())
-      out.push_back(scene_file.parent_path() / o["shape"]["file"].get<std::string>());
+  if (!j.is_object()) return out;
+  if (j.contains("objects") && j["objects"].is_array())
+    for (const auto& o : j["objects"]) {
+      if (o.is_object() && o.contains("shape") && o["shape"].is_object() && o["shape"].contains("file") &&
+          o["shape"]["file"].is_string())
+        out.push_back(scene_file.parent_path() / o["shape"]["file"].get<std::string>());
+      if (o.is_object() && o.contains("alpha_texture") && o["alpha_texture"].is_string())
+        out.push_back(scene_file.parent_path() / o["alpha_texture"].get<std::string>());
+    }
+  for (const char* key : {"buffers", "images"})
+    if (j.contains(key) && j[key].is_array())
+      for (const auto& b : j[key])
+        if (b.is_object() && b.contains("uri") && b["uri"].is_string() && b["uri"].get<std::string>().rfind("data:", 0) != 0) {
+          // A percent-encoded URI names a file by another spelling: the loader found it, the key reads what it can.
+          std::error_code ec;
+          const std::filesystem::path file = scene_file.parent_path() / b["uri"].get<std::string>();
+          if (std::filesystem::is_regular_file(file, ec)) out.push_back(file);
+        }
   return out;
 }
 

@@ -17,13 +17,15 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "shadowref/outputs/image.hpp"
 
 namespace shadowref::outputs {
 
-// Reads `file` as an 8-bit image with exactly `channels` channels. Throws InputError(BadInput).
+// Reads `file` as an 8-bit image with exactly `channels` channels, or with the file's own 1 to 4
+// (grey, grey + alpha, RGB, RGBA) when `channels` is 0. Throws InputError(BadInput).
 Image8 read_image8(const std::filesystem::path& file, int channels);
 
 // The same, for a file that must be `width` × `height` (a candidate mask beside its reference):
@@ -31,12 +33,20 @@ Image8 read_image8(const std::filesystem::path& file, int channels);
 // the header before any pixel is decoded, so a decompression bomb costs no memory.
 Image8 read_image8(const std::filesystem::path& file, int channels, int width, int height);
 
+// PNG bytes held in memory (an image embedded in a glTF file) as an 8-bit image with the stream's
+// own 1 to 4 channels, by the same reader and checks as read_image8; `name` stands for the file in
+// messages. Throws InputError(BadInput) "<name>: <what>".
+Image8 decode_png8(const std::string& bytes, const std::string& name);
+
 // Reads a single-channel float image (the reference's visibility.exr) that must be width × height.
 // Throws InputError(BadInput) for a missing, unreadable or mis-sized file.
 std::vector<float> read_exr(const std::filesystem::path& file, int width, int height);
 
 // Writes `image` as PNG.
 void write_png(const Image8& image, const std::filesystem::path& file);
+// `image` (1 to 4 channels: grey, grey + alpha, RGB, RGBA) as PNG bytes, for a file that embeds
+// them (the pack's glTF mask textures). Throws std::runtime_error with libpng's reason.
+std::string encode_png(const Image8& image);
 
 // Writes a width × height single-channel float image (row 0 at the top) as OpenEXR.
 void write_exr(int width, int height, const float* pixels, const std::filesystem::path& file);

@@ -74,8 +74,21 @@ enum class CubeFault {
   YFacesUpsideDown,  // the ±y faces sampled rotated by 180 degrees: their up vector taken wrong in the face table
 };
 
+// How a depth pass treats a masked caster (scene/alpha_mask.hpp; the GLSL's alpha_test, shaders.cpp).
+enum class AlphaFault {
+  None,
+  Ignored,             // no alpha test: every masked card casts its whole quad (three.js before r132)
+  CutoffHalf,          // the scene's cutoff replaced by 0.5 (an engine's fixed alpha-scissor threshold)
+  VertexAlphaIgnored,  // the texture's alpha alone, the vertex alpha taken as 1 (PlayCanvas #5115)
+};
+
 // shadow_maps/light_map.cpp
 struct ShadowMapFaults {
+  // The alpha test in the depth pass (every lookup, every layout), not in the camera's passes.
+  AlphaFault alpha = AlphaFault::None;
+  // Open casters (a single-sided card, a leaf) drawn with front faces culled, as closed ones: a card
+  // whose front faces the light casts nothing.
+  bool cull_open_front_faces = false;
   CompareFault compare = CompareFault::None;
   // The map (depth, and the packed colour of shadowmap-rgba8) cleared to 1 whatever the convention:
   // under reversed-Z, 1 is the near plane, so nothing is ever drawn into it.

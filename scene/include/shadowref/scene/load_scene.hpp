@@ -12,7 +12,11 @@
 //           {type: rect, corner, edge_u, edge_v, samples (default 4: a 4 × 4 grid, in [1, 64])}],
 //   objects [{name (a safe identifier; absent: "objects[i]"), shape,
 //             transform {scale (number or [x,y,z], non-zero), rotate {axis, degrees}, translate},
-//             receiver (bool), color ([r,g,b] in [0,1])}],
+//             receiver (bool), color ([r,g,b] in [0,1]),
+//             uvs ([[u, v], ...] one per mesh vertex, each in [-64, 64]), alpha_texture (a PNG
+//             relative to the scene, confined like mesh files), vertex_alpha ([a, ...] one per mesh
+//             vertex, in [0, 1]), alpha_cutoff (in [0, 1]): an alpha-masked caster (alpha_mask.hpp,
+//             docs/scene-format.md); uvs only with alpha_texture, alpha_cutoff with either}],
 //   shape: {type: plane, size [sx, sz]} | {type: box, size [x,y,z]} |
 //          {type: sphere, radius, segments (32), rings (segments / 2)} |
 //          {type: torus, major_radius, minor_radius, segments (48), sides (24)} |
@@ -35,7 +39,8 @@
 // (resolution before anything is allocated, radii, segment counts), degenerate cameras (through
 // mathlib's look_at / perspective), zero directions and edges, mesh files outside the scene's
 // folder, missing or broken mesh files (mesh_file.hpp), empty meshes, a receiver that is not
-// planar or more than one receiver, no lights, no objects.
+// planar or more than one receiver, no lights, no objects; a mask that is missing, unreadable or RGB
+// without alpha, a cutoff outside [0, 1] or alone, uvs or vertex_alpha whose count is not the mesh's.
 #pragma once
 
 #include <filesystem>

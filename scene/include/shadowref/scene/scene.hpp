@@ -17,6 +17,7 @@
 #include "shadowref/conventions.hpp"
 #include "shadowref/mesh.hpp"
 #include "shadowref/plane.hpp"
+#include "shadowref/scene/alpha_mask.hpp"
 
 namespace shadowref::scene {
 
@@ -66,6 +67,9 @@ struct Object {
   TriangleMesh<float> mesh;
   bool receiver = false;              // the plane planar shadows project onto
   Vec3<float> color = Vec3<float>(0.8f, 0.8f, 0.8f);  // albedo for shaded.png, in [0, 1]
+  // A masked caster (alpha_mask.hpp): where its alpha is below the cutoff it lets light and the
+  // camera's rays through. Absent: opaque everywhere.
+  std::optional<AlphaMask> alpha;
 };
 
 // A technique's expected verdict on this scene: pass, or fail with the reason (the known

@@ -1,9 +1,12 @@
 // shadowref/conform/catalogue.hpp — which scene files a conformance run takes.
 //
-// The catalogue is a folder of scene files (conformance/scenes/*.json). A selection is a
+// The catalogue is a folder of scene files (conformance/scenes/*.json; a folder may also hold glTF
+// scenes, *.gltf and *.glb with a camera and a light, as a pack's scenes/ does for one exported from
+// a glTF: scene/gltf_scene.hpp's holds_camera_and_light; a glTF mesh file beside a JSON scene is
+// none). A selection is a
 // comma-separated list of patterns: an existing file path is taken as it is; anything else is a
-// shell glob (fnmatch: *, ?, [..]) matched against the catalogue's file names without ".json"
-// ("ground_*", "*light*"). Without patterns, every scene except those tagged "large" (the default
+// shell glob (fnmatch: *, ?, [..]) matched against the catalogue's file names, with or without
+// their extension ("ground_*", "*light*", "my_level.gltf"). Without patterns, every scene except those tagged "large" (the default
 // run stays fast on two cores; name a large scene to include it).
 #pragma once
 
@@ -36,7 +39,8 @@ std::vector<std::filesystem::path> select_scenes(const std::filesystem::path& ca
 
 // What every command's --scenes takes (select_scenes over split_list), said once for their --help.
 inline constexpr const char* kScenesHelp =
-    "comma-separated globs over the catalogue's scene names, or scene files (e.g. ground_sphere,soft_*); "
+    "comma-separated globs over the catalogue's scene names, or scene files: JSON, or your own glTF 2.0 scene "
+    "(.gltf, .glb: a camera, KHR_lights_punctual lights; docs/scene-format.md) (e.g. ground_sphere,soft_*,my_level.gltf); "
     "default: every scene not tagged 'large'";
 
 // Splits "a,b, c" into {"a", "b", "c"} (empty items dropped).
