@@ -90,6 +90,26 @@ function engineLight(scene, loaded, l, bounds, meshes, v) {
   return { light, fit: `cube views' far plane ${light.shadow.camera.far.toPrecision(6)}, near ${light.shadow.camera.near.toPrecision(6)}` };
 }
 
+// The view and projection matrices three.js draws a light's shadow map with, read as it draws:
+// WebGLShadowMap.render calls the shadow camera's updateMatrixWorld once per view it renders (a
+// directional or spot light's one, through LightShadow.updateMatrices; each of a point light's six
+// cube faces, +x, −x, +y, −y, +z, −z, after pointing the camera at it), and each view's matrices are
+// taken right then. Column-major (Matrix4.elements), WebGL's clip space (the `gl` convention).
+function recordShadowViews(shadowCamera) {
+  const views = [];
+  const update = shadowCamera.updateMatrixWorld;
+  shadowCamera.updateMatrixWorld = function (force) {
+    update.call(this, force);
+    views.push({ view: [...this.matrixWorldInverse.elements], projection: [...this.projectionMatrix.elements] });
+  };
+  return {
+    stop() {
+      shadowCamera.updateMatrixWorld = update;
+      return views;
+    },
+  };
+}
+
 async function render(url, variantName) {
   const v = VARIANTS[variantName];
   if (!v) return { error: `no three.js variant "${variantName}" (${Object.keys(VARIANTS).join(', ')})` };
@@ -136,6 +156,7 @@ async function render(url, variantName) {
   scene.traverse((o) => { if (o.isLight) loadedLights[o.userData.index] = o; });
   const fits = [];
   const masks = [];
+  const declared = [];  // per light: the light matrices three.js drew its map with
   for (const l of lights) {
     const { light, fit } = engineLight(scene, loadedLights[l.index], l, bounds, meshes, v);
     fits.push(fit);
@@ -151,7 +172,13 @@ async function render(url, variantName) {
     for (const m of meshes) m.material = shadowMaterial;
     renderer.setRenderTarget(target);
     renderer.clear();
+    const views = recordShadowViews(light.shadow.camera);
     renderer.render(scene, camera);
+    const drawn = views.stop();
+    // None: three.js drew no map for this light (VSM skips point lights), and has no views to declare.
+    if (drawn.length !== 0 && drawn.length !== (light.isPointLight ? 6 : 1))
+      throw new Error(`three.js drew ${drawn.length} shadow views for a ${light.type}, not ${light.isPointLight ? 6 : 1}`);
+    declared.push(drawn.length ? { light_views: 'declared', shadow_map_size: light.shadow.mapSize.x, views: drawn } : { light_views: 'own' });
     renderer.readRenderTargetPixels(target, 0, 0, cam.width, cam.height, shadowPixels);
 
     for (const m of meshes) {
@@ -186,7 +213,8 @@ async function render(url, variantName) {
     filter_radius_texels: v.type === THREE.BasicShadowMap ? 0 : radius + 0.5,
     slope_bias_texels: 0,
     constant_bias: 0,
-    light_views: 'own',
+    // three.js's own light views, as it drew them (recordShadowViews): the judge knows the grid.
+    light_views: 'declared',
     normal_offset: v.normalBias ?? 0,
     depth_bias: Math.abs(bias),
     depth_faces: SIDE_NAMES[shadowSide],
@@ -201,6 +229,7 @@ async function render(url, variantName) {
       'spot lights': 'the point light at the spot position (the mask is occlusion everywhere)',
       'camera.far': cam.far,
     },
+    lights: declared,
   };
   for (const m of meshes) m.geometry.dispose();
   target.dispose();

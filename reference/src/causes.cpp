@@ -154,6 +154,12 @@ std::optional<CauseModel::Lookup> CauseModel::lookup(std::size_t light, const Su
   // One texel's width at p, in world units (on the plane of constant light depth through p).
   k.texel = (unproject(k.inv, k.q.x() + k.texel_ndc, k.q.y(), k.q.z()) - unproject(k.inv, k.q.x(), k.q.y(), k.q.z())).norm();
   k.perspective = L.w() != 0;
+  if (d.light_views == outputs::LightViews::Declared && !d.views.empty()) {
+    k.whole_ray = true;
+    k.light_at = k.perspective ? Vec3<double>(L.head<3>() / L.w()) : Vec3<double>::Zero();
+    const Vec3<double> lo = scene_.bounds[0], hi = scene_.bounds[1];
+    k.reach = (hi - lo).norm() + (0.5 * (lo + hi) - k.light_at).norm() + (s.p - k.light_at).norm();
+  }
   k.tan_p = capped_tan(std::abs(s.n.dot(k.to_light)));
   // A window-depth bias, in world units at p: the depth the point moves when its window depth moves
   // by `depth_bias` toward the far plane (zf - zn is the NDC span of window depth 0..1: 2, 1, or -1 reversed).
@@ -241,7 +247,16 @@ class CauseModel::Probes {
   static TexelRay& trace(const Lookup& k, RTCScene scene, double dx, double dy, TexelRay& ray) {
     const double mx = k.q.x() + dx * k.texel_ndc, my = k.q.y() + dy * k.texel_ndc;
     ray.a = unproject(k.inv, mx, my, k.zn);
-    const Vec3<double> b = unproject(k.inv, mx, my, k.zf);
+    Vec3<double> b = unproject(k.inv, mx, my, k.zf);
+    if (k.whole_ray) {
+      // Back to the light (the point of the texel's ray nearest it: the ray passes through the light
+      // when the declared view's eye is there) or `reach` back for a directional light, and on to
+      // `reach` beyond the declared far plane.
+      const Vec3<double> dir = (b - ray.a).normalized();
+      const double back = k.perspective ? (ray.a - k.light_at).dot(dir) : k.reach;
+      ray.a -= back * dir;
+      b = ray.a + ((b - ray.a).norm() + k.reach) * dir;
+    }
     ray.dir = (b - ray.a).normalized();
     ray.length = (b - ray.a).norm();
     ray.first = first_hit(scene, ray.a, ray.dir, static_cast<float>(ray.length));

@@ -165,6 +165,13 @@ class CauseModel {
     double texel_ndc = 0, zn = 0, zf = 0, axis_sign = 1;
     double depth_p = 0, texel = 0, tan_p = 0, depth_bias_world = 0;
     bool perspective = false;
+    // Declared matrices: their depth range is the engine's, and a correct map holds every caster
+    // along a texel's ray (a near plane that clips a caster is the engine's fault, not a cause), so
+    // the rays run from the light (a directional light's from `reach` before the near plane) to
+    // `reach` beyond the far plane (the scene's box lies within reach of any point on them).
+    bool whole_ray = false;
+    Vec3<double> light_at;
+    double reach = 0;
     double depth(const Vec3<double>& w) const;  // along the light's view axis
     double texel_at(double at) const;           // one texel's width at light depth `at`
   };
