@@ -78,6 +78,7 @@ struct RenderVariantArgs {
   double view_turn = 0;
   double view_phase = 0;
   bool declare_light_matrices = false;
+  bool lispsm = false;
 };
 void add_render_variant_options(CLI::App& cmd, RenderVariantArgs& args);
 // Sets `options`' variant fields from `args`; BadInput when the guard band would make a map of

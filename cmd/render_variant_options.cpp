@@ -1,7 +1,8 @@
 // render_variant_options.cpp — our renderer's correct variants on the command line, one definition
 // for `shadowref render` and `shadowref conform`: a randomized kernel, the depth pass's faces, a
 // shadow-atlas guard band, a normal offset, distance cubes and light views of our own (turned, their
-// grid moved), and the light matrices declared, each declared in candidate.json by the renderer.
+// grid moved, warped by LiSPSM), and the light matrices declared, each declared in candidate.json by
+// the renderer.
 #include <CLI/CLI.hpp>
 
 #include <string>
@@ -53,6 +54,10 @@ void add_render_variant_options(CLI::App& cmd, RenderVariantArgs& args) {
                "declare our shadow maps' light matrices as an engine that knows its own may: \"light_views\": "
                "\"declared\" with each light's view and projection as drawn and its map size, so that the judge "
                "knows the exact texel grid");
+  cmd.add_flag("--lispsm", args.lispsm,
+               "warp directional lights' maps by light space perspective shadow maps (Wimmer et al. 2004) in the "
+               "techniques that are not cascaded: texels small near the camera and large far from it; declared "
+               "\"light_views\": \"own\" for those lights, or their matrices with --declare-light-matrices");
 }
 
 void apply_render_variants(const RenderVariantArgs& a, int shadow_map_size, renderer::RenderOptions& options) {
@@ -67,6 +72,7 @@ void apply_render_variants(const RenderVariantArgs& a, int shadow_map_size, rend
   options.view_turn_degrees = a.view_turn;
   options.view_phase_texels = a.view_phase;
   options.declare_light_matrices = a.declare_light_matrices;
+  options.lispsm = a.lispsm;
 }
 
 }  // namespace shadowref::cli

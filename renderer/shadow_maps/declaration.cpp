@@ -67,8 +67,12 @@ bool declare_shadow_map(std::string_view technique, const scene::PreparedScene& 
       light.slope_bias_texels = lookup.offset_factor;
       light.depth_bias = double{lookup.offset_units} / 16777215.0;  // kDistanceFragment's constant step
     }
+    // A LiSPSM warp (RenderOptions::lispsm) is a view of our own: undeclared, the judge knows only
+    // its size.
+    if (lispsm_warps(prepared, options, t->cascaded, i)) light.light_views = outputs::LightViews::Own;
     if (options.declare_light_matrices) {
-      const LightFit& fit = t->cascaded ? prepared.cascade_fits[i] : prepared.light_fits[i];
+      LightFit storage;
+      const LightFit& fit = technique_fit(prepared, options, t->cascaded, i, storage);
       const int map_size = fit.size + 2 * g;
       light.light_views = outputs::LightViews::Declared;
       light.shadow_map_size = map_size;  // the whole map: the guard band is in the drawn projection

@@ -49,6 +49,7 @@
 #include <vector>
 
 #include "shadowref/cascades.hpp"
+#include "shadowref/lispsm.hpp"
 #include "shadowref/projection.hpp"
 #include "shadowref/scene/scene.hpp"
 #include "shadowref/shadow_map.hpp"
@@ -419,7 +420,7 @@ LightMap::~LightMap() {
 // The cascades of the directional light `i` for csm and csm-pcf: the prepared ones, or, when a
 // CascadeFaults switch changes how they are fitted, a refit (into `refit`) with that one change.
 const LightFit& cascade_fit(const Frame& frame, std::size_t i, LightFit& refit) {
-  const LightFit& prepared = frame.prepared.cascade_fits[i];
+  const LightFit& prepared = technique_fit(frame.prepared, frame.options, true, i, refit);
   const CascadeFaults& f = frame.faults().cascade;
   if (prepared.cascade_splits.empty() || (!f.slice_depth_range && !f.no_snapping && !f.frustum_behind_camera))
     return prepared;
@@ -436,6 +437,20 @@ const LightFit& cascade_fit(const Frame& frame, std::size_t i, LightFit& refit) 
     refit.cascade_depth_from_scene = prepared.cascade_depth_from_scene;
   }
   return refit;
+}
+
+bool lispsm_warps(const scene::PreparedScene& prepared, const RenderOptions& options, bool cascaded, std::size_t i) {
+  return options.lispsm && !cascaded && prepared.lights[i].w() == 0;
+}
+
+const LightFit& technique_fit(const scene::PreparedScene& prepared, const RenderOptions& options, bool cascaded,
+                              std::size_t i, LightFit& storage) {
+  if (cascaded) return prepared.cascade_fits[i];
+  if (!lispsm_warps(prepared, options, cascaded, i)) return prepared.light_fits[i];
+  storage = fit_lispsm(*prepared.convention, prepared.lights[i].head<3>(), prepared.bounds,
+                       scene::cascade_camera(*prepared.scene), prepared.light_fits[i].size)
+                .value();
+  return storage;
 }
 
 bool holds_distance(const RenderOptions& options, const MapLookup& lookup, bool cube) {

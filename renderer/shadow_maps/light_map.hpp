@@ -75,6 +75,15 @@ struct LightMap {
 // when a CascadeFaults switch changes how they are fitted, a refit (into `refit`) with that one change.
 const LightFit& cascade_fit(const Frame& frame, std::size_t i, LightFit& refit);
 
+// The fit light `i`'s map is drawn with, before any fault switch: the prepared scene's cascades for a
+// cascaded technique; for a directional light under RenderOptions::lispsm (and a technique that is
+// not cascaded), its LiSPSM warp (mathlib/lispsm.hpp, fitted into `storage` at the prepared fit's
+// size); else the prepared scene's fit. The one choice both the drawing and the declaration read.
+const LightFit& technique_fit(const scene::PreparedScene& prepared, const RenderOptions& options, bool cascaded,
+                              std::size_t i, LightFit& storage);
+// Whether RenderOptions::lispsm warps light `i`'s map under a technique (cascaded or not).
+bool lispsm_warps(const scene::PreparedScene& prepared, const RenderOptions& options, bool cascaded, std::size_t i);
+
 // The projection with which a view of a fit of `fit_size` texels is drawn into a map of `map_size`
 // texels (fit_size plus a guard band on each side): `projection` turned and moved as RenderOptions'
 // own views ask, and shrunk into the map's middle fit_size texels (no fault applied). With the

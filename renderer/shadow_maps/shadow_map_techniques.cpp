@@ -46,7 +46,8 @@ void render_map_technique(Frame& frame, std::string_view name) {
   for (std::size_t i = 0; i < frame.scene.lights.size(); ++i) {
     LightFit refit;
     lookups.push_back(&lookup_for_light(technique.lookup, frame.scene.lights[i]));
-    const LightFit& fit = technique.cascaded ? cascade_fit(frame, i, refit) : frame.prepared.light_fits[i];
+    const LightFit& fit = technique.cascaded ? cascade_fit(frame, i, refit)
+                                             : technique_fit(frame.prepared, frame.options, false, i, refit);
     maps.push_back(draw_light_map(frame, i, fit, *lookups[i]));
   }
   // The picture, the masks and the lit fractions in one camera pass per light: ambient_pass lays

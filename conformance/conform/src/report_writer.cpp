@@ -165,6 +165,8 @@ json declarations_json(const ConformOptions& o) {
           {"guard_band_texels", v.guard_band_texels},
           {"view_turn_degrees", v.view_turn_degrees},
           {"view_phase_texels", v.view_phase_texels},
+          {"lispsm", v.lispsm},
+          {"declare_light_matrices", v.declare_light_matrices},
           {"normal_offset_texels", v.normal_offset_texels},
           {"cube_depth", outputs::to_string(v.cube_depth)}};
 }

@@ -75,6 +75,11 @@ struct RenderOptions {
   // at its map's size, and a cascaded light's splits. The judge then knows the exact texel grid, the
   // pack's views or our own alike.
   bool declare_light_matrices = false;
+  // Directional lights' maps of the techniques that are not cascaded warped by light space
+  // perspective shadow maps (mathlib/lispsm.hpp): texels small near the camera, large far from it,
+  // in one map of the same size. Declared "light_views": "own" for those lights, or their matrices
+  // with declare_light_matrices.
+  bool lispsm = false;
   // The hard maps' normal offset (three.js and Babylon `normalBias`, Unity's "normal bias"): each
   // lookup moves along the surface normal, turned toward the light, by this many texels of the map
   // at the point. Declared as "normal_offset_texels". 0: none.
