@@ -17,7 +17,7 @@ float lookup_visibility(vec3 p, vec4 s, float layer) {
 
 }  // namespace
 
-const MapLookup kDepthCompareLookup{
+extern const MapLookup kDepthCompareLookup{
     .name = "depth-compare",
     .glsl = kGlsl,
     .needs_depth_packing = false,

@@ -98,12 +98,10 @@ struct MapLookup {
   void (*set_light_uniforms)(const Frame& frame, const Program& program, std::size_t light);
 };
 
-// The lookups, one per file.
-extern const MapLookup kDepthCompareLookup;  // depth_compare.cpp
-extern const MapLookup kPcfLookup;           // pcf.cpp
-extern const MapLookup kPackedRgba8Lookup;   // packed_rgba8.cpp
-extern const MapLookup kPcssLookup;          // pcss.cpp
-extern const MapLookup kVsmLookup;           // vsm.cpp
+// The lookups, one per file, each defined `extern const` there and named where it is used: the
+// technique table (shadow_map_techniques.cpp) names them all; PCF, which lights without an area fall
+// back to, is named here too.
+extern const MapLookup kPcfLookup;  // pcf.cpp
 
 // What light `light` is drawn with under `lookup`: the lookup itself, or PCF for a light without an
 // area under a lookup that needs one.

@@ -19,7 +19,7 @@ float lookup_visibility(vec3 p, vec4 s, float layer) {
 
 }  // namespace
 
-const MapLookup kPackedRgba8Lookup{
+extern const MapLookup kPackedRgba8Lookup{
     .name = "packed-rgba8",
     .glsl = kGlsl,
     .needs_depth_packing = true,

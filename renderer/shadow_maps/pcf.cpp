@@ -30,7 +30,7 @@ float lookup_visibility(vec3 p, vec4 s, float layer) {
 
 }  // namespace
 
-const MapLookup kPcfLookup{
+extern const MapLookup kPcfLookup{
     .name = "pcf",
     .glsl = kGlsl,
     .needs_depth_packing = false,

@@ -216,7 +216,7 @@ void set_rect_light_uniforms(const Frame& frame, const Program& p, std::size_t i
   gl.Uniform1i(p.at(gl, "u_taps_in_own_face"), f.taps_stay_in_face ? 1 : 0);
 }
 
-const MapLookup kPcssLookup{
+extern const MapLookup kPcssLookup{
     .name = "pcss",
     .glsl = kGlsl,
     .needs_depth_packing = false,

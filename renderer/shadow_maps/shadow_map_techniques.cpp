@@ -20,6 +20,13 @@
 #include "shadowref/scene/scene.hpp"
 
 namespace shadowref::renderer {
+
+// The lookups the table names, each defined in its own file (lookup.hpp names PCF too).
+extern const MapLookup kDepthCompareLookup;  // depth_compare.cpp
+extern const MapLookup kPackedRgba8Lookup;   // packed_rgba8.cpp
+extern const MapLookup kPcssLookup;          // pcss.cpp
+extern const MapLookup kVsmLookup;           // vsm.cpp
+
 namespace {
 
 const MapTechnique kMapTechniques[] = {

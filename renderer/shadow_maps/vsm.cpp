@@ -62,7 +62,7 @@ float lookup_visibility(vec3 p, vec4 s, float layer) { return vsm(s.w, int(layer
 
 }  // namespace
 
-const MapLookup kVsmLookup{
+extern const MapLookup kVsmLookup{
     .name = "vsm",
     .glsl = kGlsl,
     .needs_depth_packing = false,
