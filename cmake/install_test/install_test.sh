@@ -8,7 +8,8 @@
 #   install_test.sh standalone   BUILD WORK   the installed binary, copied out of the source tree, with
 #                                             the source tree hidden: export a pack, render our own
 #                                             z-fail masks, judge them from the pack alone; then walk
-#                                             the pack README as an engine team would (readme_walk)
+#                                             the pack README as an engine team would (readme_walk),
+#                                             declared light matrices included
 # CTest runs them (cmake/Install.cmake, label `install`); `prefix` is the fixture the others need.
 # Each mode exits non-zero with a line saying what went wrong.
 set -euo pipefail
@@ -137,6 +138,23 @@ standalone)
       if grep -q '"status": "\(FAIL\|WARN\|ERROR\)"' my-verdict/report.json; then echo "a case is not PASS: $line" >&2; return 1; fi
       grep -q '"status": "PASS"' my-verdict/report.json || { echo "no PASS in my-verdict/report.json: $line" >&2; return 1; }
     done <"$2/commands.sh"
+    # Declared light matrices, as an engine that knows its own gives them (the README's "light_views":
+    # "declared"): the same renders with each light's views and projections in candidate.json (two
+    # point lights' cubes among them), judged from the pack alone: every case PASS, on the declared grid.
+    for scene in ground_sphere two_lights; do
+      shadowref render --scene "scenes/$scene.json" --technique shadowmap --declare-light-matrices \
+        --out "$2/declared/$scene" >/dev/null
+      grep -q '"light_views": "declared"' "$2/declared/$scene/candidate.json" ||
+        { echo "render --declare-light-matrices declared no matrices for $scene" >&2; return 1; }
+    done
+    shadowref conform --catalogue scenes --scenes ground_sphere,two_lights --candidate-dir "$2/declared" \
+      --technique shadowmap --out declared-verdict >"$2/declared.log" 2>&1 ||
+      { cat "$2/declared.log" >&2; echo "conform of the declared matrices failed" >&2; return 1; }
+    if grep -q '"status": "\(FAIL\|WARN\|ERROR\)"' declared-verdict/report.json; then
+      echo "a case of the declared matrices is not PASS" >&2; return 1
+    fi
+    grep -q "declared light matrices' grid is not contradicted" declared-verdict/report.json ||
+      { echo "the judge did not use the declared matrices' grid" >&2; return 1; }
     # Every pack path the README names, for some exported scene (a soft one among them).
     cd "$2/team"
     shadowref export --out soft-pack --scenes soft_penumbra >/dev/null
