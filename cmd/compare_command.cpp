@@ -25,6 +25,7 @@
 #include "shadowref/compare/compare.hpp"
 #include "shadowref/conform/expectations.hpp"
 #include "shadowref/conform/judge.hpp"
+#include "shadowref/conform/resolving_power.hpp"
 #include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/cause.hpp"
 #include "shadowref/outputs/file_names.hpp"
@@ -169,6 +170,7 @@ int run_compare(const CompareArgs& a) {
     out["technique"] = j.technique;
     out["technique_source"] = j.technique_source;
     out["causes"] = j.causes;
+    if (j.resolving_power) out["resolving_power"] = conform::resolving_power_json(*j.resolving_power);
     if (!a.scene.empty()) {
       out["status"] = conform::to_string(j.status);
       out["signature"] = j.signature;
@@ -202,6 +204,9 @@ int run_compare(const CompareArgs& a) {
                                                                                         : "FAIL";
   std::printf("verdict: %s\n", verdict.c_str());
   for (const std::string& r : c.decision.reasons) std::printf("  %s\n", r.c_str());
+  // What the verdict could have seen: the reference's own masks with a blatant error each, judged
+  // as this candidate was.
+  if (j.resolving_power) std::printf("  resolving power: %s\n", j.resolving_power->summary().c_str());
   if (!a.scene.empty()) {
     std::printf("status under the scene's expectation: %s%s%s\n", conform::to_string(j.status),
                 j.signature.empty() ? "" : ": ", j.signature.c_str());

@@ -103,6 +103,14 @@ TEST_F(CompareCommand, SceneGivesTheShadowMapCausesConformUses) {
   const nlohmann::json a = nlohmann::json::parse(without.out), b = nlohmann::json::parse(with.out);
   EXPECT_EQ(a["total"]["wrong"], b["total"]["wrong"]);  // the same pixels, explained or not
   EXPECT_GT(a["total"]["unexplained"].get<int>(), 10 * b["total"]["unexplained"].get<int>());
+  // The text says what the verdict could have seen, as report.json does.
+  with_scene.pop_back();
+  with_scene.pop_back();
+  std::erase(with_scene, std::string("--json"));
+  with_scene.insert(with_scene.end(), {"--scene", scene});
+  const auto text = test::run_command(with_scene);
+  EXPECT_NE(text.out.find("  resolving power: "), std::string::npos) << text.out;
+  EXPECT_TRUE(b.contains("resolving_power")) << with.out;
 }
 
 
@@ -134,6 +142,7 @@ struct BothJudges {
     EXPECT_EQ(a["total"], b["total"]) << what;
     EXPECT_EQ(a.value("visibility", nlohmann::json()), b.value("visibility", nlohmann::json())) << what;
     EXPECT_EQ(a["status"], r["cases"][0]["status"]) << what;
+    EXPECT_EQ(a["resolving_power"], r["cases"][0]["resolving_power"]) << what;  // what each verdict could have seen
     return c.exit_code;
   }
 };

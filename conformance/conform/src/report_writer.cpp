@@ -54,18 +54,6 @@ json expectation_json(const CaseResult& c) {
   return e;
 }
 
-// What a case's verdict could have seen (resolving_power.hpp): the summary, the kinds it is blind
-// to, and each probe's verdict.
-json resolving_power_json(const ResolvingPower& r) {
-  json blind = json::array(), probes = json::array();
-  json unseen = json::array();
-  for (const ProbeKind k : r.blind) blind.push_back(to_string(k));
-  for (const ProbeKind k : r.unseen) unseen.push_back(to_string(k));
-  for (const Probe& p : r.probes)
-    probes.push_back({{"probe", p.name}, {"verdict", compare::to_string(p.verdict)}, {"wrong", p.wrong}, {"unexplained", p.unexplained}});
-  return {{"summary", r.summary()}, {"blind_to", blind}, {"unseen", unseen}, {"probes", probes}};
-}
-
 // One case as report.json holds it, its images copied into the staged report folder.
 json case_json(const CaseResult& c, const outputs::StagedFolder& staged, std::set<std::string>& scenes_copied,
                const ConformResult& r, bool with_expectations) {

@@ -2,6 +2,8 @@
 // blatant error each, judged as the candidate was.
 #include "shadowref/conform/resolving_power.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <array>
 #include <utility>
@@ -179,6 +181,15 @@ ResolvingPower resolving_power(const std::filesystem::path& reference_dir, std::
     (!changes ? r.unseen : all_fail ? r.resolved : r.blind).push_back(k);
   }
   return r;
+}
+
+nlohmann::json resolving_power_json(const ResolvingPower& r) {
+  nlohmann::json blind = nlohmann::json::array(), unseen = nlohmann::json::array(), probes = nlohmann::json::array();
+  for (const ProbeKind k : r.blind) blind.push_back(to_string(k));
+  for (const ProbeKind k : r.unseen) unseen.push_back(to_string(k));
+  for (const Probe& p : r.probes)
+    probes.push_back({{"probe", p.name}, {"verdict", compare::to_string(p.verdict)}, {"wrong", p.wrong}, {"unexplained", p.unexplained}});
+  return {{"summary", r.summary()}, {"blind_to", blind}, {"unseen", unseen}, {"probes", probes}};
 }
 
 }  // namespace shadowref::conform

@@ -26,6 +26,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "shadowref/compare/compare.hpp"
 
 namespace shadowref::conform {
@@ -59,5 +61,9 @@ struct ResolvingPower {
 // ignored). Throws outputs::InputError when a reference file cannot be read.
 ResolvingPower resolving_power(const std::filesystem::path& reference_dir, std::size_t lights,
                                const compare::Threshold& threshold, const compare::CompareOptions& options);
+
+// A case's resolving power as report.json and `shadowref compare --json` give it: {"summary",
+// "blind_to": [kinds], "unseen": [kinds], "probes": [{"probe", "verdict", "wrong", "unexplained"}]}.
+nlohmann::json resolving_power_json(const ResolvingPower& r);
 
 }  // namespace shadowref::conform
