@@ -69,7 +69,7 @@ void render_planar(Frame& frame) {
         gl.UseProgram(frame.programs.flat.id);
         set_matrix(gl, frame.programs.flat.clip_from_world, clip);
         gl.Uniform4f(frame.programs.flat.colour, 0, 0, 0, 0);
-        frame.objects[*receiver].draw();
+        frame.objects[*receiver].draw(frame.skins);
 
         // 2. The casters through P · V · S, black, blended, once per marked pixel.
         gl.Disable(GL_DEPTH_TEST);
@@ -85,7 +85,7 @@ void render_planar(Frame& frame) {
         set_matrix(gl, frame.programs.flat.clip_from_world, to_float(Mat4<double>(pv * shadow)));
         gl.Uniform4f(frame.programs.flat.colour, black[0], black[1], black[2], black[3]);
         for (std::size_t o = 0; o < frame.objects.size(); ++o)
-          if (o != *receiver) frame.objects[o].draw();
+          if (o != *receiver) frame.objects[o].draw(frame.skins);
         gl.Disable(GL_BLEND);
         gl.Disable(GL_STENCIL_TEST);
         gl.Enable(GL_DEPTH_TEST);
