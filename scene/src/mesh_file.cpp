@@ -142,7 +142,6 @@ struct GltfWalk {
     if (node.mesh >= 0) {
       if (static_cast<std::size_t>(node.mesh) >= model.meshes.size()) throw MeshFileError("mesh " + std::to_string(node.mesh) + " does not exist");
       for (const auto& prim : model.meshes[static_cast<std::size_t>(node.mesh)].primitives) {
-        if (prim.mode != TINYGLTF_MODE_TRIANGLES) (void)detail::primitive_positions(model, prim, xf);  // refuses it
         if (!skin) append_triangles(model, prim, detail::primitive_positions(model, prim, xf), xf.topLeftCorner<3, 3>().determinant() < 0, out.mesh);
         else if (node.skin >= 0) append_triangles(model, prim, skin->add_skinned(prim, node.skin), false, out.mesh);  // the node's transform is not applied (glTF)
         else append_triangles(model, prim, skin->add_rigid(prim, xf), xf.topLeftCorner<3, 3>().determinant() < 0, out.mesh);

@@ -68,6 +68,15 @@ TEST(Skin, CatalogueObjectTransformIsInFrontOfEveryJoint) {
     expect_near(pose_vertex(*o.skin, i), kPosed[i] + Vec3<double>(10, 0, 0), "the skin's joints carry the transform");
   }
   EXPECT_TRUE(o.skin->bind_to_world.isApprox(Eigen::Matrix4d(Eigen::Affine3d(Eigen::Translation3d(10, 0, 0)).matrix())));
+  std::ofstream(dir / "bad.json") << R"({"name": "bad", "camera": {"position": [0, 1, 8], "target": [0, 1, 0]},
+    "lights": [{"type": "point", "position": [0, 5, 5]}],
+    "objects": [{"shape": {"type": "mesh", "file": "two_joints.gltf", "pose_time": -1}}]})";
+  try {
+    (void)load_scene(dir / "bad.json");
+    ADD_FAILURE() << "a negative pose_time was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("objects[0].shape.pose_time: must be >= 0"), std::string::npos) << e.what();
+  }
   std::filesystem::remove_all(dir);
 }
 
