@@ -6,6 +6,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string_view>
 #include <span>
@@ -29,6 +30,7 @@ enum class MapLayout { Single, Cube, Cascades };
 // The shadow-map lookups (shadow_maps/lookup.hpp), each with a surface program of its own; None:
 // the surface program without a map.
 struct MapLookup;  // shadow_maps/lookup.hpp: one per lookup, in the lookup's own file
+class PassPrograms;
 
 // A linked program and the locations of the uniforms every scene pass sets (-1 when a program lacks
 // one); the others are looked up by name where they are set (at()).
@@ -39,25 +41,32 @@ struct Program {
   GLint at(const GlFunctions& gl, const char* name) const { return gl.GetUniformLocation(id, name); }
 };
 
-// The renderer's programs (programs.cpp). The surface program of each lookup is compiled the first
-// time a render asks for it: a process that draws one technique pays for one.
+// The depth passes' fragment shaders (shaders.hpp): a constant colour (depth pre-pass, stencil
+// passes, planar black, a depth map), an RGBA8-packed depth, vsm's moments, a distance cube's distance.
+enum class DepthProgram { Flat, PackedDepth, Moments, Distance };
+
+// The renderer's programs (programs.cpp), each in two builds: without the alpha test (no discard:
+// the build every unmasked object draws with, keeping the rasteriser's early depth test) and with it
+// (for masked objects, compiled the first time a scene has one; shaders::alpha_test). The surface
+// program of each lookup is compiled the first time a render asks for it: a process that draws one
+// technique pays for one.
 class Programs {
  public:
-  explicit Programs(const GlFunctions& gl);  // compiles the depth passes' and the plain surface program
+  explicit Programs(const GlFunctions& gl);  // compiles the untested depth programs and plain surface program
   ~Programs();                                // the context must be current
   Programs(const Programs&) = delete;
   Programs& operator=(const Programs&) = delete;
 
-  Program flat;           // kSceneVertex + kFlatFragment
-  Program packed_depth;   // kSceneVertex + kPackedDepthFragment
-  Program moments;        // kSceneVertex + kMomentsFragment: vsm's light pass
-  Program distance;       // kSceneVertex + kDistanceFragment: a distance cube's light pass
+  // kSceneVertex + the pass's fragment shader (DepthProgram).
+  const Program& depth(DepthProgram pass, bool alpha_tested = false) const;
+  const Program& flat(bool alpha_tested = false) const { return depth(DepthProgram::Flat, alpha_tested); }
   // kSceneVertex + shaders::surface_fragment(lookup): nullptr for the passes without a map.
-  const Program& surface(const MapLookup* lookup = nullptr) const;
+  const Program& surface(const MapLookup* lookup = nullptr, bool alpha_tested = false) const;
 
  private:
   const GlFunctions& gl_;
-  mutable std::map<const MapLookup*, Program> surface_;  // by lookup, compiled when first asked
+  mutable std::map<std::pair<DepthProgram, bool>, Program> depth_;            // compiled when first asked
+  mutable std::map<std::pair<const MapLookup*, bool>, Program> surface_;      // by lookup, compiled when first asked
 };
 
 // The texture unit of every program's alpha mask (u_alpha_mask, an R8UI texture); the light maps use 0 to 3.
@@ -152,6 +161,9 @@ struct Frame {
   const RunConvention& convention() const { return *prepared.convention; }
   // Object i is a closed 2-manifold (mathlib adjacency, in the prepared scene).
   bool closed(std::size_t i) const { return prepared.casters[i].closed; }
+  // Object i carries an alpha mask (drawn with the alpha-tested programs: PassPrograms).
+  bool masked(std::size_t i) const { return scene.objects[i].alpha.has_value(); }
+  bool any_masked() const;
 
   // P · V of the camera (the prepared scene's matrices, multiplied in double), with the chosen far
   // plane; camera_clip rounds it to float once for GL. (CameraFaults::half_pixel_offset shifts it.)
@@ -174,12 +186,12 @@ struct Frame {
   // shader's gl_Position is invariant).
   void ambient_pass(const Mat4<float>& clip) const;
   // Light i's additive Lambert pass over the surfaces already in the depth buffer (GL_EQUAL),
-  // with the current stencil state left to the caller, drawn with `program` (a lookup's surface
-  // program, its map bound and its uniforms set; null: the plain one) and `shadow_from_world`.
+  // with the current stencil state left to the caller, drawn with `programs` (a lookup's surface
+  // programs, its map bound and its uniforms set; null: the plain one) and `shadow_from_world`.
   // With `masks`, the same pass also writes the light's lit fraction (red) and 0/1 mask (green)
   // into kMaskAttachment, cleared first to no light and outputs::kMaskNoSurface: the shadow maps'
   // filters run once per visible pixel for the picture, the mask and the fraction together.
-  void light_pass(const Mat4<float>& clip, std::size_t light, const Program* program = nullptr,
+  void light_pass(const Mat4<float>& clip, std::size_t light, const PassPrograms* programs = nullptr,
                   const Mat4<float>* shadow_from_world = nullptr, bool masks = false) const;
 
   // The stencil-derived mask: read stencil and depth; depth at the clear value (far_depth) → no surface;
@@ -199,6 +211,24 @@ struct Frame {
   float light_intensity() const;
 };
 
+
+// The programs one pass draws the scene's objects with: each object with the build its mask asks
+// for (Programs), the alpha-tested one only for masked objects and compiled only when the scene has
+// one. A pass sets its uniforms on every build with set() and draws object i after use(i).
+class PassPrograms {
+ public:
+  // `build(alpha_tested)` gives the pass's program in that build (a Programs accessor).
+  PassPrograms(const Frame& frame, const std::function<const Program&(bool alpha_tested)>& build);
+  // Calls f(program) with each build current in turn (glUseProgram), the untested one last.
+  void set(const std::function<void(const Program&)>& f) const;
+  // Makes object i's build current when it is not already, and returns it.
+  const Program& use(std::size_t object) const;
+
+ private:
+  const Frame& frame_;
+  std::array<const Program*, 2> builds_{};  // [alpha_tested]; [true] null when no object is masked
+  mutable const Program* current_ = nullptr;
+};
 
 // The technique entry points (planar.cpp, stencil_volumes.cpp, shadow_maps/).
 void render_planar(Frame& frame);

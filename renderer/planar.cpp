@@ -49,6 +49,7 @@ void render_planar(Frame& frame) {
   for (std::size_t i = 0; i < frame.scene.lights.size(); ++i) frame.light_pass(clip, i);
 
   const float black[4] = {0.0f, 0.0f, 0.0f, kShadowAlpha};
+  const PassPrograms programs(frame, [&](bool tested) -> const Program& { return frame.programs.flat(tested); });
   for (std::size_t i = 0; i < frame.scene.lights.size(); ++i) {
     frame.bind_target(GL_STENCIL_BUFFER_BIT);
     if (receiver && plane) {
@@ -66,9 +67,11 @@ void render_planar(Frame& frame) {
         gl.Enable(GL_STENCIL_TEST);
         gl.StencilFunc(GL_ALWAYS, kReceiverMark, 0xFF);
         gl.StencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-        gl.UseProgram(frame.programs.flat.id);
-        set_matrix(gl, frame.programs.flat.clip_from_world, clip);
-        gl.Uniform4f(frame.programs.flat.colour, 0, 0, 0, 0);
+        programs.set([&](const Program& p) {
+          set_matrix(gl, p.clip_from_world, clip);
+          gl.Uniform4f(p.colour, 0, 0, 0, 0);
+        });
+        programs.use(*receiver);
         frame.objects[*receiver].draw(frame.skins);
 
         // 2. The casters through P · V · S, black, blended, once per marked pixel.
@@ -82,10 +85,15 @@ void render_planar(Frame& frame) {
         if (frame.faults().planar.darken_every_fragment) gl.StencilFunc(GL_LEQUAL, kReceiverMark, 0xFF);
         // FAULT: D3DX's row-vector layout used as a column-vector matrix.
         const Mat4<double> shadow = frame.faults().planar.matrix_transposed ? Mat4<double>(s->transpose()) : *s;
-        set_matrix(gl, frame.programs.flat.clip_from_world, to_float(Mat4<double>(pv * shadow)));
-        gl.Uniform4f(frame.programs.flat.colour, black[0], black[1], black[2], black[3]);
-        for (std::size_t o = 0; o < frame.objects.size(); ++o)
-          if (o != *receiver) frame.objects[o].draw(frame.skins);
+        programs.set([&](const Program& p) {
+          set_matrix(gl, p.clip_from_world, to_float(Mat4<double>(pv * shadow)));
+          gl.Uniform4f(p.colour, black[0], black[1], black[2], black[3]);
+        });
+        for (std::size_t o = 0; o < frame.objects.size(); ++o) {
+          if (o == *receiver) continue;
+          programs.use(o);  // a masked caster's holes cast nothing
+          frame.objects[o].draw(frame.skins);
+        }
         gl.Disable(GL_BLEND);
         gl.Disable(GL_STENCIL_TEST);
         gl.Enable(GL_DEPTH_TEST);

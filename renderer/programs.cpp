@@ -27,12 +27,10 @@ GLuint compile(const GlFunctions& gl, GLenum type, const std::vector<std::string
   return s;
 }
 
-Program link(const GlFunctions& gl, const std::vector<std::string>& fragment, const std::string& what) {
+Program link(const GlFunctions& gl, const std::vector<std::string>& fragment, bool alpha_tested, std::string what) {
   const GLuint vs = compile(gl, GL_VERTEX_SHADER, {shaders::kSceneVertex}, "scene vertex");
-  // The alpha test after the version line (or the surface program's generated header), before the body.
-  std::vector<std::string> sources = fragment;
-  sources.insert(sources.begin() + 1, shaders::alpha_test());
-  const GLuint fs = compile(gl, GL_FRAGMENT_SHADER, sources, what.c_str());
+  if (alpha_tested) what += ", alpha-tested";
+  const GLuint fs = compile(gl, GL_FRAGMENT_SHADER, shaders::with_alpha_test(fragment, alpha_tested), what.c_str());
   Program p;
   p.id = gl.CreateProgram();
   gl.AttachShader(p.id, vs);
@@ -71,24 +69,50 @@ Program link(const GlFunctions& gl, const std::vector<std::string>& fragment, co
   return p;
 }
 
+std::vector<std::string> depth_fragment(DepthProgram pass) {
+  switch (pass) {
+    case DepthProgram::Flat: return {shaders::kVersion, shaders::kFlatFragment};
+    case DepthProgram::PackedDepth: return {shaders::kVersion, shaders::kDepthPacking, shaders::kPackedDepthFragmentBody};
+    case DepthProgram::Moments: return {shaders::kVersion, shaders::kMomentsFragment};
+    case DepthProgram::Distance: return {shaders::kVersion, shaders::kDistanceFragment};
+  }
+  throw GlError("unknown depth program");
+}
+
+const char* depth_name(DepthProgram pass) {
+  switch (pass) {
+    case DepthProgram::Flat: return "flat";
+    case DepthProgram::PackedDepth: return "packed depth";
+    case DepthProgram::Moments: return "moments";
+    case DepthProgram::Distance: return "distance";
+  }
+  return "?";
+}
+
 }  // namespace
 
 Programs::Programs(const GlFunctions& gl) : gl_(gl) {
-  flat = link(gl, {shaders::kVersion, shaders::kFlatFragment}, "flat");
-  moments = link(gl, {shaders::kVersion, shaders::kMomentsFragment}, "moments");
-  distance = link(gl, {shaders::kVersion, shaders::kDistanceFragment}, "distance");
-  packed_depth = link(gl, {shaders::kVersion, shaders::kDepthPacking, shaders::kPackedDepthFragmentBody}, "packed depth");
+  for (const DepthProgram pass : {DepthProgram::Flat, DepthProgram::PackedDepth, DepthProgram::Moments, DepthProgram::Distance})
+    depth(pass);
   surface();
 }
 
 Programs::~Programs() {
-  for (const Program* p : {&flat, &moments, &distance, &packed_depth}) gl_.DeleteProgram(p->id);
-  for (const auto& [lookup, p] : surface_) gl_.DeleteProgram(p.id);
+  for (const auto& [key, p] : depth_) gl_.DeleteProgram(p.id);
+  for (const auto& [key, p] : surface_) gl_.DeleteProgram(p.id);
 }
 
-const Program& Programs::surface(const MapLookup* lookup) const {
-  Program& p = surface_[lookup];
-  if (!p.id) p = link(gl_, shaders::surface_fragment(lookup), "surface (" + std::string(lookup ? lookup->name : "no map") + ")");
+const Program& Programs::depth(DepthProgram pass, bool alpha_tested) const {
+  Program& p = depth_[{pass, alpha_tested}];
+  if (!p.id) p = link(gl_, depth_fragment(pass), alpha_tested, depth_name(pass));
+  return p;
+}
+
+const Program& Programs::surface(const MapLookup* lookup, bool alpha_tested) const {
+  Program& p = surface_[{lookup, alpha_tested}];
+  if (!p.id)
+    p = link(gl_, shaders::surface_fragment(lookup), alpha_tested,
+             "surface (" + std::string(lookup ? lookup->name : "no map") + ")");
   return p;
 }
 

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <initializer_list>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -261,6 +262,36 @@ float Frame::light_intensity() const {
   return kDirect / static_cast<float>(std::max<std::size_t>(1, scene.lights.size()));
 }
 
+bool Frame::any_masked() const {
+  for (std::size_t i = 0; i < scene.objects.size(); ++i)
+    if (masked(i)) return true;
+  return false;
+}
+
+PassPrograms::PassPrograms(const Frame& frame, const std::function<const Program&(bool alpha_tested)>& build)
+    : frame_(frame) {
+  builds_[0] = &build(false);
+  if (frame.any_masked()) builds_[1] = &build(true);
+}
+
+void PassPrograms::set(const std::function<void(const Program&)>& f) const {
+  for (const Program* p : {builds_[1], builds_[0]}) {
+    if (!p) continue;
+    frame_.gl.UseProgram(p->id);
+    f(*p);
+    current_ = p;
+  }
+}
+
+const Program& PassPrograms::use(std::size_t object) const {
+  const Program* p = builds_[frame_.masked(object) ? 1 : 0];
+  if (p != current_) {
+    frame_.gl.UseProgram(p->id);
+    current_ = p;
+  }
+  return *p;
+}
+
 void Frame::bind_target(GLbitfield clear_mask, float clear_grey) const {
   gl.BindFramebuffer(GL_FRAMEBUFFER, target_fbo);
   gl.Viewport(0, 0, width(), height());
@@ -284,20 +315,21 @@ void Frame::ambient_pass(const Mat4<float>& clip) const {
   gl.Disable(GL_CULL_FACE);
   gl.Enable(GL_DEPTH_TEST);
   gl.DepthFunc(depth_nearer());
-  const Program& p = programs.surface();
-  gl.UseProgram(p.id);
-  set_matrix(gl, p.clip_from_world, clip);
-  set_matrix(gl, p.shadow_from_world, Mat4<float>::Identity());
-  gl.Uniform1i(p.mode, static_cast<int>(SurfaceMode::Ambient));
-  gl.Uniform1f(p.ambient, kAmbient);
+  const PassPrograms surface(*this, [&](bool tested) -> const Program& { return programs.surface(nullptr, tested); });
+  surface.set([&](const Program& p) {
+    set_matrix(gl, p.clip_from_world, clip);
+    set_matrix(gl, p.shadow_from_world, Mat4<float>::Identity());
+    gl.Uniform1i(p.mode, static_cast<int>(SurfaceMode::Ambient));
+    gl.Uniform1f(p.ambient, kAmbient);
+  });
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const auto& c = scene.objects[i].color;
-    gl.Uniform3f(p.albedo, c.x(), c.y(), c.z());
+    gl.Uniform3f(surface.use(i).albedo, c.x(), c.y(), c.z());
     objects[i].draw(skins);
   }
 }
 
-void Frame::light_pass(const Mat4<float>& clip, std::size_t light_index, const Program* program,
+void Frame::light_pass(const Mat4<float>& clip, std::size_t light_index, const PassPrograms* lookup_programs,
                        const Mat4<float>* shadow_from_world, bool masks) const {
   gl.BindFramebuffer(GL_FRAMEBUFFER, target_fbo);
   gl.Viewport(0, 0, width(), height());
@@ -317,24 +349,27 @@ void Frame::light_pass(const Mat4<float>& clip, std::size_t light_index, const P
     gl.Disablei(GL_BLEND, 1);
   }
   gl.Disable(GL_CULL_FACE);
-  const Program& p = program ? *program : programs.surface();
-  gl.UseProgram(p.id);
-  set_matrix(gl, p.clip_from_world, clip);
-  set_matrix(gl, p.shadow_from_world, shadow_from_world ? *shadow_from_world : Mat4<float>::Identity());
-  gl.Uniform1i(p.mode, static_cast<int>(SurfaceMode::Light));
+  std::optional<PassPrograms> plain;
+  if (!lookup_programs) plain.emplace(*this, [&](bool tested) -> const Program& { return programs.surface(nullptr, tested); });
+  const PassPrograms& surface = lookup_programs ? *lookup_programs : *plain;
   const scene::Light& l = scene.lights[light_index];
   const Vec4<float> h = light(light_index).cast<float>();
-  gl.Uniform4f(p.light, h.x(), h.y(), h.z(), h.w());
-  gl.Uniform1f(p.light_intensity, light_intensity());
-  if (l.type == scene::LightType::Spot) {
-    const Vec3<float> axis = l.direction.normalized().cast<float>();
-    gl.Uniform4f(p.spot, axis.x(), axis.y(), axis.z(), static_cast<float>(std::cos(l.cone_deg * std::numbers::pi / 180.0)));
-  } else {
-    gl.Uniform4f(p.spot, 0, 0, 0, -2.0f);
-  }
+  surface.set([&](const Program& p) {
+    set_matrix(gl, p.clip_from_world, clip);
+    set_matrix(gl, p.shadow_from_world, shadow_from_world ? *shadow_from_world : Mat4<float>::Identity());
+    gl.Uniform1i(p.mode, static_cast<int>(SurfaceMode::Light));
+    gl.Uniform4f(p.light, h.x(), h.y(), h.z(), h.w());
+    gl.Uniform1f(p.light_intensity, light_intensity());
+    if (l.type == scene::LightType::Spot) {
+      const Vec3<float> axis = l.direction.normalized().cast<float>();
+      gl.Uniform4f(p.spot, axis.x(), axis.y(), axis.z(), static_cast<float>(std::cos(l.cone_deg * std::numbers::pi / 180.0)));
+    } else {
+      gl.Uniform4f(p.spot, 0, 0, 0, -2.0f);
+    }
+  });
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const auto& c = scene.objects[i].color;
-    gl.Uniform3f(p.albedo, c.x(), c.y(), c.z());
+    gl.Uniform3f(surface.use(i).albedo, c.x(), c.y(), c.z());
     objects[i].draw(skins);
   }
   if (masks) gl.DrawBuffer(GL_COLOR_ATTACHMENT0);
@@ -365,20 +400,24 @@ Image8 Frame::read_stencil_mask(std::uint8_t value, bool value_is_lit) const {
 
 std::vector<Image8> Frame::facing_masks(const Mat4<float>& clip) const {
   std::vector<Image8> masks;
-  const Program& p = programs.surface();
+  const PassPrograms surface(*this, [&](bool tested) -> const Program& { return programs.surface(nullptr, tested); });
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
     bind_target(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, static_cast<float>(outputs::kMaskNoSurface) / 255.0f);
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(depth_nearer());
     gl.Disable(GL_BLEND);
     gl.Disable(GL_STENCIL_TEST);
-    gl.UseProgram(p.id);
-    set_matrix(gl, p.clip_from_world, clip);
-    set_matrix(gl, p.shadow_from_world, Mat4<float>::Identity());
-    gl.Uniform1i(p.mode, static_cast<int>(SurfaceMode::Mask));  // no map: the facing test alone
     const Vec4<float> l = light(i).cast<float>();
-    gl.Uniform4f(p.light, l.x(), l.y(), l.z(), l.w());
-    for (const GpuMesh& m : objects) m.draw(skins);
+    surface.set([&](const Program& p) {
+      set_matrix(gl, p.clip_from_world, clip);
+      set_matrix(gl, p.shadow_from_world, Mat4<float>::Identity());
+      gl.Uniform1i(p.mode, static_cast<int>(SurfaceMode::Mask));  // no map: the facing test alone
+      gl.Uniform4f(p.light, l.x(), l.y(), l.z(), l.w());
+    });
+    for (std::size_t o = 0; o < objects.size(); ++o) {
+      surface.use(o);
+      objects[o].draw(skins);
+    }
     masks.push_back(read_grey());
   }
   return masks;

@@ -324,12 +324,18 @@ std::string flag(const char* name, bool value) {
 
 }  // namespace
 
-std::string alpha_test() {
+std::string alpha_test(bool tested) {
+  if (!tested) return "void alpha_test() {}\n";
   std::string out = constant("kAlphaFaultNone", static_cast<int>(AlphaFault::None));
   out += constant("kAlphaFaultIgnored", static_cast<int>(AlphaFault::Ignored));
   out += constant("kAlphaFaultCutoffHalf", static_cast<int>(AlphaFault::CutoffHalf));
   out += constant("kAlphaFaultVertexAlphaIgnored", static_cast<int>(AlphaFault::VertexAlphaIgnored));
   return out + scene::alpha_rule_glsl() + kAlphaTest;
+}
+
+std::vector<std::string> with_alpha_test(std::vector<std::string> fragment, bool tested) {
+  fragment.insert(fragment.begin() + 1, alpha_test(tested));
+  return fragment;
 }
 
 std::vector<std::string> surface_fragment(const MapLookup* lookup) {

@@ -17,7 +17,7 @@ namespace shadowref::renderer::shaders {
 extern const char* const kSceneVertex;
 // The joints kSceneVertex's `Skin` block holds (scene::kMaxSkinJoints, checked in renderer.cpp).
 inline constexpr int kSceneVertexJoints = 128;
-// Every fragment shader below is joined after kVersion and alpha_test() (programs.cpp) and calls
+// Every fragment shader below is joined after kVersion and alpha_test() (with_alpha_test) and calls
 // alpha_test() first.
 // A constant colour (depth pre-pass, stencil passes with colour writes off, planar black).
 extern const char* const kFlatFragment;
@@ -33,10 +33,16 @@ extern const char* const kDistanceFragment;
 // The depth of the light's view, packed into RGBA8.
 extern const char* const kPackedDepthFragmentBody;
 
-// Every fragment shader's alpha test, after its version line (programs.cpp joins it): the
-// AlphaFault constants, scene/alpha_mask.hpp's rule in GLSL and alpha_test(), which discards a
-// masked object's fragment below its cutoff (the teeth's u_alpha_fault aside).
-std::string alpha_test();
+// Every fragment shader's alpha test, after its version line (with_alpha_test joins it). Tested:
+// the AlphaFault constants, scene/alpha_mask.hpp's rule in GLSL and alpha_test(), which discards a
+// masked object's fragment below its cutoff (the teeth's u_alpha_fault aside). Not tested: an empty
+// alpha_test(), so that the program has no discard at all — a rasteriser tests depth before shading
+// only in a shader that cannot discard (llvmpipe decides it from the shader's text), and unmasked
+// objects, nearly all of them, keep that early test.
+std::string alpha_test(bool tested);
+// A fragment shader's strings with alpha_test(tested) inserted after the first (the version line, or
+// the surface program's generated header).
+std::vector<std::string> with_alpha_test(std::vector<std::string> fragment, bool tested);
 
 // The surface program's fragment shader, as glShaderSource's strings: kVersion and the constants of
 // the C++ enumerations it branches on (SurfaceMode, MapLayout, the lookup's flags), the inputs, and

@@ -97,8 +97,9 @@ void render_volumes(Frame& frame, Mode mode) {
     gl.Enable(GL_STENCIL_TEST);
     gl.StencilFunc(GL_ALWAYS, 0, 0xFF);
     if (mode == Mode::ZFailClamp) gl.Enable(GL_DEPTH_CLAMP);
-    gl.UseProgram(frame.programs.flat.id);
-    set_matrix(gl, frame.programs.flat.clip_from_world, clip);
+    // The volumes are no scene object and never masked: the flat program without the alpha test.
+    gl.UseProgram(frame.programs.flat().id);
+    set_matrix(gl, frame.programs.flat().clip_from_world, clip);
     std::string robust_choice;
     for (std::size_t c = 0; c < casters.size(); ++c) {
       if (!casters[c].caster) continue;

@@ -431,6 +431,49 @@ TEST(Staircases, DeclaredLightMatricesOffByHalfATexelOrTurnedAreReported) {
   }
 }
 
+// A declared view may be left-handed in a right-handed run (Babylon.js draws its maps so): the same
+// grid said with the view's z turned round (V' = F V, P' = P F, F = diag(1, 1, -1, 1), so P' V' = P V)
+// is judged exactly as said right-handed — the judge reads which way is away from the light from the
+// projection, for an orthographic view (grazing_light's sun) and a perspective one (spot_light's).
+TEST(DeclaredMatrices, ALeftHandedViewOfTheSameGridIsJudgedAlike) {
+  for (const char* name : {"grazing_light", "spot_light"}) {
+    SceneUnderTest s(name);
+    renderer::RenderOptions options;
+    options.shadow_map_size = 512;
+    options.declare_light_matrices = true;
+    const renderer::RenderResult r = test::llvmpipe_renderer().render(s.scene, "shadowmap", options);
+    ASSERT_EQ(r.declaration.for_light(0).light_views, outputs::LightViews::Declared) << name;
+    const auto judged = [&](const std::string& label, bool left_handed) {
+      outputs::CandidateDeclaration d = r.declaration;
+      std::vector<outputs::DeclaredView*> views;
+      for (outputs::DeclaredView& v : d.views) views.push_back(&v);
+      for (outputs::CandidateDeclaration& light : d.lights)
+        for (outputs::DeclaredView& v : light.views) views.push_back(&v);
+      EXPECT_FALSE(views.empty());
+      for (outputs::DeclaredView* v : views) {
+        if (!left_handed) continue;
+        const Mat4<double> flip = Vec4<double>(1, 1, -1, 1).asDiagonal();
+        const Mat4<double> view = flip * Eigen::Map<const Mat4<double>>(v->view.data());
+        const Mat4<double> projection = Eigen::Map<const Mat4<double>>(v->projection.data()) * flip;
+        std::copy(view.data(), view.data() + 16, v->view.begin());
+        std::copy(projection.data(), projection.data() + 16, v->projection.begin());
+      }
+      nlohmann::json keys = nlohmann::json::parse(outputs::declaration_text(d));
+      keys.erase("technique");
+      const std::string text = keys.dump();
+      return s.judged(label, r.masks.at(0), text.substr(1, text.size() - 2));
+    };
+    const conform::CaseJudgement right = judged(std::string(name) + "-right-handed", false);
+    const conform::CaseJudgement left = judged(std::string(name) + "-left-handed", true);
+    EXPECT_EQ(right.comparison.decision.verdict, compare::Verdict::Pass) << name;
+    EXPECT_EQ(left.comparison.decision.verdict, compare::Verdict::Pass) << name;
+    EXPECT_NE(left.causes.find("declared light matrices' grid is not contradicted"), std::string::npos) << name << ": " << left.causes;
+    EXPECT_EQ(left.comparison.total.unexplained, right.comparison.total.unexplained) << name;
+    EXPECT_EQ(left.comparison.total.explained_texel, right.comparison.total.explained_texel) << name;
+    EXPECT_EQ(left.comparison.total.explained_bias, right.comparison.total.explained_bias) << name;
+  }
+}
+
 // Declared matrices the scene cannot have been drawn with are bad input, named by their JSON path:
 // two views for a point light (1, or a cube's 6), a view missing, or matrices in another convention
 // than the run's (they are read in the run's).

@@ -86,6 +86,37 @@ function lightSizeFromRect(l, spot) {
 }
 const MAP_SIZE = 1024;
 
+// The view and projection matrices Babylon draws a generator's map with, read as it draws:
+// ShadowGenerator.getTransformMatrix computes them for the face the map is rendering
+// (_currentFaceIndex: a point light's six cube faces, one view otherwise) into _viewMatrix and
+// _projectionMatrix, always left-handed (LookAtLH, PerspectiveFovLH / OrthoOffCenterLH) whatever the
+// scene's handedness, with WebGL's clip depth −1..1. Babylon's matrices are row-vector, so a
+// Matrix's `m` array, row-major, is the column-vector matrix in column-major order: what
+// candidate.json asks for. A cube's faces are declared in the order +x, −x, +y, −y, +z, −z, found
+// from each face's direction (PointLight.getShadowDirection: Babylon's face 2 looks down −y).
+function recordShadowViews(generator, light) {
+  const faces = new Map();
+  const get = generator.getTransformMatrix;
+  generator.getTransformMatrix = function () {
+    const transform = get.call(this);
+    faces.set(this._currentFaceIndex, { view: [...this._viewMatrix.m], projection: [...this._projectionMatrix.m] });
+    return transform;
+  };
+  return {
+    stop() {
+      generator.getTransformMatrix = get;
+      if (!light.needCube()) return faces.has(0) ? [faces.get(0)] : [];
+      const slots = [];
+      for (const [face, matrices] of faces) {
+        const d = light.getShadowDirection(face);
+        const axis = Math.abs(d.x) >= Math.abs(d.y) && Math.abs(d.x) >= Math.abs(d.z) ? 0 : Math.abs(d.y) >= Math.abs(d.z) ? 1 : 2;
+        slots[2 * axis + ([d.x, d.y, d.z][axis] >= 0 ? 0 : 1)] = matrices;
+      }
+      return slots.filter((v) => v).length === 6 ? slots : [];
+    },
+  };
+}
+
 // The shadow pass's surface: Babylon's StandardMaterial with every light term computed as usual,
 // whose final colour is replaced by the shadow term the light loop left in `shadow`
 // (Shaders/ShadersInclude/lightFragment.fx: one light enabled, so it is that light's).
@@ -155,6 +186,7 @@ async function render(url, variantName) {
   const masks = [];
   const visibility = [];
   const declared = [];
+  const lightViews = [];  // per light: the light matrices Babylon drew its map with (recordShadowViews)
   for (const l of lights) {
     let light = loadedLights[l.index];
     // A spot light is the point light at its position, as in the other harnesses: the mask is
@@ -199,7 +231,14 @@ async function render(url, variantName) {
       m.receiveShadows = true;
       m.material = shadowMaterial;
     }
+    // The cascades' matrices are not declared (a cascade is chosen by Babylon's view-depth splits and
+    // blended with the next one over cascadeBlendPercentage): those lights keep `own` views.
+    const views = cascaded ? null : recordShadowViews(generator, light);
     const shadowPixels = new Uint8Array(await renderFrame(scene));
+    const drawn = views ? views.stop() : [];
+    if (views && drawn.length !== (light.needCube() ? 6 : 1))
+      throw new Error(`Babylon drew ${drawn.length} shadow views for a ${light.getClassName()}, not ${light.needCube() ? 6 : 1}`);
+    lightViews.push(drawn.length ? { light_views: 'declared', shadow_map_size: MAP_SIZE, views: drawn } : { light_views: 'own' });
 
     for (const m of meshes) {
       const positions = new Float32Array(m.getVerticesData(VertexBuffer.PositionKind));
@@ -248,7 +287,8 @@ async function render(url, variantName) {
     ...(v.filter === 'pcss' ? { light_taps: 8, sampling: 'random' } : {}),
     slope_bias_texels: 0,
     constant_bias: 0,
-    light_views: 'own',
+    // Babylon's own light views, as it drew them (recordShadowViews): the judge knows the grid.
+    light_views: lightViews.some((l) => l.light_views === 'declared') ? 'declared' : 'own',
     normal_offset: first.normalBias,
     depth_bias: Math.abs(first.bias),
     depth_faces: v.forceBackFacesOnly ? 'back' : loadedCulling ? 'front' : 'both',
@@ -261,6 +301,7 @@ async function render(url, variantName) {
       ...(v.rectAsSpot ? { 'rect lights': "Babylon's SpotLight at the rect's centre (its PCSS needs one view)" } : {}),
       'camera.maxZ': cam.far,
     },
+    ...(lightViews.some((l) => l.light_views === 'declared') ? { lights: lightViews } : {}),
   };
   scene.dispose();
   return { width: cam.width, height: cam.height, masks, visibility, candidate };

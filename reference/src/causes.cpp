@@ -122,6 +122,17 @@ double capped_tan(double c) {
 }  // namespace
 
 namespace {
+// The sign of view-space z that points away from the light, read from a projection: a perspective
+// one's w row (w = P(3,2) z grows with distance), an orthographic one's depth row (NDC z runs from
+// zn at the near plane to zf at the far one, so z grows away from the light where P(2,2) has the
+// sign of zf − zn).
+double view_axis_sign(const Mat4<double>& projection, double zn, double zf) {
+  if (projection(3, 2) != 0) return projection(3, 2) > 0 ? 1.0 : -1.0;
+  return (projection(2, 2) > 0) == (zf > zn) ? 1.0 : -1.0;
+}
+}  // namespace
+
+namespace {
 // The cascades a declaration's technique splits a directional light's map into (0: not cascaded).
 int cascades_of(const outputs::CandidateDeclaration& d) {
   const outputs::TechniqueName* technique = outputs::find_technique_name(d.technique);
@@ -148,8 +159,11 @@ std::optional<CauseModel::Lookup> CauseModel::lookup(std::size_t light, const Su
   k.zn = near_ndc_z(*scene_.convention);
   k.zf = far_ndc_z(*scene_.convention);
   // Depth from the light, in world units along its view axis (the light's view looks down −z when
-  // right-handed, +z when left-handed).
+  // right-handed, +z when left-handed). Declared matrices say it themselves, whatever the run's
+  // convention: an engine may draw its maps left-handed in a right-handed scene (Babylon.js does).
   k.axis_sign = scene_.convention->clip.hand == Handedness::Right ? -1.0 : 1.0;
+  if (d.light_views == outputs::LightViews::Declared && !d.views.empty())
+    k.axis_sign = view_axis_sign(k.view->projection, k.zn, k.zf);
   k.depth_p = k.depth(s.p);
   // One texel's width at p, in world units (on the plane of constant light depth through p).
   k.texel = (unproject(k.inv, k.q.x() + k.texel_ndc, k.q.y(), k.q.z()) - unproject(k.inv, k.q.x(), k.q.y(), k.q.z())).norm();

@@ -236,9 +236,19 @@ GLuint allocate_targets(const Frame& frame, LightMap& map, GLsizei layers, const
   return depth_rb;
 }
 
-// The depth pass's state: viewport, clear values, depth test, the program and its polygon offset
-// (the convention's sign, the lookup's factor; the teeth's offset faults). Returns the program.
-const Program& set_depth_pass_state(const Frame& frame, const LightFit& lc, const LightMap& map, const MapLookup& lookup) {
+// The depth pass's fragment shader for this map: a distance cube's, the packed depth's, the moments',
+// or the plain one whose depth is the map.
+DepthProgram depth_program(const LightMap& map, const MapLookup& lookup) {
+  if (map.distance_range > 0) return DepthProgram::Distance;
+  return lookup.storage == MapStorage::PackedRgba8          ? DepthProgram::PackedDepth
+         : lookup.storage == MapStorage::RawDepthAndMoments ? DepthProgram::Moments
+                                                            : DepthProgram::Flat;
+}
+
+// The depth pass's state: viewport, clear values, depth test, and the programs' polygon offset (the
+// convention's sign, the lookup's factor; the teeth's offset faults).
+void set_depth_pass_state(const Frame& frame, const LightFit& lc, const LightMap& map, const MapLookup& lookup,
+                          const PassPrograms& programs) {
   const GlFunctions& gl = frame.gl;
   const RunConvention& conv = frame.convention();
   const ShadowMapFaults& faults = frame.faults().shadow_map;
@@ -256,13 +266,13 @@ const Program& set_depth_pass_state(const Frame& frame, const LightFit& lc, cons
     gl.Disable(GL_BLEND);
     gl.Disable(GL_POLYGON_OFFSET_FILL);
     gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    const Program& p = frame.programs.distance;
-    gl.UseProgram(p.id);
-    gl.Uniform3f(p.at(gl, "u_light_position"), map.light_position.x(), map.light_position.y(), map.light_position.z());
-    gl.Uniform1f(p.at(gl, "u_distance_range"), map.distance_range);
-    gl.Uniform1f(p.at(gl, "u_offset_factor"), lookup.offset_factor);
-    gl.Uniform1f(p.at(gl, "u_offset_units"), lookup.offset_units);
-    return p;
+    programs.set([&](const Program& p) {
+      gl.Uniform3f(p.at(gl, "u_light_position"), map.light_position.x(), map.light_position.y(), map.light_position.z());
+      gl.Uniform1f(p.at(gl, "u_distance_range"), map.distance_range);
+      gl.Uniform1f(p.at(gl, "u_offset_factor"), lookup.offset_factor);
+      gl.Uniform1f(p.at(gl, "u_offset_units"), lookup.offset_units);
+    });
+    return;
   }
   gl.DepthMask(GL_TRUE);
   const float clear = faults.clear_to_one ? 1.0f : far;  // FAULT: 1 whatever the convention
@@ -272,10 +282,6 @@ const Program& set_depth_pass_state(const Frame& frame, const LightFit& lc, cons
   gl.DepthFunc(frame.depth_nearer());
   gl.Disable(GL_STENCIL_TEST);
   gl.Disable(GL_BLEND);
-  const Program& p = lookup.storage == MapStorage::PackedRgba8          ? frame.programs.packed_depth
-                     : lookup.storage == MapStorage::RawDepthAndMoments ? frame.programs.moments
-                                                                        : frame.programs.flat;
-  gl.UseProgram(p.id);
   float sign = polygon_offset_sign(conv), factor = lookup.offset_factor, units = lookup.offset_units;
   if (faults.offset_sign_ignored) sign = 1.0f;  // FAULT: + whatever the convention
   if (faults.no_polygon_offset) factor = units = 0.0f;  // FAULT: acne
@@ -294,10 +300,13 @@ const Program& set_depth_pass_state(const Frame& frame, const LightFit& lc, cons
   // Cornell box's tall block, edge-on to the light, reads its own face as an occluder); the slope
   // term would push a steep face behind the ground it stands on, and the filter would read that
   // contact as lit.
-  if (lookup.shader_offset != ShaderOffset::None) {
-    gl.Uniform1f(p.at(gl, "u_offset_factor"), lookup.shader_offset == ShaderOffset::ConstantOnly ? 0.0f : sign * factor);
-    gl.Uniform1f(p.at(gl, "u_offset_units"), sign * units);
-  }
+  programs.set([&](const Program& p) {
+    if (lookup.shader_offset != ShaderOffset::None) {
+      gl.Uniform1f(p.at(gl, "u_offset_factor"), lookup.shader_offset == ShaderOffset::ConstantOnly ? 0.0f : sign * factor);
+      gl.Uniform1f(p.at(gl, "u_offset_units"), sign * units);
+    }
+    if (lookup.shader_offset != ShaderOffset::Whole) gl.Uniform4f(p.colour, 0, 0, 0, 0);
+  });
   if (lookup.shader_offset == ShaderOffset::Whole) {
     gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   } else {
@@ -305,9 +314,7 @@ const Program& set_depth_pass_state(const Frame& frame, const LightFit& lc, cons
     gl.ColorMask(colour, colour, colour, colour);
     gl.Enable(GL_POLYGON_OFFSET_FILL);
     gl.PolygonOffset(sign * factor, sign * units);
-    gl.Uniform4f(p.colour, 0, 0, 0, 0);
   }
-  return p;
 }
 
 // What the depth pass draws with at this moment, as GL holds it: the offset (GL's, or the depth
@@ -333,7 +340,7 @@ void record_drawn_state(const GlFunctions& gl, const Program& p, DrawnMap& drawn
 // with the faces RenderOptions::depth_faces asks (both for a lookup that draws the first surfaces).
 // Records what it drew with in `drawn`, read back from GL at a closed caster's draw call.
 void draw_depth_pass(const Frame& frame, const LightFit& lc, const std::vector<Mat4<double>>& projections,
-                     const LightMap& map, const MapLookup& lookup, const Program& p, DrawnMap& drawn) {
+                     const LightMap& map, const MapLookup& lookup, const PassPrograms& programs, DrawnMap& drawn) {
   const GlFunctions& gl = frame.gl;
   const ShadowMapFaults& faults = frame.faults().shadow_map;
   const auto layers = static_cast<GLsizei>(lc.views.size());
@@ -358,14 +365,16 @@ void draw_depth_pass(const Frame& frame, const LightFit& lc, const std::vector<M
       throw GlError("the shadow-map framebuffer is incomplete");
     gl.Clear(colour ? GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT : GL_DEPTH_BUFFER_BIT);
     if (view.empty) continue;
-    if (lookup.storage == MapStorage::RawDepthAndMoments)
-      gl.Uniform2f(p.at(gl, "u_layer_inv_view_depth"), map.inv_view_depth[2 * k], map.inv_view_depth[2 * k + 1]);
     Mat4<double> clip = projections[k] * view.view;
     // FAULT: the ±y faces rendered with their up vector negated (the picture turned by 180 degrees:
     // NDC x and y negated), while they are sampled as the face table says.
     if (lc.cube && faults.cube == CubeFault::YFacesUpsideDown && (face == 2 || face == 3))
       clip = Vec4<double>(-1, -1, 1, 1).asDiagonal() * clip;
-    set_matrix(gl, p.clip_from_world, to_float(clip));
+    programs.set([&](const Program& p) {
+      if (lookup.storage == MapStorage::RawDepthAndMoments)
+        gl.Uniform2f(p.at(gl, "u_layer_inv_view_depth"), map.inv_view_depth[2 * k], map.inv_view_depth[2 * k + 1]);
+      set_matrix(gl, p.clip_from_world, to_float(clip));
+    });
     for (std::size_t i = 0; i < frame.objects.size(); ++i) {
       if (!view.draw.empty() && !view.draw[i]) continue;
       // FAULT: an object out of the camera's view culled from the light's pass too.
@@ -376,6 +385,7 @@ void draw_depth_pass(const Frame& frame, const LightFit& lc, const std::vector<M
         gl.CullFace(GL_FRONT);
         gl.Enable(GL_CULL_FACE);
       }
+      const Program& p = programs.use(i);
       if (frame.closed(i) && !drawn.closed_faces) record_drawn_state(gl, p, drawn);
       // FAULT: a skinned caster drawn in its bind pose into the map, while the camera's passes pose it.
       frame.objects[i].draw(faults.skin_bind_pose ? SkinDraw::BindPose : frame.skins);
@@ -460,16 +470,21 @@ LightMap draw_light_map(Frame& frame, std::size_t light, const LightFit& lc, con
   const std::vector<Mat4<double>> projections = light_matrices(frame, lc, map);
   GLuint fbo = 0;
   const GLuint depth_rb = allocate_targets(frame, map, static_cast<GLsizei>(lc.views.size()), lookup, fbo);
-  const Program& p = set_depth_pass_state(frame, lc, map, lookup);
+  const DepthProgram program = depth_program(map, lookup);
+  const PassPrograms programs(frame, [&](bool tested) -> const Program& { return frame.programs.depth(program, tested); });
+  set_depth_pass_state(frame, lc, map, lookup, programs);
   // FAULT (AlphaFault): how the depth pass treats masked casters; set back to none below, since the
   // program is shared with passes the fault is not about.
-  gl.Uniform1i(p.at(gl, "u_alpha_fault"), static_cast<int>(frame.faults().shadow_map.alpha));
+  const auto alpha_fault = [&](AlphaFault fault) {
+    programs.set([&](const Program& p) { gl.Uniform1i(p.at(gl, "u_alpha_fault"), static_cast<int>(fault)); });
+  };
+  alpha_fault(frame.faults().shadow_map.alpha);
   DrawnMap drawn;
   drawn.lookup = std::string(lookup.name);
   drawn.distance = map.distance_range > 0;
   gl.GetTexLevelParameteriv(GL_TEXTURE_2D_ARRAY, 0, GL_TEXTURE_WIDTH, &drawn.texels);
-  draw_depth_pass(frame, lc, projections, map, lookup, p, drawn);
-  gl.Uniform1i(p.at(gl, "u_alpha_fault"), static_cast<int>(AlphaFault::None));
+  draw_depth_pass(frame, lc, projections, map, lookup, programs, drawn);
+  alpha_fault(AlphaFault::None);
   frame.result.drawn_maps.push_back(std::move(drawn));
   gl.Disable(GL_CULL_FACE);
   gl.CullFace(GL_BACK);

@@ -55,9 +55,9 @@ void render_map_technique(Frame& frame, std::string_view name) {
   // lit fraction (visibility.png), into the mask attachment (Frame::light_pass).
   frame.ambient_pass(clip);
   for (std::size_t i = 0; i < maps.size(); ++i) {
-    const Program& program = frame.programs.surface(lookups[i]);
-    bind_light_map(frame, i, maps[i], *lookups[i], program);
-    frame.light_pass(clip, i, &program, &maps[i].shadow_from_world, /*masks=*/true);
+    const PassPrograms programs(frame, [&](bool tested) -> const Program& { return frame.programs.surface(lookups[i], tested); });
+    programs.set([&](const Program& p) { bind_light_map(frame, i, maps[i], *lookups[i], p); });
+    frame.light_pass(clip, i, &programs, &maps[i].shadow_from_world, /*masks=*/true);
     frame.result.masks.push_back(frame.read_grey(GL_GREEN, Frame::kMaskAttachment));
     if (technique.lookup.filtered) frame.result.visibility.push_back(frame.read_grey(GL_RED, Frame::kMaskAttachment));
   }
