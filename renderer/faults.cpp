@@ -31,6 +31,7 @@ std::string describe(const Faults& f) {
   const std::string world = "shadow_map.constant_offset_world=" + std::to_string(s.constant_offset_world);
   on(s.constant_offset_world > 0, world.c_str());
   on(s.cull_casters_outside_view, "shadow_map.cull_casters_outside_view");
+  on(s.skin_bind_pose, "shadow_map.skin=bind_pose");
   on(s.fit == FitFault::NearTooTight, "shadow_map.fit=near_too_tight");
   on(s.fit == FitFault::FarTooTight, "shadow_map.fit=far_too_tight");
   on(s.cube == CubeFault::ZFacesSwapped, "shadow_map.cube=z_faces_swapped");

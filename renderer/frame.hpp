@@ -72,6 +72,31 @@ class Programs {
 // The texture unit of every program's alpha mask (u_alpha_mask, an R8UI texture); the light maps use 0 to 3.
 inline constexpr GLenum kAlphaMaskUnit = GL_TEXTURE4;
 
+// The uniform block binding of kSceneVertex's `Skin` block (programs.cpp binds every program's there).
+inline constexpr GLuint kSkinBlockBinding = 0;
+
+// How a draw poses a skinned object (scene/skin.hpp); a rigid object ignores it.
+enum class SkinDraw {
+  Gpu,       // the bind pose skinned in the vertex shader with the pose's joint matrices (every pass)
+  CpuPosed,  // the scene's posed mesh, the very floats the CPU posed (stencil volumes: stencil_volumes.cpp)
+  BindPose,  // the bind pose unposed (ShadowMapFaults::skin_bind_pose only)
+};
+
+// A skinned object's GPU data (GpuMesh::add_skin): per flat vertex, the CPU-posed position, the four
+// joint indices (as floats) and weights; the joint matrices at the pose and in the bind pose; and the
+// renderer's rigid block (u_skinned = 0), bound back after each skinned draw.
+struct GpuSkinData {
+  std::span<const Vec4<float>> posed_vertices;
+  std::span<const Vec4<float>> joints;
+  std::span<const Vec4<float>> weights;
+  std::span<const Mat4<float>> pose_matrices;
+  std::span<const Mat4<float>> bind_matrices;
+  GLuint rigid_block = 0;
+};
+
+// The `Skin` block's contents (std140: kSceneVertexJoints mat4, then the int u_skinned), as bytes.
+std::vector<unsigned char> skin_block_bytes(std::span<const Mat4<float>> joints, bool skinned);
+
 // Homogeneous vertices (vec4) and optional 32-bit triangle indices on the GPU.
 class GpuMesh {
  public:
@@ -88,12 +113,17 @@ class GpuMesh {
   GpuMesh(const GpuMesh&) = delete;
   GpuMesh& operator=(const GpuMesh&) = delete;
   GpuMesh& operator=(GpuMesh&&) = delete;
-  void draw() const;  // GL_TRIANGLES, indexed when indices were given
+  // Makes the mesh skinned: its vertices (attribute 0) are then the bind pose; attributes 3 and 4
+  // the joints and weights; a second vertex array draws the CPU-posed vertices (SkinDraw::CpuPosed).
+  void add_skin(const GpuSkinData& skin);
+  void draw(SkinDraw skin = SkinDraw::Gpu) const;  // GL_TRIANGLES, indexed when indices were given
   bool empty() const { return count_ == 0; }
+  bool skinned() const { return posed_vao_ != 0; }
 
  private:
   const GlFunctions* gl_;
   GLuint vao_ = 0, vbo_ = 0, ebo_ = 0, nbo_ = 0, abo_ = 0, mask_ = 0;
+  GLuint posed_vao_ = 0, posed_vbo_ = 0, skin_vbo_ = 0, pose_block_ = 0, bind_block_ = 0, rigid_block_ = 0;
   GLsizei count_ = 0;
   bool indexed_ = false;
 };
@@ -121,6 +151,8 @@ struct Frame {
   const std::vector<GpuMesh>& objects;        // scene.objects, same order
   GLuint target_fbo = 0;                      // W × H: RGBA8 colour, the RG8 mask attachment, depth/stencil
                                               // (24-bit, or 32F for reversed-z)
+  // How skinned objects are drawn in this frame's passes (stencil volumes: CpuPosed, see there).
+  SkinDraw skins = SkinDraw::Gpu;
   // The target's second colour attachment, RG8: light_pass's lit fraction and mask.
   static constexpr GLenum kMaskAttachment = GL_COLOR_ATTACHMENT1;
 

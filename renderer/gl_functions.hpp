@@ -98,7 +98,10 @@ namespace shadowref::renderer {
   X(PFNGLGENRENDERBUFFERSPROC, GenRenderbuffers)                          \
   X(PFNGLDELETERENDERBUFFERSPROC, DeleteRenderbuffers)                    \
   X(PFNGLBINDRENDERBUFFERPROC, BindRenderbuffer)                          \
-  X(PFNGLRENDERBUFFERSTORAGEPROC, RenderbufferStorage)
+  X(PFNGLRENDERBUFFERSTORAGEPROC, RenderbufferStorage)                    \
+  X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                              \
+  X(PFNGLGETUNIFORMBLOCKINDEXPROC, GetUniformBlockIndex)                  \
+  X(PFNGLUNIFORMBLOCKBINDINGPROC, UniformBlockBinding)
 
 struct GlFunctions {
 #define SHADOWREF_GL_MEMBER(type, name) type name = nullptr;

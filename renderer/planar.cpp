@@ -72,7 +72,7 @@ void render_planar(Frame& frame) {
           gl.Uniform4f(p.colour, 0, 0, 0, 0);
         });
         programs.use(*receiver);
-        frame.objects[*receiver].draw();
+        frame.objects[*receiver].draw(frame.skins);
 
         // 2. The casters through P · V · S, black, blended, once per marked pixel.
         gl.Disable(GL_DEPTH_TEST);
@@ -92,7 +92,7 @@ void render_planar(Frame& frame) {
         for (std::size_t o = 0; o < frame.objects.size(); ++o) {
           if (o == *receiver) continue;
           programs.use(o);  // a masked caster's holes cast nothing
-          frame.objects[o].draw();
+          frame.objects[o].draw(frame.skins);
         }
         gl.Disable(GL_BLEND);
         gl.Disable(GL_STENCIL_TEST);

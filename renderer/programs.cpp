@@ -45,6 +45,9 @@ Program link(const GlFunctions& gl, const std::vector<std::string>& fragment, bo
     gl.GetProgramInfoLog(p.id, sizeof log, nullptr, log);
     throw GlError("program " + what + " does not link: " + log);
   }
+  // The joints of a skinned draw (GpuMesh binds its block there, the rigid block otherwise).
+  if (const GLuint block = gl.GetUniformBlockIndex(p.id, "Skin"); block != GL_INVALID_INDEX)
+    gl.UniformBlockBinding(p.id, block, kSkinBlockBinding);
   const auto loc = [&](const char* name) { return gl.GetUniformLocation(p.id, name); };
   p.clip_from_world = loc("u_clip_from_world");
   p.shadow_from_world = loc("u_shadow_from_world");

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <initializer_list>
 #include <numbers>
 #include <optional>
@@ -15,6 +16,7 @@
 #include <string>
 
 #include "frame.hpp"
+#include "shaders.hpp"
 #include "shadow_maps/light_map.hpp"
 #include "shadowref/outputs/shading.hpp"
 #include "shadowref/outputs/techniques.hpp"
@@ -92,12 +94,76 @@ GpuMesh::GpuMesh(const GlFunctions& gl, std::span<const Vec4<float>> vertices,
 
 GpuMesh::GpuMesh(GpuMesh&& o) noexcept
     : gl_(o.gl_), vao_(o.vao_), vbo_(o.vbo_), ebo_(o.ebo_), nbo_(o.nbo_), abo_(o.abo_), mask_(o.mask_),
-      count_(o.count_), indexed_(o.indexed_) {
+      posed_vao_(o.posed_vao_), posed_vbo_(o.posed_vbo_), skin_vbo_(o.skin_vbo_), pose_block_(o.pose_block_),
+      bind_block_(o.bind_block_), rigid_block_(o.rigid_block_), count_(o.count_), indexed_(o.indexed_) {
   o.vao_ = o.vbo_ = o.ebo_ = o.nbo_ = o.abo_ = o.mask_ = 0;
+  o.posed_vao_ = o.posed_vbo_ = o.skin_vbo_ = o.pose_block_ = o.bind_block_ = 0;
   o.count_ = 0;
 }
 
+std::vector<unsigned char> skin_block_bytes(std::span<const Mat4<float>> joints, bool skinned) {
+  static_assert(scene::kMaxSkinJoints == shaders::kSceneVertexJoints, "the Skin block holds scene::kMaxSkinJoints joints");
+  constexpr std::size_t kMatrixBytes = 16 * sizeof(float);
+  std::vector<unsigned char> bytes(shaders::kSceneVertexJoints * kMatrixBytes + 4 * sizeof(std::int32_t), 0);
+  for (std::size_t j = 0; j < joints.size() && j < scene::kMaxSkinJoints; ++j)
+    std::memcpy(bytes.data() + j * kMatrixBytes, joints[j].data(), kMatrixBytes);  // column-major, as std140's mat4
+  const std::int32_t flag = skinned ? 1 : 0;
+  std::memcpy(bytes.data() + shaders::kSceneVertexJoints * kMatrixBytes, &flag, sizeof flag);
+  return bytes;
+}
+
+void GpuMesh::add_skin(const GpuSkinData& skin) {
+  const GlFunctions& gl = *gl_;
+  const auto block = [&](std::span<const Mat4<float>> m) {
+    const std::vector<unsigned char> bytes = skin_block_bytes(m, true);
+    GLuint b = 0;
+    gl.GenBuffers(1, &b);
+    gl.BindBuffer(GL_UNIFORM_BUFFER, b);
+    gl.BufferData(GL_UNIFORM_BUFFER, static_cast<GLsizeiptr>(bytes.size()), bytes.data(), GL_STATIC_DRAW);
+    gl.BindBuffer(GL_UNIFORM_BUFFER, 0);
+    return b;
+  };
+  pose_block_ = block(skin.pose_matrices);
+  bind_block_ = block(skin.bind_matrices);
+  rigid_block_ = skin.rigid_block;
+  // Joints then weights in one buffer, attributes 3 and 4 of the bind-pose vertex array.
+  gl.BindVertexArray(vao_);
+  gl.GenBuffers(1, &skin_vbo_);
+  gl.BindBuffer(GL_ARRAY_BUFFER, skin_vbo_);
+  const auto half = static_cast<GLsizeiptr>(skin.joints.size_bytes());
+  std::vector<Vec4<float>> both(skin.joints.begin(), skin.joints.end());
+  both.insert(both.end(), skin.weights.begin(), skin.weights.end());
+  gl.BufferData(GL_ARRAY_BUFFER, 2 * half, both.data(), GL_STATIC_DRAW);
+  gl.VertexAttribPointer(3, 4, GL_FLOAT, GL_FALSE, 0, nullptr);
+  gl.EnableVertexAttribArray(3);
+  gl.VertexAttribPointer(4, 4, GL_FLOAT, GL_FALSE, 0, reinterpret_cast<const void*>(static_cast<std::uintptr_t>(half)));
+  gl.EnableVertexAttribArray(4);
+  // The CPU-posed vertices with the same normals and alpha attributes.
+  gl.GenVertexArrays(1, &posed_vao_);
+  gl.BindVertexArray(posed_vao_);
+  gl.GenBuffers(1, &posed_vbo_);
+  gl.BindBuffer(GL_ARRAY_BUFFER, posed_vbo_);
+  gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(skin.posed_vertices.size_bytes()), skin.posed_vertices.data(), GL_STATIC_DRAW);
+  gl.VertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 0, nullptr);
+  gl.EnableVertexAttribArray(0);
+  if (nbo_) {
+    gl.BindBuffer(GL_ARRAY_BUFFER, nbo_);
+    gl.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+    gl.EnableVertexAttribArray(1);
+  }
+  if (abo_) {
+    gl.BindBuffer(GL_ARRAY_BUFFER, abo_);
+    gl.VertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, 0, nullptr);
+    gl.EnableVertexAttribArray(2);
+  }
+  if (ebo_) gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
+  gl.BindVertexArray(0);
+}
+
 GpuMesh::~GpuMesh() {
+  for (GLuint* b : {&posed_vbo_, &skin_vbo_, &pose_block_, &bind_block_})
+    if (*b) gl_->DeleteBuffers(1, b);
+  if (posed_vao_) gl_->DeleteVertexArrays(1, &posed_vao_);
   if (ebo_) gl_->DeleteBuffers(1, &ebo_);
   if (nbo_) gl_->DeleteBuffers(1, &nbo_);
   if (abo_) gl_->DeleteBuffers(1, &abo_);
@@ -106,17 +172,20 @@ GpuMesh::~GpuMesh() {
   if (vao_) gl_->DeleteVertexArrays(1, &vao_);
 }
 
-void GpuMesh::draw() const {
+void GpuMesh::draw(SkinDraw skin) const {
   if (count_ == 0) return;
   if (mask_) {
     gl_->ActiveTexture(kAlphaMaskUnit);
     gl_->BindTexture(GL_TEXTURE_2D, mask_);
     gl_->ActiveTexture(GL_TEXTURE0);
   }
-  gl_->BindVertexArray(vao_);
+  const bool gpu_skinned = skinned() && skin != SkinDraw::CpuPosed;
+  if (gpu_skinned) gl_->BindBufferBase(GL_UNIFORM_BUFFER, kSkinBlockBinding, skin == SkinDraw::BindPose ? bind_block_ : pose_block_);
+  gl_->BindVertexArray(skinned() && skin == SkinDraw::CpuPosed ? posed_vao_ : vao_);
   if (indexed_) gl_->DrawElements(GL_TRIANGLES, count_, GL_UNSIGNED_INT, nullptr);
   else gl_->DrawArrays(GL_TRIANGLES, 0, count_);
   gl_->BindVertexArray(0);
+  if (gpu_skinned) gl_->BindBufferBase(GL_UNIFORM_BUFFER, kSkinBlockBinding, rigid_block_);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -256,7 +325,7 @@ void Frame::ambient_pass(const Mat4<float>& clip) const {
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const auto& c = scene.objects[i].color;
     gl.Uniform3f(surface.use(i).albedo, c.x(), c.y(), c.z());
-    objects[i].draw();
+    objects[i].draw(skins);
   }
 }
 
@@ -301,7 +370,7 @@ void Frame::light_pass(const Mat4<float>& clip, std::size_t light_index, const P
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const auto& c = scene.objects[i].color;
     gl.Uniform3f(surface.use(i).albedo, c.x(), c.y(), c.z());
-    objects[i].draw();
+    objects[i].draw(skins);
   }
   if (masks) gl.DrawBuffer(GL_COLOR_ATTACHMENT0);
   gl.Disable(GL_BLEND);
@@ -347,7 +416,7 @@ std::vector<Image8> Frame::facing_masks(const Mat4<float>& clip) const {
     });
     for (std::size_t o = 0; o < objects.size(); ++o) {
       surface.use(o);
-      objects[o].draw();
+      objects[o].draw(skins);
     }
     masks.push_back(read_grey());
   }
@@ -471,6 +540,7 @@ struct Renderer::Impl {
   std::unique_ptr<Programs> programs;    // destroyed in ~Impl, while it has the context current
   GlInfo info;
   std::unique_ptr<MapStoragePool> maps;  // the same
+  GLuint rigid_skin_block = 0;           // the Skin block of every rigid draw (u_skinned = 0)
 
   Impl(GlApi api, Driver driver) : context(create_gl_context(api, driver)), gl(*context) {
     maps = std::make_unique<MapStoragePool>(gl);
@@ -484,9 +554,15 @@ struct Renderer::Impl {
     info.renderer = str(GL_RENDERER);
     info.version = str(GL_VERSION);
     programs = std::make_unique<Programs>(gl);
+    const std::vector<unsigned char> rigid = skin_block_bytes({}, false);
+    gl.GenBuffers(1, &rigid_skin_block);
+    gl.BindBuffer(GL_UNIFORM_BUFFER, rigid_skin_block);
+    gl.BufferData(GL_UNIFORM_BUFFER, static_cast<GLsizeiptr>(rigid.size()), rigid.data(), GL_STATIC_DRAW);
+    gl.BindBuffer(GL_UNIFORM_BUFFER, 0);
   }
   ~Impl() {
     context->make_current();
+    if (rigid_skin_block) gl.DeleteBuffers(1, &rigid_skin_block);
     maps.reset();
     programs.reset();
   }
@@ -563,6 +639,7 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_
     std::vector<Vec4<float>> v;
     std::vector<Vec3<float>> n;
     std::vector<Vec4<float>> alpha;  // a masked object's u, v, threshold, vertex alpha (GpuMesh)
+    std::vector<Vec4<float>> bind, joints, weights;  // a skinned object's (GpuMesh::add_skin): v is then its posed vertices
     v.reserve(3 * o.mesh.triangles.size());
     n.reserve(3 * o.mesh.triangles.size());
     const float threshold = o.alpha ? scene::alpha_threshold(o.alpha->cutoff) : 0.0f;
@@ -576,10 +653,30 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_
         v.emplace_back(p.x(), p.y(), p.z(), 1.0f);
         n.push_back(normal);
         if (o.alpha) alpha.emplace_back(o.alpha->uvs[k].x(), o.alpha->uvs[k].y(), threshold, o.alpha->vertex_alpha[k]);
+        if (o.skin) {
+          const Vec3<float>& b = o.skin->bind_positions[k];
+          bind.emplace_back(b.x(), b.y(), b.z(), 1.0f);
+          const auto& id = o.skin->joint_indices[k];
+          joints.emplace_back(static_cast<float>(id[0]), static_cast<float>(id[1]), static_cast<float>(id[2]), static_cast<float>(id[3]));
+          const auto& w = o.skin->weights[k];
+          weights.emplace_back(w[0], w[1], w[2], w[3]);
+        }
       }
     }
-    objects.emplace_back(gl, v, std::span<const std::uint32_t>{}, n, alpha, o.alpha ? o.alpha->texture.get() : nullptr);
+    if (!o.skin) {
+      objects.emplace_back(gl, v, std::span<const std::uint32_t>{}, n, alpha, o.alpha ? o.alpha->texture.get() : nullptr);
+      continue;
+    }
+    // Skinned: the bind pose drawn through the joints (every pass), the CPU-posed floats beside it.
+    std::vector<Mat4<float>> pose, bind_pose;
+    for (const scene::Skin::Joint& j : o.skin->joints) {
+      pose.push_back(to_float(j.world_from_bind()));
+      bind_pose.push_back(to_float(o.skin->bind_to_world));
+    }
+    objects.emplace_back(gl, bind, std::span<const std::uint32_t>{}, n, alpha, o.alpha ? o.alpha->texture.get() : nullptr);
+    objects.back().add_skin({v, joints, weights, pose, bind_pose, impl_->rigid_skin_block});
   }
+  gl.BindBufferBase(GL_UNIFORM_BUFFER, kSkinBlockBinding, impl_->rigid_skin_block);
   const Target target(gl, scene.width, scene.height, convention.float_depth);
   // Clip-space depth 0..1 for the 0..1 conventions (ARB_clip_control, core in 4.5); GL's default
   // −1..1 is left alone otherwise, so that a 3.3 context without the extension still renders `gl`.

@@ -21,6 +21,14 @@ layout(location = 0) in vec4 a_position;   // world space; w = 0: a point at inf
 layout(location = 1) in vec3 a_normal;     // the face normal (objects; unused by volumes)
 layout(location = 2) in vec4 a_alpha_test; // a masked object's u, v, threshold, vertex alpha (GpuMesh);
                                            // GL's default (0, 0, 0, 1) elsewhere: threshold 0, no test
+layout(location = 3) in vec4 a_joints;     // a skinned object's four joint indices (GpuMesh)
+layout(location = 4) in vec4 a_weights;    // and their weights
+// The skinned object's joints at the pose, world_from_bind (scene/skin.hpp); u_skinned = 0 for every
+// other draw (the renderer's rigid block, bound between skinned draws): a_position as it is.
+layout(std140) uniform Skin {
+  mat4 u_joint_matrices[128];
+  int u_skinned;
+};
 uniform mat4 u_clip_from_world;            // P · V (· S for planar shadows)
 uniform mat4 u_shadow_from_world;          // B · P_light · V_light (shadow maps), else anything
 out vec3 v_world;
@@ -30,15 +38,24 @@ out vec2 v_uv;
 out float v_vertex_alpha;
 flat out float v_alpha_threshold;
 invariant gl_Position;
+// glTF's linear blend skinning (glTF 2.0 §3.7.3): Σ weight_k · jointMatrix_k · p_bind, in world space.
+vec4 posed_position() {
+  if (u_skinned == 0) return a_position;
+  return a_weights.x * (u_joint_matrices[int(a_joints.x)] * a_position) +
+         a_weights.y * (u_joint_matrices[int(a_joints.y)] * a_position) +
+         a_weights.z * (u_joint_matrices[int(a_joints.z)] * a_position) +
+         a_weights.w * (u_joint_matrices[int(a_joints.w)] * a_position);
+}
 void main() {
-  gl_Position = u_clip_from_world * a_position;
+  vec4 p = posed_position();
+  gl_Position = u_clip_from_world * p;
   v_uv = a_alpha_test.xy;
   v_alpha_threshold = a_alpha_test.z;
   v_vertex_alpha = a_alpha_test.w;
-  v_world = a_position.xyz;
+  v_world = p.xyz;
   // Per vertex, interpolated perspective-correctly and divided per fragment: exact projective
   // texturing, the same as computing B · P · V · p per fragment.
-  v_shadow = u_shadow_from_world * a_position;
+  v_shadow = u_shadow_from_world * p;
   v_normal = a_normal;
 }
 )glsl";

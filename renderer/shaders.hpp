@@ -12,8 +12,11 @@ namespace shadowref::renderer::shaders {
 
 // Every scene pass: world-space homogeneous position in (w = 0 for points at infinity),
 // `u_clip_from_world` out, `invariant` so that shadow-volume caps and the surfaces they lie on
-// get bit-identical depths (the depth-pass / depth-fail tests rely on it).
+// get bit-identical depths (the depth-pass / depth-fail tests rely on it). A skinned object's
+// vertices are the bind pose, posed by the `Skin` uniform block's joint matrices (GpuMesh).
 extern const char* const kSceneVertex;
+// The joints kSceneVertex's `Skin` block holds (scene::kMaxSkinJoints, checked in renderer.cpp).
+inline constexpr int kSceneVertexJoints = 128;
 // Every fragment shader below is joined after kVersion and alpha_test() (with_alpha_test) and calls
 // alpha_test() first.
 // A constant colour (depth pre-pass, stencil passes with colour writes off, planar black).

@@ -59,6 +59,11 @@ void set_stencil_ops(const GlFunctions& gl, StencilMethod method, const VolumeFa
 
 void render_volumes(Frame& frame, Mode mode) {
   const GlFunctions& gl = frame.gl;
+  // Skinned objects drawn as the CPU posed them: the volumes are extruded on the CPU from the posed
+  // mesh (the silhouette needs posed positions), and their caps must land on the very depths the
+  // camera's passes drew (kSceneVertex's invariance), which GPU skinning would round differently.
+  // Doom 3 skinned on the CPU for its volumes for the same reason.
+  frame.skins = SkinDraw::CpuPosed;
   const CameraDepth depth = mode == Mode::ZPass        ? CameraDepth::Scene
                             : mode == Mode::ZFailClamp ? CameraDepth::FiniteForClamp
                                                        : CameraDepth::InfiniteEpsilon;

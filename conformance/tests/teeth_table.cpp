@@ -84,9 +84,10 @@ constexpr Row kRows[] = {
             "first it saturates at 0 and the increment leaves +1, a false shadow behind the volume"},
     {.name = "volume-casters-culled-to-view", .technique = "volume-zfail",
      .faults = on([](Faults& f) { f.volume.cull_casters_outside_view = true; }), .convention = "gl",
-     .scenes = "offscreen_caster",
+     .scenes = "offscreen_caster skinned_offscreen",
      .field_class = "casters outside the view frustum culled from the shadow pass",
-     .why = "the pole stands out of the camera's view and casts a long shadow across the visible ground"},
+     .why = "the pole, and the posed character, stand out of the camera's view and cast long shadows across the visible "
+            "ground"},
     {.name = "half-pixel-offset", .technique = "volume-zfail",
      .faults = on([](Faults& f) { f.camera.half_pixel_offset = true; }), .convention = "gl",
      .scenes = "offscreen_caster shadow_on_object",
@@ -150,9 +151,10 @@ constexpr Row kRows[] = {
             "bases compares as in front of them: the shadows come loose from the contact"},
     {.name = "shadowmap-casters-culled-to-view", .technique = "shadowmap",
      .faults = on([](Faults& f) { f.shadow_map.cull_casters_outside_view = true; }), .convention = "gl",
-     .scenes = "offscreen_caster",
+     .scenes = "offscreen_caster skinned_offscreen",
      .field_class = "casters outside the view frustum culled from the shadow pass",
-     .why = "the pole stands out of the camera's view and casts a long shadow across the visible ground"},
+     .why = "the pole, and the posed character, stand out of the camera's view and cast long shadows across the visible "
+            "ground"},
     {.name = "fit-near-too-tight", .technique = "shadowmap",
      .faults = on([](Faults& f) { f.shadow_map.fit = FitFault::NearTooTight; }), .convention = "gl",
      .scenes = "ground_sphere",
@@ -214,6 +216,14 @@ constexpr Row kRows[] = {
      .field_class = "open casters culled like closed ones in the depth pass (front faces culled)",
      .why = "both cards face the light with their front: culled, they are missing from the map and cast no "
             "shadow at all"},
+
+    // Skinned casters (scene/skin.hpp; the catalogue's skinned_* scenes).
+    {.name = "shadowmap-skin-bind-pose", .technique = "shadowmap",
+     .faults = on([](Faults& f) { f.shadow_map.skin_bind_pose = true; }), .convention = "gl",
+     .scenes = "skinned_character skinned_offscreen",
+     .field_class = "a skinned caster drawn in its bind pose in the shadow pass (the skin applied to the camera's passes only)",
+     .why = "the shadow is the T-pose's: the raised arm's and the bent leg's shadows fall where the straight limbs would "
+            "be, and the character seen posed does not match its shadow"},
 
     // ---- cascaded shadow maps -----------------------------------------------------------------
     {.name = "csm-gap-between-cascades", .technique = "csm",

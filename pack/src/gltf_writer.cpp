@@ -49,33 +49,37 @@ struct GltfMeshes {
   json accessors = json::array();
   json meshes = json::array();
 
-  // Appends `values` (count elements of `type`, float or uint32 components) as a buffer view and
-  // its accessor; returns the accessor's index.
+  // Appends `values` (count elements of `type`, float, uint32 or uint16 components) as a buffer view
+  // and its accessor; returns the accessor's index.
   template <class T>
   std::size_t append(const std::vector<T>& values, std::size_t count, const char* type, int component_type, int target,
                      json extra = json::object()) {
     const std::size_t offset = buffer.size();
     buffer.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
-    buffer_views.push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", buffer.size() - offset}, {"target", target}});
+    buffer_views.push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", buffer.size() - offset}});
+    if (target) buffer_views.back()["target"] = target;  // 0: not vertex or index data (inverse bind matrices)
     json accessor = {{"bufferView", buffer_views.size() - 1}, {"componentType", component_type}, {"count", count}, {"type", type}};
     accessor.update(extra);
     accessors.push_back(accessor);
     return accessors.size() - 1;
   }
 
-  // Appends o's mesh with `material` (none when negative); returns the mesh index.
+  // Appends o's mesh with `material` (none when negative); returns the mesh index. A skinned object
+  // (scene/skin.hpp) is written in its bind pose with JOINTS_0 and WEIGHTS_0 (and bind-pose normals),
+  // for the skin that scene_gltf writes beside it to pose.
   int add(const scene::Object& o, int material = -1) {
-    std::vector<float> positions, normals, uvs, colours;
+    std::vector<float> positions, normals, uvs, colours, weights;
+    std::vector<std::uint16_t> joints;
     std::vector<std::uint32_t> indices;
-    Vec3<float> lo = o.mesh.positions.front(), hi = lo;
+    const auto vertex = [&](std::uint32_t k) { return o.skin ? o.skin->bind_positions[k] : o.mesh.positions[k]; };
+    Vec3<float> lo = vertex(0), hi = lo;
     for (const auto& tri : o.mesh.triangles) {
       // The face normal as the renderer computes it: (v1 − v0) × (v2 − v0) in double, made unit.
-      const Vec3<double> a = o.mesh.positions[tri[0]].cast<double>(), b = o.mesh.positions[tri[1]].cast<double>(),
-                         c = o.mesh.positions[tri[2]].cast<double>();
+      const Vec3<double> a = vertex(tri[0]).cast<double>(), b = vertex(tri[1]).cast<double>(), c = vertex(tri[2]).cast<double>();
       const Vec3<double> cr = (b - a).cross(c - a);
       const Vec3<float> n = cr.squaredNorm() > 0 ? Vec3<float>(cr.normalized().cast<float>()) : Vec3<float>(0, 1, 0);
       for (const std::uint32_t k : tri) {
-        const Vec3<float>& p = o.mesh.positions[k];
+        const Vec3<float> p = vertex(k);
         indices.push_back(static_cast<std::uint32_t>(positions.size() / 3));
         positions.insert(positions.end(), {p.x(), p.y(), p.z()});
         normals.insert(normals.end(), {n.x(), n.y(), n.z()});
@@ -84,6 +88,10 @@ struct GltfMeshes {
         if (o.alpha) {
           uvs.insert(uvs.end(), {o.alpha->uvs[k].x(), o.alpha->uvs[k].y()});
           colours.insert(colours.end(), {1.0f, 1.0f, 1.0f, o.alpha->vertex_alpha[k]});
+        }
+        if (o.skin) {
+          joints.insert(joints.end(), o.skin->joint_indices[k].begin(), o.skin->joint_indices[k].end());
+          weights.insert(weights.end(), o.skin->weights[k].begin(), o.skin->weights[k].end());
         }
       }
     }
@@ -94,11 +102,33 @@ struct GltfMeshes {
     attributes["NORMAL"] = append(normals, vertices, "VEC3", 5126, 34962);
     if (o.alpha && !o.alpha->texture->file.empty()) attributes["TEXCOORD_0"] = append(uvs, vertices, "VEC2", 5126, 34962);
     if (o.alpha && o.alpha->has_vertex_alpha) attributes["COLOR_0"] = append(colours, vertices, "VEC4", 5126, 34962);
+    if (o.skin) {  // unsigned short joints: 8 bytes a vertex, so the views stay 4-byte aligned
+      attributes["JOINTS_0"] = append(joints, vertices, "VEC4", 5123, 34962);
+      attributes["WEIGHTS_0"] = append(weights, vertices, "VEC4", 5126, 34962);
+    }
     const std::size_t index_accessor = append(indices, indices.size(), "SCALAR", 5125, 34963);
     json primitive = {{"attributes", attributes}, {"indices", index_accessor}, {"mode", 4}};
     if (material >= 0) primitive["material"] = material;
     meshes.push_back({{"name", o.name}, {"primitives", {primitive}}});
     return static_cast<int>(meshes.size() - 1);
+  }
+
+  // o's skin: one root node per joint at the pose (`matrix`, its world transform: a joint of a
+  // catalogue scene carries the object's transform) appended to `nodes`, and the skin (its inverse
+  // bind matrices an accessor); returns the skin's index in `skins`.
+  int add_skin(const scene::Object& o, json& nodes, json& skins) {
+    json joint_nodes = json::array();
+    std::vector<float> ibm;
+    for (std::size_t j = 0; j < o.skin->joints.size(); ++j) {
+      const scene::Skin::Joint& joint = o.skin->joints[j];
+      joint_nodes.push_back(nodes.size());
+      nodes.push_back({{"name", o.name + "_joint_" + std::to_string(j)}, {"matrix", column_major(joint.world)}});
+      for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) ibm.push_back(static_cast<float>(joint.inverse_bind(r, c)));  // float in the file it came from
+    }
+    const std::size_t accessor = append(ibm, o.skin->joints.size(), "MAT4", 5126, 0);
+    skins.push_back({{"name", o.name}, {"joints", joint_nodes}, {"inverseBindMatrices", accessor}});
+    return static_cast<int>(skins.size() - 1);
   }
 
   void into(json& g) const {
@@ -196,7 +226,10 @@ Mat4<double> node_facing(const Vec3<double>& position, const Vec3<double>& forwa
 
 json object_gltf(const scene::Object& o) {
   GltfMeshes m;
-  m.add(o);
+  // The posed mesh (a skinned object's world-space triangles, as the OBJ beside it), not its skin.
+  scene::Object posed = o;
+  posed.skin.reset();
+  m.add(posed);
   json g;
   g["asset"] = {{"version", "2.0"}, {"generator", "shadowref export"}};
   g["scene"] = 0;
@@ -212,7 +245,7 @@ json scene_gltf(const scene::Scene& s) {
   g["asset"] = {{"version", "2.0"}, {"generator", "shadowref export"}};
   json nodes = json::array();
   json materials = json::array();
-  json images = json::array(), textures = json::array();
+  json images = json::array(), textures = json::array(), skins = json::array();
   const scene::PreparedScene prepared = scene::prepare_scene(s, kDefaultConvention);
   for (std::size_t i = 0; i < s.objects.size(); ++i) {
     const scene::Object& o = s.objects[i];
@@ -239,6 +272,12 @@ json scene_gltf(const scene::Scene& s) {
     materials.push_back(material);
     const int mesh = m.add(o, static_cast<int>(materials.size() - 1));
     nodes.push_back({{"name", o.name}, {"mesh", mesh}, {"extras", {{"receiver", o.receiver}, {"shape", o.shape}}}});
+    // A skinned object's node at the origin (glTF applies only its joints' transforms), its joints after it.
+    if (o.skin) {
+      const std::size_t node = nodes.size() - 1;
+      const int skin = m.add_skin(o, nodes, skins);
+      nodes[node]["skin"] = skin;
+    }
   }
   add_camera(s, g, nodes);
   json lights = json::array();
@@ -255,6 +294,7 @@ json scene_gltf(const scene::Scene& s) {
   g["scenes"] = {{{"name", s.name}, {"nodes", scene_nodes}}};
   g["nodes"] = nodes;
   g["materials"] = materials;
+  if (!skins.empty()) g["skins"] = skins;
   if (!images.empty()) {
     // NEAREST (9728) both ways, REPEAT (10497) on both axes: the rule's texel.
     g["samplers"] = {{{"magFilter", 9728}, {"minFilter", 9728}, {"wrapS", 10497}, {"wrapT", 10497}}};

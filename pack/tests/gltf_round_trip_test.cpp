@@ -20,7 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // Tolerances, each with its reason:
-// - positions, uvs, vertex alpha, colours, cutoffs: exact. Written as the scene's own floats (and
+// - positions, uvs, vertex alpha, colours, cutoffs, skins: exact. Written as the scene's own floats (and
 //   doubles in shortest round-trip form), read back through identity node transforms.
 // - the camera and light frames: 1e-9 of the scene's scale. The camera node's matrix is the inverse
 //   of the view in double, a light's is built from its direction; reading them back divides and
@@ -102,6 +102,23 @@ TEST_P(RoundTrip, PackSceneGltfReadsBackAsTheSameScene) {
         ASSERT_EQ(a.mesh.triangles[t][k], 3 * t + k) << b.name;
         ASSERT_EQ(a.mesh.positions[3 * t + k], b.mesh.positions[b.mesh.triangles[t][k]]) << b.name << " triangle " << t;
       }
+    // A skin comes back as written: the bind pose, joints and weights per vertex, the joints at the
+    // pose (the posed positions above are then the same sums: skin.hpp's pose_vertex).
+    ASSERT_EQ(a.skin.has_value(), b.skin.has_value()) << b.name;
+    if (b.skin) {
+      ASSERT_EQ(a.skin->joints.size(), b.skin->joints.size()) << b.name;
+      for (std::size_t j = 0; j < b.skin->joints.size(); ++j) {
+        EXPECT_EQ(a.skin->joints[j].world, b.skin->joints[j].world) << b.name << " joint " << j;
+        EXPECT_EQ(a.skin->joints[j].inverse_bind, b.skin->joints[j].inverse_bind) << b.name << " joint " << j;
+      }
+      for (std::size_t t = 0; t < b.mesh.triangles.size(); ++t)
+        for (std::size_t k = 0; k < 3; ++k) {
+          const std::uint32_t from = b.mesh.triangles[t][k];
+          ASSERT_EQ(a.skin->bind_positions[3 * t + k], b.skin->bind_positions[from]) << b.name;
+          ASSERT_EQ(a.skin->joint_indices[3 * t + k], b.skin->joint_indices[from]) << b.name;
+          ASSERT_EQ(a.skin->weights[3 * t + k], b.skin->weights[from]) << b.name;
+        }
+    }
     ASSERT_EQ(a.alpha.has_value(), b.alpha.has_value()) << b.name;
     if (!b.alpha) continue;
     EXPECT_EQ(a.alpha->cutoff, b.alpha->cutoff) << b.name;

@@ -388,7 +388,8 @@ void draw_depth_pass(const Frame& frame, const LightFit& lc, const std::vector<M
       }
       const Program& p = programs.use(i);
       if (frame.closed(i) && !drawn.closed_faces) record_drawn_state(gl, p, drawn);
-      frame.objects[i].draw();
+      // FAULT: a skinned caster drawn in its bind pose into the map, while the camera's passes pose it.
+      frame.objects[i].draw(faults.skin_bind_pose ? SkinDraw::BindPose : frame.skins);
       if (!frame.closed(i) && faults.cull_open_front_faces) gl.CullFace(faces == outputs::DepthFaces::Front ? GL_BACK : GL_FRONT);
     }
   }

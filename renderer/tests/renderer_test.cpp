@@ -420,6 +420,40 @@ TEST(Renderer, AlphaRuleInGlslAgreesWithTheCppTexelByTexel) {
   }
 }
 
+// GPU skinning (kSceneVertex's Skin block) against the CPU's pose (scene/skin.hpp): the skinned
+// character rendered with its skin and as the rigid, CPU-posed mesh gives the same masks up to
+// rounding on edges, for shadow maps (skinned depth and camera passes) and the planar projection;
+// the reference agrees with the skinned shadow maps, and the bind-pose fault moves their shadow.
+TEST(Renderer, GpuSkinningMatchesTheCpuPose) {
+  const scene::Scene skinned = load("skinned_character", 128);
+  ASSERT_TRUE(skinned.objects[1].skin);
+  scene::Scene rigid = skinned;
+  rigid.objects[1].skin.reset();
+  const auto differing = [](const Image8& a, const Image8& b) {
+    int n = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) n += a.pixels[i] != b.pixels[i];
+    return n;
+  };
+  const reference::Images ref = reference_of(skinned);
+  for (const char* technique : {"shadowmap", "planar", "shadowmap-pcf"}) {
+    SCOPED_TRACE(technique);
+    const RenderResult gpu = renderer().render(skinned, technique, fast_options());
+    const RenderResult cpu = renderer().render(rigid, technique, fast_options());
+    // Rounding of the float sums may flip a pixel whose centre lies on an edge: a handful at most.
+    EXPECT_LE(differing(gpu.masks[0], cpu.masks[0]), 8);
+    if (std::string(technique) == "planar") continue;  // the character shadows itself, which planar cannot
+    const Agreement a = compare(gpu.masks[0], ref.lights[0]);
+    EXPECT_GT(a.decided_shadowed, 200);
+    EXPECT_LT(a.wrong_fraction(), 0.01) << a.wrong << " of " << a.decided;
+  }
+  RenderOptions bind_pose = fast_options();
+  bind_pose.faults.shadow_map.skin_bind_pose = true;
+  const RenderResult posed = renderer().render(skinned, "shadowmap", fast_options());
+  const RenderResult wrong = renderer().render(skinned, "shadowmap", bind_pose);
+  EXPECT_GT(differing(posed.masks[0], wrong.masks[0]), 100);
+  EXPECT_EQ(wrong.faults, "shadow_map.skin=bind_pose");
+}
+
 TEST(Renderer, UnknownTechniqueIsRefused) {
   const scene::Scene s = load("ground_sphere", 16);
   EXPECT_THROW((void)renderer().render(s, "no-such-technique"), std::invalid_argument);

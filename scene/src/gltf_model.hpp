@@ -18,6 +18,7 @@
 
 #include "shadowref/conventions.hpp"
 #include "shadowref/scene/mesh_file.hpp"
+#include "shadowref/scene/skin.hpp"
 
 namespace shadowref::scene::detail {
 
@@ -80,5 +81,41 @@ std::vector<float> read_float_attribute(const tinygltf::Model& model, int index,
 // The bytes of image `index`: those tinygltf read from its URI (open_gltf keeps them), or its
 // buffer view's, range checked.
 std::string image_bytes(const tinygltf::Model& model, int index);
+
+// ---- The pose (gltf_skin.cpp; docs/scene-format.md, "Skins")
+
+// The time the first animation is sampled at: its `extras.pose_time` (seconds, finite, ≥ 0), else 0.
+double pose_time(const tinygltf::Model& model);
+
+// Every node's local transform at the pose: its matrix or TRS, with the first animation's channels
+// sampled at `time` (glTF 2.0 §3.11: STEP, LINEAR with spherical linear interpolation of rotations,
+// CUBICSPLINE; before the first key the first value, after the last the last). Refuses an animated
+// node that has a `matrix`, a channel of morph weights, and malformed samplers. Other animations are
+// not read (the caller says so).
+std::vector<Eigen::Matrix4d> posed_local_transforms(const tinygltf::Model& model, double time);
+
+// Every node's global transform from `locals` (its parent's global times its local; a node that is
+// no node's child is a root). Refuses a hierarchy deeper than 64.
+std::vector<Eigen::Matrix4d> global_transforms(const tinygltf::Model& model, const std::vector<Eigen::Matrix4d>& locals);
+
+// Builds one Skin (skin.hpp) from primitives: skinned ones by their node's skin, rigid ones as a
+// joint of their own (their node's global transform), so that a mesh file mixing both is one skin.
+class SkinBuilder {
+ public:
+  SkinBuilder(const tinygltf::Model& model, const std::vector<Eigen::Matrix4d>& globals) : model_(model), globals_(globals) {}
+  // Appends the primitive's vertices skinned by skin `skin` (JOINTS_0, WEIGHTS_0 and the skin's
+  // inverse bind matrices checked) and returns them posed, in world space.
+  std::vector<Vec3<double>> add_skinned(const tinygltf::Primitive& prim, int skin);
+  // Appends the primitive's vertices as one rigid joint at `xf`; returns them through `xf`.
+  std::vector<Vec3<double>> add_rigid(const tinygltf::Primitive& prim, const Eigen::Matrix4d& xf);
+  Skin take() { return std::move(skin_); }
+
+ private:
+  std::size_t add_joint(const Skin::Joint& joint);
+  const tinygltf::Model& model_;
+  const std::vector<Eigen::Matrix4d>& globals_;
+  std::vector<std::pair<int, std::size_t>> skin_offsets_;  // (skin index, its first joint in skin_)
+  Skin skin_;
+};
 
 }  // namespace shadowref::scene::detail

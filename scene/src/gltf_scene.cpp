@@ -50,19 +50,16 @@ struct Walk {
   std::vector<Placed> meshes;
 };
 
-void walk(const tinygltf::Model& model, const fs::path& file, int index, const Eigen::Matrix4d& parent, int depth,
-          std::size_t& instances, Walk& w) {
+void walk(const tinygltf::Model& model, const std::vector<Eigen::Matrix4d>& locals, const fs::path& file, int index,
+          const Eigen::Matrix4d& parent, int depth, std::size_t& instances, Walk& w) {
   const tinygltf::Node* node = nullptr;
   try {
     node = &detail::walk_node(model, index, depth, instances);
   } catch (const MeshFileError& e) {
     refuse(file, e.what());
   }
-  const Placed here{index, parent * detail::node_transform(*node)};
+  const Placed here{index, parent * locals[static_cast<std::size_t>(index)]};
   const std::string where = "node " + std::to_string(index) + (node->name.empty() ? "" : " '" + node->name + "'");
-  if (node->skin >= 0)
-    refuse(file, where + " has a skin: skins are not read yet (posing them is not implemented; the bind pose would be "
-                         "silently wrong): remove the skin or apply the pose to the mesh");
   if (node->camera >= 0 && !w.camera) w.camera = here;
   if (const auto it = node->extensions.find("KHR_lights_punctual"); it != node->extensions.end()) {
     const tinygltf::Value& v = it->second;
@@ -78,7 +75,7 @@ void walk(const tinygltf::Model& model, const fs::path& file, int index, const E
       refuse(file, where + ": mesh " + std::to_string(node->mesh) + " does not exist");
     w.meshes.push_back(here);
   }
-  for (const int child : node->children) walk(model, file, child, here.world, depth + 1, instances, w);
+  for (const int child : node->children) walk(model, locals, file, child, here.world, depth + 1, instances, w);
 }
 
 // The extras object of a glTF element as JSON (open_gltf keeps its text), and its path for messages.
@@ -226,7 +223,8 @@ std::string object_name(std::string base, std::set<std::string>& taken) {
 // Reads the whole file: the not-read lines go to `notes`.
 class Reader {
  public:
-  Reader(const tinygltf::Model& model, const fs::path& file, std::set<std::string>& notes) : m_(model), file_(file), notes_(notes) {}
+  Reader(const tinygltf::Model& model, const std::vector<Eigen::Matrix4d>& globals, const fs::path& file, std::set<std::string>& notes)
+      : m_(model), globals_(globals), file_(file), notes_(notes) {}
 
   // One object per TRIANGLES primitive of the mesh node at `at`.
   void add_mesh_node(const Placed& at, std::set<std::string>& taken, Scene& s) {
@@ -254,7 +252,13 @@ class Reader {
       std::vector<Vec3<double>> positions;
       std::vector<std::uint32_t> indices;
       try {
-        positions = detail::primitive_positions(m_, prim, at.world);
+        if (node.skin >= 0) {  // posed by its skin; the node's own transform is not applied (glTF 2.0 §3.7.3)
+          detail::SkinBuilder builder(m_, globals_);
+          positions = builder.add_skinned(prim, node.skin);
+          o.skin = builder.take();
+        } else {
+          positions = detail::primitive_positions(m_, prim, at.world);
+        }
         indices = detail::primitive_indices(m_, prim, positions.size());
       } catch (const MeshFileError& e) {
         refuse(file_, where + ", primitive " + std::to_string(k) + ": " + e.what());
@@ -265,7 +269,7 @@ class Reader {
         if (!f.allFinite()) refuse(file_, where + ": its transform moves a vertex to a non-finite position (overflow in float)");
         o.mesh.positions.push_back(f);
       }
-      const bool mirror = at.world.topLeftCorner<3, 3>().determinant() < 0;
+      const bool mirror = !o.skin && at.world.topLeftCorner<3, 3>().determinant() < 0;
       for (std::size_t i = 0; i < indices.size(); i += 3)
         o.mesh.triangles.push_back(mirror ? std::array<std::uint32_t, 3>{indices[i], indices[i + 2], indices[i + 1]}
                                           : std::array<std::uint32_t, 3>{indices[i], indices[i + 1], indices[i + 2]});
@@ -428,6 +432,7 @@ class Reader {
   }
 
   const tinygltf::Model& m_;
+  const std::vector<Eigen::Matrix4d>& globals_;
   const fs::path& file_;
   std::set<std::string>& notes_;
 };
@@ -493,18 +498,24 @@ GltfScene read_gltf_scene(const fs::path& file) {
   }
   std::set<std::string> notes;
   check_extensions(model, file, notes);
-  if (!model.skins.empty())
-    refuse(file, "the file has " + std::to_string(model.skins.size()) + " skin(s): skins are not read yet (posing them is not "
-                 "implemented; the bind pose would be silently wrong)");
-  if (!model.animations.empty()) notes.insert("animations are not read: every node at its own transform");
+  // The pose (docs/scene-format.md, "Skins"): the first animation at its extras.pose_time, else 0.
+  std::vector<Eigen::Matrix4d> locals, globals;
+  try {
+    locals = detail::posed_local_transforms(model, detail::pose_time(model));
+    if (!model.skins.empty()) globals = detail::global_transforms(model, locals);
+  } catch (const MeshFileError& e) {
+    refuse(file, e.what());
+  }
+  if (model.animations.size() > 1)
+    notes.insert(std::to_string(model.animations.size() - 1) + " animation(s) after the first are not read (the pose is the first's)");
   Walk w;
   std::size_t instances = 0;
-  for (const int root : detail::scene_roots(model)) walk(model, file, root, Eigen::Matrix4d::Identity(), 0, instances, w);
+  for (const int root : detail::scene_roots(model)) walk(model, locals, file, root, Eigen::Matrix4d::Identity(), 0, instances, w);
   if (!w.camera) refuse(file, "no camera: shadowref judges the view of the scene's first camera node (add a perspective camera)");
   read_camera(model, file, *w.camera, s);
   if (w.lights.empty()) refuse(file, "no light: shadowref reads KHR_lights_punctual lights (directional, point, spot)");
   for (const auto& [at, light] : w.lights) s.lights.push_back(read_light(model, file, at, light));
-  Reader reader(model, file, notes);
+  Reader reader(model, globals, file, notes);
   std::set<std::string> taken;
   for (const Placed& at : w.meshes) reader.add_mesh_node(at, taken, s);
   if (s.objects.empty()) refuse(file, "no triangles: shadowref reads the TRIANGLES primitives of the scene's mesh nodes");

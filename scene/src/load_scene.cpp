@@ -137,7 +137,7 @@ std::filesystem::path mesh_path(const JsonNode& f, const std::filesystem::path& 
 }
 
 TriangleMesh<double> read_shape(const JsonNode& n, const std::filesystem::path& scene_dir, const LoadOptions& options,
-                                std::string& type) {
+                                std::string& type, std::optional<Skin>& skin) {
   type = n.required("type").string();
   if (type == "plane") {
     n.expect_object({"type", "size"});
@@ -173,13 +173,20 @@ TriangleMesh<double> read_shape(const JsonNode& n, const std::filesystem::path& 
     return make_stairs(steps, positive_vec3(n.required("size")));
   }
   if (type == "mesh") {
-    n.expect_object({"type", "file"});
+    n.expect_object({"type", "file", "pose_time"});
     const JsonNode f = n.required("file");
     const std::filesystem::path rel = f.string();
     if (rel.empty()) f.fail("must not be empty");
+    std::optional<double> pose_time;
+    if (auto t = n.optional("pose_time")) {
+      pose_time = t->number();
+      if (!(*pose_time >= 0)) t->fail("must be >= 0 (seconds)");
+    }
     const std::filesystem::path path = mesh_path(f, rel, scene_dir, options);
     try {
-      return load_mesh_file(path);
+      PosedMesh posed = load_posed_mesh_file(path, pose_time);
+      skin = std::move(posed.skin);
+      return std::move(posed.mesh);
     } catch (const MeshFileError& e) {
       f.fail(path.string() + ": " + e.what());
     }
@@ -298,12 +305,18 @@ void read_object(const JsonNode& n, std::size_t index, const std::filesystem::pa
     if (auto problem = identifier_problem(obj.name)) name.fail(*problem);
   }
   const JsonNode shape_node = n.required("shape");
-  const TriangleMesh<double> local = read_shape(shape_node, scene_dir, options, obj.shape);
+  const TriangleMesh<double> local = read_shape(shape_node, scene_dir, options, obj.shape, obj.skin);
   const Eigen::Matrix4d xf = n.has("transform") ? read_transform(n.child("transform")) : Eigen::Matrix4d::Identity();
+  if (obj.skin) {  // the object's transform in front of every joint (skin.hpp)
+    for (Skin::Joint& j : obj.skin->joints) j.world = xf * j.world;
+    obj.skin->bind_to_world = xf;
+  }
   const bool mirror = xf.topLeftCorner<3, 3>().determinant() < 0;
   obj.mesh.positions.reserve(local.positions.size());
-  for (const auto& p : local.positions) {
-    const Vec3<double> w = (xf * p.homogeneous()).head<3>();
+  for (std::size_t i = 0; i < local.positions.size(); ++i) {
+    // A skinned vertex posed through its joints, the transform already in front of them: the very
+    // sum a glTF reader of the pack's scene.gltf computes (skin.hpp).
+    const Vec3<double> w = obj.skin ? pose_vertex(*obj.skin, i) : Vec3<double>((xf * local.positions[i].homogeneous()).head<3>());
     const Vec3<float> f = w.cast<float>();
     if (!f.allFinite()) n.fail_at("transform", "moves a vertex to a non-finite position (overflow in float)");
     obj.mesh.positions.push_back(f);

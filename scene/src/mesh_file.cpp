@@ -116,53 +116,75 @@ TriangleMesh<double> load_obj(const std::filesystem::path& path) {
   return mesh;
 }
 
-void append_primitive(const tinygltf::Model& model, const tinygltf::Primitive& prim, const Eigen::Matrix4d& xf,
-                      TriangleMesh<double>& mesh) {
-  const std::vector<Vec3<double>> positions = detail::primitive_positions(model, prim, xf);
+// Appends one primitive's triangles over `positions` (its vertices, already in world space).
+void append_triangles(const tinygltf::Model& model, const tinygltf::Primitive& prim, const std::vector<Vec3<double>>& positions,
+                      bool mirror, TriangleMesh<double>& mesh) {
   const std::vector<std::uint32_t> idx = detail::primitive_indices(model, prim, positions.size());
   const auto base = static_cast<std::uint32_t>(mesh.positions.size());
   mesh.positions.insert(mesh.positions.end(), positions.begin(), positions.end());
   // A mirroring node transform flips the winding; flip it back so counter-clockwise stays outside.
-  const bool mirror = xf.topLeftCorner<3, 3>().determinant() < 0;
   for (std::size_t i = 0; i < idx.size(); i += 3) {
     if (mirror) mesh.triangles.push_back({base + idx[i], base + idx[i + 2], base + idx[i + 1]});
     else mesh.triangles.push_back({base + idx[i], base + idx[i + 1], base + idx[i + 2]});
   }
 }
 
-void append_node(const tinygltf::Model& model, int node_index, const Eigen::Matrix4d& parent, TriangleMesh<double>& mesh, int depth,
-                 std::size_t& instances) {
-  const auto& node = detail::walk_node(model, node_index, depth, instances);
-  const Eigen::Matrix4d xf = parent * detail::node_transform(node);
-  if (node.mesh >= 0) {
-    if (static_cast<std::size_t>(node.mesh) >= model.meshes.size()) throw MeshFileError("mesh " + std::to_string(node.mesh) + " does not exist");
-    for (const auto& prim : model.meshes[static_cast<std::size_t>(node.mesh)].primitives) append_primitive(model, prim, xf, mesh);
-  }
-  for (int child : node.children) append_node(model, child, xf, mesh, depth + 1, instances);
-}
-
-// Every TRIANGLES primitive of the file's scene (gltf_model.hpp opens it, confined to its folder).
-TriangleMesh<double> load_gltf(const std::filesystem::path& path, bool binary) {
-  const tinygltf::Model model = detail::open_gltf(path, binary);
-  TriangleMesh<double> mesh;
+struct GltfWalk {
+  const tinygltf::Model& model;
+  const std::vector<Eigen::Matrix4d>& locals;
+  detail::SkinBuilder* skin;  // null: the file has no skin
+  PosedMesh& out;
   std::size_t instances = 0;
-  for (int r : detail::scene_roots(model)) append_node(model, r, Eigen::Matrix4d::Identity(), mesh, 0, instances);
-  return mesh;
+
+  void node(int node_index, const Eigen::Matrix4d& parent, int depth) {
+    const auto& node = detail::walk_node(model, node_index, depth, instances);
+    const Eigen::Matrix4d xf = parent * locals[static_cast<std::size_t>(node_index)];
+    if (node.mesh >= 0) {
+      if (static_cast<std::size_t>(node.mesh) >= model.meshes.size()) throw MeshFileError("mesh " + std::to_string(node.mesh) + " does not exist");
+      for (const auto& prim : model.meshes[static_cast<std::size_t>(node.mesh)].primitives) {
+        if (!skin) append_triangles(model, prim, detail::primitive_positions(model, prim, xf), xf.topLeftCorner<3, 3>().determinant() < 0, out.mesh);
+        else if (node.skin >= 0) append_triangles(model, prim, skin->add_skinned(prim, node.skin), false, out.mesh);  // the node's transform is not applied (glTF)
+        else append_triangles(model, prim, skin->add_rigid(prim, xf), xf.topLeftCorner<3, 3>().determinant() < 0, out.mesh);
+      }
+    }
+    for (int child : node.children) this->node(child, xf, depth + 1);
+  }
+};
+
+// Every TRIANGLES primitive of the file's scene at its pose (gltf_model.hpp opens it, confined to its folder).
+PosedMesh load_gltf(const std::filesystem::path& path, bool binary, std::optional<double> pose_time) {
+  const tinygltf::Model model = detail::open_gltf(path, binary);
+  const double time = pose_time ? *pose_time : detail::pose_time(model);
+  const std::vector<Eigen::Matrix4d> locals = detail::posed_local_transforms(model, time);
+  const bool skinned = std::any_of(model.nodes.begin(), model.nodes.end(), [](const tinygltf::Node& n) { return n.skin >= 0 && n.mesh >= 0; });
+  std::optional<std::vector<Eigen::Matrix4d>> globals;
+  std::optional<detail::SkinBuilder> builder;
+  if (skinned) {
+    globals = detail::global_transforms(model, locals);
+    builder.emplace(model, *globals);
+  }
+  PosedMesh out;
+  GltfWalk walk{model, locals, builder ? &*builder : nullptr, out};
+  for (int r : detail::scene_roots(model)) walk.node(r, Eigen::Matrix4d::Identity(), 0);
+  if (builder) out.skin = builder->take();
+  return out;
 }
 
 }  // namespace
 
-TriangleMesh<double> load_mesh_file(const std::filesystem::path& path) {
+TriangleMesh<double> load_mesh_file(const std::filesystem::path& path) { return load_posed_mesh_file(path).mesh; }
+
+PosedMesh load_posed_mesh_file(const std::filesystem::path& path, std::optional<double> pose_time) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw MeshFileError("no such file");
   const std::string ext = lower_extension(path);
-  TriangleMesh<double> mesh;
-  if (ext == ".obj") mesh = load_obj(path);
-  else if (ext == ".gltf") mesh = load_gltf(path, false);
-  else if (ext == ".glb") mesh = load_gltf(path, true);
+  PosedMesh out;
+  if (ext == ".obj") out.mesh = load_obj(path);
+  else if (ext == ".gltf") out = load_gltf(path, false, pose_time);
+  else if (ext == ".glb") out = load_gltf(path, true, pose_time);
   else throw MeshFileError("unknown mesh format '" + ext + "' (expected .obj, .gltf or .glb)");
-  if (mesh.triangles.empty()) throw MeshFileError("the mesh has no triangles");
-  return mesh;
+  if (out.mesh.triangles.empty()) throw MeshFileError("the mesh has no triangles");
+  return out;
 }
 
 }  // namespace shadowref::scene

@@ -112,6 +112,9 @@ struct ShadowMapFaults {
   double constant_offset_world = 0.0;
   // Casters whose bounding sphere lies outside the camera's frustum left out of the depth pass.
   bool cull_casters_outside_view = false;
+  // Skinned casters drawn into the map in their bind pose (the skin not applied in the depth pass's
+  // vertex shader), while the camera's passes draw them posed: the shadow of the bind pose.
+  bool skin_bind_pose = false;
   FitFault fit = FitFault::None;
   CubeFault cube = CubeFault::None;
   // Half a texel added to the map coordinates (Direct3D 9's texel-centre correction where none

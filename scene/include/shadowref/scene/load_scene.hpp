@@ -20,7 +20,10 @@
 //   shape: {type: plane, size [sx, sz]} | {type: box, size [x,y,z]} |
 //          {type: sphere, radius, segments (32), rings (segments / 2)} |
 //          {type: torus, major_radius, minor_radius, segments (48), sides (24)} |
-//          {type: stairs, steps (5), size [W, H, D]} | {type: mesh, file (relative to the scene)}.
+//          {type: stairs, steps (5), size [W, H, D]} |
+//          {type: mesh, file (relative to the scene), pose_time (seconds, >= 0; a glTF file's
+//           animation time, default its first animation's extras.pose_time, else 0: skin.hpp,
+//           docs/scene-format.md "Skins")}.
 // Transforms apply scale, then rotate, then translate (M = T R S); a mirroring transform flips
 // the triangles' winding so that counter-clockwise still means outside.
 //

@@ -18,6 +18,7 @@
 #include "shadowref/mesh.hpp"
 #include "shadowref/plane.hpp"
 #include "shadowref/scene/alpha_mask.hpp"
+#include "shadowref/scene/skin.hpp"
 
 namespace shadowref::scene {
 
@@ -70,6 +71,10 @@ struct Object {
   // A masked caster (alpha_mask.hpp): where its alpha is below the cutoff it lets light and the
   // camera's rays through. Absent: opaque everywhere.
   std::optional<AlphaMask> alpha;
+  // A skinned object (skin.hpp): `mesh` is already posed (what the reference and every CPU consumer
+  // read); the skin is how it was posed, for producers that pose it themselves (our renderer's vertex
+  // shader, the pack's glTF). Absent: a rigid object.
+  std::optional<Skin> skin;
 };
 
 // A technique's expected verdict on this scene: pass, or fail with the reason (the known
