@@ -58,6 +58,21 @@ void write_candidate_json(const std::filesystem::path& dir, const Declaration& d
     j["slope_bias_texels"] = d.slope_bias_texels;
     j["constant_bias"] = d.constant_bias;
     j["light_views"] = d.light_views_from_pack ? "pack" : "own";
+    bool declared = false;
+    nlohmann::json lights = nlohmann::json::array();
+    for (const std::vector<Declaration::View>& views : d.light_matrices) {
+      nlohmann::json light = {{"light_views", "own"}};
+      if (!views.empty()) {
+        declared = true;
+        light = {{"light_views", "declared"}, {"shadow_map_size", d.shadow_map_size}, {"views", nlohmann::json::array()}};
+        for (const Declaration::View& v : views) light["views"].push_back({{"view", v.view}, {"projection", v.projection}});
+      }
+      lights.push_back(light);
+    }
+    if (declared) {
+      j["light_views"] = "declared";
+      j["lights"] = lights;
+    }
     if (d.light_taps > 0) {
       j["sampling"] = "random";
       j["light_taps"] = d.light_taps;

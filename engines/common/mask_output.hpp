@@ -3,6 +3,7 @@
 // candidate.json that declares how they were made.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -39,6 +40,13 @@ struct Declaration {
   double constant_bias = 0;
   bool light_views_from_pack = false;
   int light_taps = 0;  // > 0: a kernel of light_taps^2 taps drawn at random per pixel ("sampling": "random")
+  // Per light, in the pack's order, the view and projection matrices the engine drew its map with
+  // (column-vector matrices in column-major order, gl clip space); a light without any keeps the
+  // engine's own undeclared views. Any light with them makes light_views "declared".
+  struct View {
+    std::array<double, 16> view{}, projection{};
+  };
+  std::vector<std::vector<View>> light_matrices;
 };
 
 // Writes `dir`/candidate.json (convention gl). Shadow-map keys only for a shadow map.

@@ -10,7 +10,9 @@
 //     that faces can have their own colour.
 //   * Camera: the pack's gl view and finite projection, as they are (OSG is right-handed and takes
 //     row-vector matrices: the pack's D3DX layout); near/far computation off. The techniques fit
-//     their own light views (light_views "own"): ShadowMap's fit is part of what is judged.
+//     their own light views: ShadowMap's fit is part of what is judged, and the harness declares the
+//     matrices it drew with (light_views "declared": its shadow camera's view and projection after
+//     the frame, read through ReadableShadowMap).
 //   * Lights: an osg::LightSource at the pack's homogeneous light (w = 0: directional). Spot and
 //     rect lights are their point (spot cut-off 180): the mask is occlusion only, the cone is lighting.
 //   * Materials: lighting off, vertex colours; faces turned away from the light are painted black by
@@ -36,6 +38,7 @@
 #include <osgShadow/SoftShadowMap>
 #include <osgViewer/Viewer>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -126,15 +129,40 @@ struct QuietMissingMaterials : osg::NotifyHandler {
 
 enum class Variant { ShadowMap, SoftShadowMap, ShadowMapNoOffset };
 
+// A ShadowMap technique whose render-to-texture camera can be read: osgShadow keeps it protected,
+// and its view and projection after a frame are the matrices ShadowMap::cull fitted and drew the map
+// with (its camera computes no near/far of its own). OSG's matrices are row-vector, so ptr()'s
+// row-major order is the column-vector matrix's column-major order: candidate.json's.
+class ShadowCameraReader {
+ public:
+  virtual ~ShadowCameraReader() = default;
+  engines::Declaration::View drawn_view() const {
+    engines::Declaration::View v;
+    const osg::Camera& c = *shadow_camera();
+    std::copy_n(c.getViewMatrix().ptr(), 16, v.view.begin());
+    std::copy_n(c.getProjectionMatrix().ptr(), 16, v.projection.begin());
+    return v;
+  }
+
+ protected:
+  virtual const osg::Camera* shadow_camera() const = 0;
+};
+
+template <class Technique>
+class ReadableShadowMap : public Technique, public ShadowCameraReader {
+ protected:
+  const osg::Camera* shadow_camera() const override { return this->_camera.get(); }
+};
+
 osg::ref_ptr<osgShadow::ShadowMap> make_technique(Variant variant) {
   const bool soft = variant == Variant::SoftShadowMap;
   osg::ref_ptr<osgShadow::ShadowMap> t;
   if (soft) {
-    osg::ref_ptr<osgShadow::SoftShadowMap> s = new osgShadow::SoftShadowMap;
+    osg::ref_ptr<osgShadow::SoftShadowMap> s = new ReadableShadowMap<osgShadow::SoftShadowMap>;
     s->setSoftnessWidth(kSoftnessWidth);
     t = s;
   } else {
-    t = new osgShadow::ShadowMap;
+    t = new ReadableShadowMap<osgShadow::ShadowMap>;
   }
   t->setTextureSize(osg::Vec2s(kMapSize, kMapSize));
   t->setAmbientBias(osg::Vec2(0.0f, 1.0f));
@@ -142,7 +170,10 @@ osg::ref_ptr<osgShadow::ShadowMap> make_technique(Variant variant) {
   return t;
 }
 
-void render_scene(const engines::PackScene& s, Variant variant, const std::filesystem::path& out_dir) {
+// Renders each light's mask into out_dir; returns, per light, the matrices its map was drawn with.
+std::vector<std::vector<engines::Declaration::View>> render_scene(const engines::PackScene& s, Variant variant,
+                                                                  const std::filesystem::path& out_dir) {
+  std::vector<std::vector<engines::Declaration::View>> drawn;
   const osg::ref_ptr<osgDB::Options> options = new osgDB::Options("noRotation generateFacetNormals");
   std::vector<std::vector<osg::Vec3d>> objects;
   for (const engines::PackObject& o : s.objects) {
@@ -199,7 +230,10 @@ void render_scene(const engines::PackScene& s, Variant variant, const std::files
     if (read_back->frame.rgb.empty()) throw std::runtime_error("OpenSceneGraph drew no frame");
     engines::write_mask_png(out_dir / light.mask_file, s.width, s.height, engines::mask_from_frame(read_back->frame));
     read_back->frame = engines::Frame{};
+    // One view for every light: ShadowMap draws a positional light's map as one perspective view too.
+    drawn.push_back({dynamic_cast<const ShadowCameraReader&>(*shadowed->getShadowTechnique()).drawn_view()});
   }
+  return drawn;
 }
 
 }  // namespace
@@ -219,8 +253,8 @@ int main(int argc, char** argv) {
       const engines::PackScene s = engines::read_pack_scene(args.pack, name);
       const std::filesystem::path dir = args.out / name;
       std::filesystem::create_directories(dir);
-      render_scene(s, variant, dir);
       engines::Declaration d;
+      d.light_matrices = render_scene(s, variant, dir);
       d.producer = "OpenSceneGraph";
       d.version = osgGetVersion();
       d.technique = soft ? "shadowmap-pcf" : "shadowmap";
