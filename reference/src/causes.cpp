@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "shadowref/reference/flush_denormals.hpp"
@@ -147,6 +148,7 @@ std::optional<CauseModel::Lookup> CauseModel::lookup(std::size_t light, const Su
   k.n = s.n;
   const Vec4<double>& L = scene_.lights[light];
   k.to_light = L.w() == 0 ? Vec3<double>(L.head<3>().normalized()) : Vec3<double>((L.head<3>() / L.w() - s.p).normalized());
+  k.light_distance = L.w() == 0 ? std::numeric_limits<double>::infinity() : (L.head<3>() / L.w() - s.p).norm();
   // The light view that decides p: the cube face, the cascade, or the one view (light_view_of).
   const LightFit& fit = fit_of(light, d, cascades_of(d));
   k.view = &fit.views[static_cast<std::size_t>(light_view_of(fit, L, s.p))];
@@ -221,9 +223,14 @@ struct TexelRay {
   double length;        // to the far plane
   RTCRayHit first;
   bool hit;
-  int exit;             // -1 not traced yet; 0 none (an open caster, or beyond 8 faces); 1 at (t_exit, ng_exit)
+  int exit;             // -1 not traced yet; 0 none (nothing behind, or beyond 8 faces); 1 at (t_exit, ng_exit)
   double t_exit;
   Vec3<double> ng_exit;
+  // Where the exit is an open mesh's face toward the light: what a pass that culls it too stores
+  // instead. 0 none (or beyond 8 faces); 1 at (t_behind, ng_behind); 2 nothing (lit).
+  int behind;
+  double t_behind;
+  Vec3<double> ng_behind;
 };
 
 class CauseModel::Probes {
@@ -234,7 +241,10 @@ class CauseModel::Probes {
       for (Slot& slot : slots_) slot.generation = 0;
       generation_ = 1;
     }
+    open_meshes_clear_ = -1;
   }
+  // Whether p's own way to the light meets no open mesh facing it: -1 not traced yet, 0, 1.
+  int& open_meshes_clear() { return open_meshes_clear_; }
   // The ray of the texel at map offset (dx, dy) from p's, traced on first use. Offsets on a grid of
   // 1/8 texel (the rings' quarter steps, the filter's half-texel placements) are remembered, in an
   // open-addressed table far larger than one pixel's probes (at most 65 on the rings, 845 taps of a
@@ -287,6 +297,7 @@ class CauseModel::Probes {
   static constexpr std::size_t kSlots = std::size_t{1} << kSlotBits;
   std::vector<Slot> slots_ = std::vector<Slot>(kSlots);
   std::uint32_t generation_ = 0;
+  int open_meshes_clear_ = -1;
   TexelRay scratch_;
 };
 
@@ -302,10 +313,16 @@ CauseModel::~CauseModel() = default;
 // the first open mesh (drawn two-sided, whichever side faces the light), whichever comes first. A box
 // standing on a ground plane shows why the open mesh counts: a ray entering the box's near face
 // reaches the ground and the box's bottom face at one depth, and either one is stored (with the
-// grazing slope's offset that lights a receiver a few texels beyond the box's far base). A miss
-// holds "nothing": infinitely far. Each stored depth carries the bias `bias` gives
-// its own polygon (normal, ray direction, light depth). The texel gives the candidate's answer when
-// p, compared with either stored depth, gets it: lit when p is not beyond it, shadowed when p is.
+// grazing slope's offset that lights a receiver a few texels beyond the box's far base). A pass may
+// also cull the front faces of open meshes as it does closed ones' (OpenSceneGraph's ShadowMap culls
+// every front face): then the texel holds the first back face behind them, or nothing. That map is
+// a correct one for p wherever no open mesh faces the light between p and the light: leaving the
+// ground out changes only p's neighbours' taps (a wide filter then reads a receiver in front of a
+// box as lit), never p's own visibility. Where an open mesh does lie in p's way the texels keep it:
+// a single-sided card that casts nothing is still wrong. A miss holds "nothing": infinitely far.
+// Each stored depth carries the bias `bias` gives its own polygon (normal, ray direction, light
+// depth). The texel gives the candidate's answer when p, compared with any stored depth, gets it:
+// lit when p is not beyond it, shadowed when p is.
 template <class Bias>
 bool CauseModel::texel_gives(const Lookup& k, Probes& probes, double dx, double dy, bool candidate_lit,
                              const Bias& bias) const {
@@ -321,19 +338,28 @@ bool CauseModel::texel_gives(const Lookup& k, Probes& probes, double dx, double 
   if (answer(stored(static_cast<double>(first.ray.tfar), Vec3<double>(first.hit.Ng_x, first.hit.Ng_y, first.hit.Ng_z))))
     return true;
   if (ray.exit < 0) {
-    // Front faces culled: walk on to the first face the ray leaves through (normal along the ray)
-    // or the first open mesh, which the depth pass draws two-sided.
+    // Walk on to the first face the ray leaves through (normal along the ray) or the first open
+    // mesh; where that was an open mesh's front face, on to the first face it leaves through.
     RTCIntersectContext c;
     rtcInitIntersectContext(&c);
     RTCRayHit r = first;
     double t = static_cast<double>(r.ray.tfar);
     ray.exit = 0;
+    ray.behind = 0;
+    bool open_front_skipped = false;
     for (int step = 0; step < 8; ++step) {
       const Vec3<double> ng(r.hit.Ng_x, r.hit.Ng_y, r.hit.Ng_z);
-      if (ng.dot(ray.dir) > 0 || !scene_.casters[r.hit.geomID].closed) {
+      const bool leaves = ng.dot(ray.dir) > 0;
+      if (!open_front_skipped && (leaves || !scene_.casters[r.hit.geomID].closed)) {
         ray.exit = 1;
         ray.t_exit = t;
         ray.ng_exit = ng;
+        if (leaves) break;
+        open_front_skipped = true;
+      } else if (open_front_skipped && leaves) {
+        ray.behind = 1;
+        ray.t_behind = t;
+        ray.ng_behind = ng;
         break;
       }
       RTCRayHit next{};
@@ -342,12 +368,44 @@ bool CauseModel::texel_gives(const Lookup& k, Probes& probes, double dx, double 
       next.ray.tfar = static_cast<float>(ray.length);
       next.hit.geomID = RTC_INVALID_GEOMETRY_ID;
       rtcIntersect1(embree_->handle(), &c, &next);
-      if (next.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;  // nothing drawn behind the culled front faces
+      if (next.hit.geomID == RTC_INVALID_GEOMETRY_ID) {  // nothing drawn behind the culled faces
+        if (open_front_skipped) ray.behind = 2;
+        break;
+      }
       r = next;
       t = static_cast<double>(r.ray.tfar);
     }
   }
-  return ray.exit == 1 && answer(stored(ray.t_exit, ray.ng_exit));
+  if (ray.exit == 1 && answer(stored(ray.t_exit, ray.ng_exit))) return true;
+  if (ray.behind == 0 || !open_meshes_clear(k, probes)) return false;
+  return ray.behind == 2 ? candidate_lit : answer(stored(ray.t_behind, ray.ng_behind));
+}
+
+bool CauseModel::open_meshes_clear(const Lookup& k, Probes& probes) const {
+  int& clear = probes.open_meshes_clear();
+  if (clear < 0) {
+    // From p toward the light, every face met: an open mesh's face toward the light blocks it.
+    const double eps = embree_->epsilon();
+    RTCIntersectContext c;
+    rtcInitIntersectContext(&c);
+    clear = 0;
+    double t = 0;
+    const Vec3<double> o = k.p + 4 * eps * k.n;
+    for (int step = 0; step < 8; ++step) {
+      RTCRayHit r;
+      start_ray(o, k.to_light, static_cast<float>(std::min(k.light_distance, 1e30)), r);
+      r.ray.tnear = static_cast<float>(t);
+      rtcIntersect1(embree_->handle(), &c, &r);
+      if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+        clear = 1;
+        break;
+      }
+      const Vec3<double> ng(r.hit.Ng_x, r.hit.Ng_y, r.hit.Ng_z);
+      if (!scene_.casters[r.hit.geomID].closed && ng.dot(k.to_light) > 0) break;
+      t = static_cast<double>(r.ray.tfar) + eps;
+    }
+  }
+  return clear == 1;
 }
 
 double CauseModel::mask_reach_texels(const outputs::CandidateDeclaration& d) {

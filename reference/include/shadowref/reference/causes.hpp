@@ -159,6 +159,7 @@ class CauseModel {
   // declared map size, and the depths and widths the probes need.
   struct Lookup {
     Vec3<double> p, n, to_light;
+    double light_distance = 0;  // from p to the light; infinite for a directional light
     const LightView* view = nullptr;
     Mat4<double> m, inv;
     Vec3<double> q;                 // p in the light's NDC
@@ -184,6 +185,9 @@ class CauseModel {
   class Probes;
   template <class Bias>  // BiasOf's signature; a lambda where the caller has one (no std::function per probe)
   bool texel_gives(const Lookup& k, Probes& probes, double dx, double dy, bool candidate_lit, const Bias& bias) const;
+  // Whether p's own way to the light meets no open mesh's face toward the light (traced once per
+  // pixel): where it does, a map that culls open meshes' front faces loses p's own shadow.
+  bool open_meshes_clear(const Lookup& k, Probes& probes) const;
   // The mask's reach in texels: the lookup's grid (pack or own) and the filter, capped.
   static double mask_reach_texels(const outputs::CandidateDeclaration& d);
   // A filter wider than kMaxMaskFilterTexels: whether its box of taps, placed at p's texel or
