@@ -654,8 +654,8 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_
         n.push_back(normal);
         if (o.alpha) alpha.emplace_back(o.alpha->uvs[k].x(), o.alpha->uvs[k].y(), threshold, o.alpha->vertex_alpha[k]);
         if (o.skin) {
-          const Vec3<float>& b = o.skin->bind_positions[k];
-          bind.emplace_back(b.x(), b.y(), b.z(), 1.0f);
+          const Vec3<float>& bp = o.skin->bind_positions[k];
+          bind.emplace_back(bp.x(), bp.y(), bp.z(), 1.0f);
           const auto& id = o.skin->joint_indices[k];
           joints.emplace_back(static_cast<float>(id[0]), static_cast<float>(id[1]), static_cast<float>(id[2]), static_cast<float>(id[3]));
           const auto& w = o.skin->weights[k];

@@ -475,6 +475,105 @@ TEST(DeclaredMatrices, ALeftHandedViewOfTheSameGridIsJudgedAlike) {
   }
 }
 
+// Declared cascades that blend (Babylon.js mixes each cascade into the next over the far
+// cascadeBlendPercentage of its depth range): a hard mask of a blend shows cascade i's answer or
+// cascade i + 1's in that zone, so either may explain it. Our csm on sun_horizon (128-texel cascades,
+// long shadows across the splits) switches at its splits; declared with each inner split moved
+// later, by a fifth of the cascade's declared length, the zone between is drawn by the next cascade
+// but declared to the earlier one. Declared with cascade_blend 0.25 it PASSes (measured: 5 px
+// unexplained, the exact declaration 0); declared without the blend those pixels are left to the
+// earlier cascade's finer texels (19 px unexplained).
+TEST(DeclaredCascades, ASwitchWithinTheDeclaredBlendIsExplainedByEitherCascade) {
+  const scene::Scene scene = scene::load_scene(conform::default_catalogue() / "sun_horizon.json");
+  scene::PrepareOptions prepare;
+  prepare.shadow_map_size = 128;  // cascades coarse enough that the next one's staircases differ
+  const scene::PreparedScene prepared = scene::prepare_scene(scene, kDefaultConvention, prepare);
+  conform::ReferenceSettings settings;
+  settings.key_executable = SHADOWREF_EXE;
+  const fs::path reference = conform::ensure_reference(prepared, SHADOWREF_TEST_CACHE, settings).dir;
+  renderer::RenderOptions options;
+  options.declare_light_matrices = true;
+  const renderer::RenderResult r = test::llvmpipe_renderer().render(prepared, "csm", options);
+  const std::vector<double> drawn = r.declaration.for_light(0).cascade_splits;
+  ASSERT_GE(drawn.size(), 3u) << "csm declares its cascades' splits";
+  // s'[i+1] − s[i+1] = 0.2 (s'[i+1] − s'[i]): the drawn split lies a fifth of the declared cascade
+  // before its declared end. The first and the last split stay.
+  std::vector<double> later = drawn;
+  for (std::size_t i = 1; i + 1 < drawn.size(); ++i) later[i] = std::min((drawn[i] - 0.2 * later[i - 1]) / 0.8, 0.5 * (drawn[i] + drawn[i + 1]));
+  conform::Judge judge;
+  const auto judged = [&](const std::string& name, const std::vector<double>& splits, double blend) {
+    outputs::CandidateDeclaration d = r.declaration;
+    for (outputs::CandidateDeclaration* l : {&d, d.lights.empty() ? &d : &d.lights.at(0)})
+      if (!l->cascade_splits.empty()) {
+        l->cascade_splits = splits;
+        l->cascade_blend = blend;
+      }
+    const fs::path dir = fs::path(SHADOWREF_TEST_OUT) / "declared-cascades" / name;
+    fs::create_directories(dir);
+    outputs::write_png(r.masks.at(0), dir / "mask.png");
+    outputs::write_declaration(d, dir);
+    const conform::CaseJudgement j = judge.judge(&prepared, {reference, dir, "csm", false, {}});
+    const compare::MaskMetrics& m = j.comparison.total;
+    std::printf("sun_horizon csm at 128 texels, %s: %s, %zu px unexplained (%.2f %% of %zu edge px, core %zu), %zu explained\n",
+                name.c_str(), compare::to_string(j.comparison.decision.verdict), m.unexplained, 100 * m.unexplained_ratio(),
+                m.edge_pixels, m.unexplained_core, m.explained_texel);
+    return j;
+  };
+  const conform::CaseJudgement exact = judged("exact", drawn, 0);
+  const conform::CaseJudgement blended = judged("later-splits-blend-0.25", later, 0.25);
+  const conform::CaseJudgement hard = judged("later-splits-no-blend", later, 0);
+  EXPECT_EQ(exact.comparison.decision.verdict, compare::Verdict::Pass);
+  EXPECT_EQ(blended.comparison.decision.verdict, compare::Verdict::Pass);
+  EXPECT_GT(hard.comparison.total.unexplained, blended.comparison.total.unexplained)
+      << "without the blend the moved switch is judged on the earlier cascade's texels";
+}
+
+// A declared view's texels need not be square (Babylon.js fits each cascade an off-centre box of
+// its own aspect). The receiver's own plane, d texels away, is nearer by d texels of its slope —
+// measured along the offset's own axis: on a view whose texels are 10 % longer along y than along x,
+// a probe along y that counted x texels read the grazing ground itself as an occluder, and all
+// 55 163 lit pixels of grazing_light, made false shadow, came out "texel footprint" (Babylon.js's
+// cascades on offscreen_caster: 25 445 px of acne explained). Now only a band along the true
+// shadow's edges is (158 px).
+TEST(DeclaredMatrices, TexelsLongerAlongOneAxisDoNotExplainAcne) {
+  const test::CatalogueScene sun("grazing_light");
+  renderer::RenderOptions options;
+  options.shadow_map_size = 1024;
+  options.declare_light_matrices = true;
+  const renderer::RenderResult r = test::llvmpipe_renderer().render(sun.prepared, "shadowmap", options);
+  ASSERT_EQ(r.declaration.for_light(0).light_views, outputs::LightViews::Declared);
+  ASSERT_EQ(r.declaration.for_light(0).views.size(), 1u);
+  const Image8 mask = outputs::read_image8(sun.reference / "mask.png", 1);
+  const Image8 decided = outputs::read_image8(sun.reference / "decided.png", 1);
+  reference::CauseModel model(sun.prepared);
+  // The view turned by 0 and 90 degrees about its axis (so that the ground's slope runs along
+  // either texel axis), then its texels made 10 % longer along y.
+  for (const int degrees : {0, 90}) {
+    outputs::CandidateDeclaration d = r.declaration.for_light(0);
+    d.lights.clear();
+    const double a = degrees * std::acos(-1.0) / 180;
+    Mat4<double> change = Mat4<double>::Identity();
+    change(0, 0) = change(1, 1) = std::cos(a);
+    change(0, 1) = -std::sin(a);
+    change(1, 0) = std::sin(a);
+    change.row(1) /= 1.1;
+    const Mat4<double> p = change * Eigen::Map<const Mat4<double>>(d.views[0].projection.data());
+    std::copy(p.data(), p.data() + 16, d.views[0].projection.begin());
+    std::size_t lit = 0, footprint = 0;
+    for (int y = 0; y < mask.height; ++y)
+      for (int x = 0; x < mask.width; ++x) {
+        const std::size_t i = static_cast<std::size_t>(y * mask.width + x);
+        if (mask.pixels[i] != kMaskLit || !outputs::is_flag_set(decided.pixels[i])) continue;
+        ++lit;
+        footprint += model.explain(0, x, y, d, false) == outputs::Cause::TexelFootprint;
+      }
+    std::printf("grazing_light, false shadow on every lit pixel, view turned %d degrees, texels 1.1 times longer "
+                "along y: %zu of %zu explained by the footprint\n", degrees, footprint, lit);
+    ASSERT_GT(lit, 1000u);
+    EXPECT_LT(footprint, lit / 20) << degrees << " degrees: only a band along the shadow's edges";
+  }
+}
+
 // Declared matrices the scene cannot have been drawn with are bad input, named by their JSON path:
 // two views for a point light (1, or a cube's 6), a view missing, or matrices in another convention
 // than the run's (they are read in the run's).

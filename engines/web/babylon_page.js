@@ -117,6 +117,25 @@ function recordShadowViews(generator, light) {
   };
 }
 
+// A CascadedShadowGenerator's cascades as it drew them: each cascade's view and projection (kept
+// per cascade, left-handed and WebGL-depth as a single view's), and the camera depths where each
+// cascade begins and the last ends. Babylon picks a pixel's cascade by its view-space depth against
+// _viewSpaceFrustumsZ (each cascade's far end: near + breakDistance × the camera's range,
+// _splitFrustum) and blends each cascade into the next over the far cascadeBlendPercentage of its
+// depth range (Shaders/ShadersInclude/lightFragment.fx): candidate.json's cascade_splits and
+// cascade_blend.
+function cascadeViews(generator) {
+  const camera = generator._getCamera();
+  const near = camera.minZ, range = (camera.maxZ || generator.shadowMaxZ) - near;
+  const views = [], splits = [];
+  for (let i = 0; i < generator.numCascades; i++) {
+    views.push({ view: [...generator.getCascadeViewMatrix(i).m], projection: [...generator.getCascadeProjectionMatrix(i).m] });
+    if (i === 0) splits.push(near + generator._cascades[0].prevBreakDistance * range);
+    splits.push(near + generator._cascades[i].breakDistance * range);
+  }
+  return { views, splits };
+}
+
 // The shadow pass's surface: Babylon's StandardMaterial with every light term computed as usual,
 // whose final colour is replaced by the shadow term the light loop left in `shadow`
 // (Shaders/ShadersInclude/lightFragment.fx: one light enabled, so it is that light's).
@@ -231,14 +250,15 @@ async function render(url, variantName) {
       m.receiveShadows = true;
       m.material = shadowMaterial;
     }
-    // The cascades' matrices are not declared (a cascade is chosen by Babylon's view-depth splits and
-    // blended with the next one over cascadeBlendPercentage): those lights keep `own` views.
     const views = cascaded ? null : recordShadowViews(generator, light);
     const shadowPixels = new Uint8Array(await renderFrame(scene));
-    const drawn = views ? views.stop() : [];
-    if (views && drawn.length !== (light.needCube() ? 6 : 1))
-      throw new Error(`Babylon drew ${drawn.length} shadow views for a ${light.getClassName()}, not ${light.needCube() ? 6 : 1}`);
-    lightViews.push(drawn.length ? { light_views: 'declared', shadow_map_size: MAP_SIZE, views: drawn } : { light_views: 'own' });
+    const cascades = cascaded ? cascadeViews(generator) : null;
+    const drawn = cascaded ? cascades.views : views.stop();
+    const expected = cascaded ? generator.numCascades : light.needCube() ? 6 : 1;
+    if (drawn.length !== expected)
+      throw new Error(`Babylon drew ${drawn.length} shadow views for a ${light.getClassName()}, not ${expected}`);
+    lightViews.push({ light_views: 'declared', shadow_map_size: MAP_SIZE, views: drawn,
+      ...(cascaded ? { cascade_splits: cascades.splits, cascade_blend: generator.cascadeBlendPercentage } : {}) });
 
     for (const m of meshes) {
       const positions = new Float32Array(m.getVerticesData(VertexBuffer.PositionKind));
@@ -287,8 +307,8 @@ async function render(url, variantName) {
     ...(v.filter === 'pcss' ? { light_taps: 8, sampling: 'random' } : {}),
     slope_bias_texels: 0,
     constant_bias: 0,
-    // Babylon's own light views, as it drew them (recordShadowViews): the judge knows the grid.
-    light_views: lightViews.some((l) => l.light_views === 'declared') ? 'declared' : 'own',
+    // Babylon's own light views, as it drew them (recordShadowViews, cascadeViews): the judge knows the grid.
+    light_views: 'declared',
     normal_offset: first.normalBias,
     depth_bias: Math.abs(first.bias),
     depth_faces: v.forceBackFacesOnly ? 'back' : loadedCulling ? 'front' : 'both',
@@ -301,7 +321,7 @@ async function render(url, variantName) {
       ...(v.rectAsSpot ? { 'rect lights': "Babylon's SpotLight at the rect's centre (its PCSS needs one view)" } : {}),
       'camera.maxZ': cam.far,
     },
-    ...(lightViews.some((l) => l.light_views === 'declared') ? { lights: lightViews } : {}),
+    lights: lightViews,
   };
   scene.dispose();
   return { width: cam.width, height: cam.height, masks, visibility, candidate };

@@ -196,6 +196,13 @@ void read_keys(const Json& j, CandidateDeclaration& d, std::set<std::string>& gi
     d.cascade_splits = read_splits(j["cascade_splits"], where + "cascade_splits", bad);
     given.insert("cascade_splits");
   }
+  if (j.contains("cascade_blend")) {
+    const Json& v = j["cascade_blend"];
+    if (!v.is_number() || !(v.get<double>() >= 0 && v.get<double>() < 1))
+      throw bad(where + "cascade_blend: must be a number in [0, 1) (the blended share of each cascade's depth range)");
+    d.cascade_blend = v.get<double>();
+    given.insert("cascade_blend");
+  }
   if ((!d.views.empty() || !d.cascade_splits.empty()) && d.light_views != LightViews::Declared)
     throw bad(where + (d.views.empty() ? "cascade_splits" : "views") + ": given, but light_views is not \"declared\"");
   integer_key("cascades", d.cascades, 0, kMaxCascades,
@@ -304,6 +311,7 @@ std::string declaration_text(const CandidateDeclaration& d) {
     j["views"] = views;
   }
   if (!d.cascade_splits.empty()) j["cascade_splits"] = d.cascade_splits;
+  j["cascade_blend"] = d.cascade_blend;
   j["cascades"] = d.cascades;
   j["light_taps"] = d.light_taps;
   j["sampling"] = to_string(d.sampling);

@@ -102,7 +102,8 @@ TEST(Declaration, DeclaredLightMatricesRoundTripAndMalformedOnesAreRefused) {
   std::ofstream(dir / kCandidateFile) << R"({"shadow_map_size": 1024, "light_views": "declared", "lights": [
     {"views": [{"view": )" << shifted << R"(, "projection": )" << identity << R"(}]},
     {"views": [{"view": )" << identity << R"(, "projection": )" << identity << R"(},
-               {"view": )" << identity << R"(, "projection": )" << identity << R"(}], "cascade_splits": [0.1, 5, 40]}]})";
+               {"view": )" << identity << R"(, "projection": )" << identity << R"(}], "cascade_splits": [0.1, 5, 40],
+     "cascade_blend": 0.1}]})";
   const CandidateDeclaration d = read_declaration(dir, "csm");
   ASSERT_EQ(d.lights.size(), 2u);
   EXPECT_EQ(d.for_light(0).light_views, LightViews::Declared);
@@ -111,6 +112,8 @@ TEST(Declaration, DeclaredLightMatricesRoundTripAndMalformedOnesAreRefused) {
   EXPECT_EQ(d.for_light(0).views[0].view[14], -3.0);
   EXPECT_EQ(d.for_light(1).views.size(), 2u);
   EXPECT_EQ(d.for_light(1).cascade_splits, (std::vector<double>{0.1, 5, 40}));
+  EXPECT_EQ(d.for_light(1).cascade_blend, 0.1);
+  EXPECT_EQ(d.for_light(0).cascade_blend, 0.0) << "a hard switch unless declared";
   const std::string text = declaration_text(d);
   std::ofstream(dir / kCandidateFile) << text;
   EXPECT_EQ(declaration_text(read_declaration(dir, "csm")), text);
@@ -134,6 +137,9 @@ TEST(Declaration, DeclaredLightMatricesRoundTripAndMalformedOnesAreRefused) {
             std::string::npos);
   EXPECT_NE(refused(R"({"light_views": "declared", "lights": [{"views": [)" + one + R"(], "cascade_splits": [1, 1]}]})")
                 .find("lights[0].cascade_splits[1]: must be a finite depth >= 0, larger than the one before"),
+            std::string::npos);
+  EXPECT_NE(refused(R"({"light_views": "declared", "lights": [{"views": [)" + one + R"(], "cascade_splits": [1, 2], "cascade_blend": 1}]})")
+                .find("lights[0].cascade_blend: must be a number in [0, 1)"),
             std::string::npos);
   EXPECT_NE(refused(R"({"light_views": "seen"})").find("light_views: must be \"own\", \"pack\" or \"declared\""), std::string::npos);
 }

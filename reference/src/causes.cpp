@@ -142,7 +142,7 @@ int cascades_of(const outputs::CandidateDeclaration& d) {
 }  // namespace
 
 std::optional<CauseModel::Lookup> CauseModel::lookup(std::size_t light, const Surface& s,
-                                                     const outputs::CandidateDeclaration& d) const {
+                                                     const outputs::CandidateDeclaration& d, int view) const {
   Lookup k;
   k.p = s.p;
   k.n = s.n;
@@ -151,7 +151,7 @@ std::optional<CauseModel::Lookup> CauseModel::lookup(std::size_t light, const Su
   k.light_distance = L.w() == 0 ? std::numeric_limits<double>::infinity() : (L.head<3>() / L.w() - s.p).norm();
   // The light view that decides p: the cube face, the cascade, or the one view (light_view_of).
   const LightFit& fit = fit_of(light, d, cascades_of(d));
-  k.view = &fit.views[static_cast<std::size_t>(light_view_of(fit, L, s.p))];
+  k.view = &fit.views[static_cast<std::size_t>(view >= 0 ? view : light_view_of(fit, L, s.p))];
   k.m = k.view->projection * k.view->view;
   const Vec4<double> h = k.m * Vec4<double>(s.p.x(), s.p.y(), s.p.z(), 1.0);
   if (!(h.w() > 0)) return std::nullopt;
@@ -169,6 +169,9 @@ std::optional<CauseModel::Lookup> CauseModel::lookup(std::size_t light, const Su
   k.depth_p = k.depth(s.p);
   // One texel's width at p, in world units (on the plane of constant light depth through p).
   k.texel = (unproject(k.inv, k.q.x() + k.texel_ndc, k.q.y(), k.q.z()) - unproject(k.inv, k.q.x(), k.q.y(), k.q.z())).norm();
+  // A declared view's texels need not be square (an off-centre box of another aspect, a warp):
+  // the world length of one texel along y, in texels along x.
+  k.texel_aspect = (unproject(k.inv, k.q.x(), k.q.y() + k.texel_ndc, k.q.z()) - unproject(k.inv, k.q.x(), k.q.y(), k.q.z())).norm() / k.texel;
   k.perspective = L.w() != 0;
   if (d.light_views == outputs::LightViews::Declared && !d.views.empty()) {
     k.whole_ray = true;
@@ -451,11 +454,32 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
   // Rule 1 of the visibility rule (shadow_ray.hpp): a surface facing away from the light is in its
   // own shadow whatever a map holds; no footprint or bias lights it.
   if (!found || !(surface->n.dot(found->to_light) > 0)) return Cause::Unexplained;
-  const Lookup& k = *found;
+  const Cause own = explain_in(*found, d, candidate_lit);
+  // A blended cascade's pixel shows a mix of two cascades' answers: where both agree, the mix
+  // thresholded gives that answer; where they differ, either. So either cascade may explain it.
+  const int next = own == Cause::Unexplained ? blended_view(light, surface->p, d) : -1;
+  if (next < 0) return own;
+  const std::optional<Lookup> blended = lookup(light, *surface, d, next);
+  return blended ? explain_in(*blended, d, candidate_lit) : own;
+}
+
+int CauseModel::blended_view(std::size_t light, const Vec3<double>& p, const outputs::CandidateDeclaration& d) const {
+  if (!(d.cascade_blend > 0)) return -1;
+  const LightFit& fit = fit_of(light, d, cascades_of(d));
+  const std::vector<double>& s = fit.cascade_splits;
+  if (fit.cube || s.size() < 3) return -1;
+  const double depth = fit.cascade_depth_from_scene.dot(Vec4<double>(p.x(), p.y(), p.z(), 1.0));
+  const int i = cascade_of(s, depth);
+  if (i < 0 || i + 2 >= static_cast<int>(s.size())) return -1;  // outside, or the last cascade: no next one
+  const auto u = static_cast<std::size_t>(i);
+  return depth >= s[u + 1] - d.cascade_blend * (s[u + 1] - s[u]) ? i + 1 : -1;
+}
+
+Cause CauseModel::explain_in(const Lookup& k, const outputs::CandidateDeclaration& d, bool candidate_lit) {
   Probes& probes = *probes_;
   probes.reset();
   const double reach = mask_reach_texels(d);
-  const double precision = k.depth_p * kDepthPrecision;
+  const double precision = std::abs(k.depth_p) * kDepthPrecision;
   // The slope term of a stored polygon (normal ng, met along `along` at light depth `at`): one
   // texel's depth change across it, glPolygonOffset's model.
   const auto slope = [&](const Vec3<double>& ng, const Vec3<double>& along, double at) {
@@ -491,14 +515,14 @@ Cause CauseModel::explain(std::size_t light, int x, int y, const outputs::Candid
   // shadow that only the receiver's own surface, stored with less bias than that, casts is acne.
   for (const double r : rings)
     for (const auto& dv : kProbeDirections) {
-      const double distance = r * std::sqrt(dv[0] * dv[0] + dv[1] * dv[1]);
+      const double distance = r * std::hypot(dv[0], dv[1] * k.texel_aspect);
       const auto needed = [&](const Vec3<double>& ng, const Vec3<double>& along, double at) {
         return distance * slope(ng, along, at) + precision;
       };
       if (texel_gives(k, probes, dv[0] * r, dv[1] * r, false, needed)) return Cause::TexelFootprint;
     }
   const auto needed_at = [&](double dx, double dy) -> BiasOf {
-    const double distance = std::hypot(dx, dy);
+    const double distance = std::hypot(dx, dy * k.texel_aspect);
     return [&slope, distance, precision](const Vec3<double>& ng, const Vec3<double>& along, double at) {
       return distance * slope(ng, along, at) + precision;
     };

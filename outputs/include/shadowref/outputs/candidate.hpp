@@ -29,6 +29,10 @@
 //     "cascade_splits": [0.1, 4, 12, 40]  "declared" cascades: the camera depths (world units along the
 //                                         camera's view axis) where each cascade begins and ends, one
 //                                         more than the views: cascade i decides [splits[i], splits[i+1])
+//     "cascade_blend": 0.1                number in [0, 1): "declared" cascades, the fraction of each
+//                                         cascade's depth range, at its far end, over which its shadow
+//                                         is blended into the next cascade's (Babylon.js's
+//                                         cascadeBlendPercentage); 0 = a hard switch at each split
 //     "cascades": 4                       integer in [0, 8]: cascaded techniques (csm, csm-pcf), the
 //                                         cascades per directional light, split as the pack's
 //                                         `cascades` say; 0 = the pack's count
@@ -90,10 +94,10 @@ inline constexpr int kMaxLightTaps = 64;
 inline constexpr const char* kCandidateFile = "candidate.json";
 
 // Every key candidate.json may hold, the one list (the reader, `defaulted`, the pack README's table).
-inline constexpr std::array<const char*, 23> kCandidateKeys{
+inline constexpr std::array<const char*, 24> kCandidateKeys{
     "producer",          "version",       "technique",   "convention", "shadow_map_size",
     "atlas_tile",        "filter_radius_texels", "slope_bias_texels", "constant_bias", "light_views",
-    "views",             "cascade_splits",
+    "views",             "cascade_splits", "cascade_blend",
     "cascades",          "light_taps",    "sampling",    "normal_offset", "normal_offset_texels",
     "depth_bias",        "depth_faces",   "depth",       "depth_range", "settings",    "lights"};
 
@@ -150,6 +154,7 @@ struct CandidateDeclaration {
   LightViews light_views = LightViews::Own;
   std::vector<DeclaredView> views;     // "declared": this light's views (see above)
   std::vector<double> cascade_splits;  // "declared" cascades: camera depths, one more than the views
+  double cascade_blend = 0.0;          // "declared" cascades: the blended share of each cascade's far end
   int cascades = 0;                    // cascaded techniques: cascades per directional light; 0: the pack's default
   int light_taps = 8;                  // soft techniques: filter taps per axis over the light (ours: 8 x 8)
   Sampling sampling = Sampling::Grid;  // "random": light_taps² taps placed anew per pixel

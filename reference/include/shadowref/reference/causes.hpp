@@ -165,6 +165,7 @@ class CauseModel {
     Vec3<double> q;                 // p in the light's NDC
     double texel_ndc = 0, zn = 0, zf = 0, axis_sign = 1;
     double depth_p = 0, texel = 0, tan_p = 0, depth_bias_world = 0;
+    double texel_aspect = 1;  // a texel's world length along the view's y over its length along x
     bool perspective = false;
     // Declared matrices: their depth range is the engine's, and a correct map holds every caster
     // along a texel's ray (a near plane that clips a caster is the engine's fault, not a cause), so
@@ -176,7 +177,14 @@ class CauseModel {
     double depth(const Vec3<double>& w) const;  // along the light's view axis
     double texel_at(double at) const;           // one texel's width at light depth `at`
   };
-  std::optional<Lookup> lookup(std::size_t light, const Surface& s, const outputs::CandidateDeclaration& d) const;
+  // `view`: the light view to look p up in; -1: the one that decides p (light_view_of).
+  std::optional<Lookup> lookup(std::size_t light, const Surface& s, const outputs::CandidateDeclaration& d,
+                               int view = -1) const;
+  // The cascade that declared blending mixes into p's (the next one, where p lies in the blended
+  // far end of its own: "cascade_blend"), or -1.
+  int blended_view(std::size_t light, const Vec3<double>& p, const outputs::CandidateDeclaration& d) const;
+  // explain() in one light view.
+  Cause explain_in(const Lookup& k, const outputs::CandidateDeclaration& d, bool candidate_lit);
   // The bias a map adds to the depth it stores at a polygon of normal `ng`, met along `along` at
   // light depth `at`.
   using BiasOf = std::function<double(const Vec3<double>& ng, const Vec3<double>& along, double at)>;
