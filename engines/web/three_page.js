@@ -27,6 +27,9 @@ const VARIANTS = {
   // depth material WebGLShadowMap made for a masked mesh loses its `map` and `alphaTest` just before
   // it draws, in the mesh's onBeforeShadow); the camera's passes keep theirs.
   'pcf-depth-no-alpha-test': { type: THREE.PCFShadowMap, technique: 'shadowmap-pcf', depthAlphaTest: false },
+  // pcf-bind-pose: pcf with every skeleton put back in its bind pose (Skeleton.pose, three.js's own),
+  // the pack's pose ignored: the skinned scenes' verdicts are the pose's.
+  'pcf-bind-pose': { type: THREE.PCFShadowMap, technique: 'shadowmap-pcf', bindPose: true },
 };
 
 const TYPE_NAMES = { [THREE.BasicShadowMap]: 'BasicShadowMap', [THREE.PCFShadowMap]: 'PCFShadowMap', [THREE.VSMShadowMap]: 'VSMShadowMap' };
@@ -191,6 +194,10 @@ async function render(url, variantName) {
 
   const meshes = [];
   scene.traverse((o) => { if (o.isMesh) meshes.push(o); });
+  if (v.bindPose) {
+    for (const m of meshes) if (m.isSkinnedMesh) m.skeleton.pose();
+    scene.updateMatrixWorld(true);
+  }
   const bounds = new THREE.Box3();
   for (const m of meshes) bounds.expandByObject(m);
   // One vertex per face corner, with the face's normal: glTF asks a loader for flat normals when a
@@ -326,6 +333,7 @@ async function render(url, variantName) {
       'shadow.radius': radius,
       'material.shadowSide': SIDE_NAMES[shadowSide],
       ...(v.depthAlphaTest === false ? { 'depth pass alpha test': 'off (control)' } : {}),
+      ...(v.bindPose ? { skeletons: 'bind pose (control)' } : {}),
       'shadow cameras': fits,
       'spot lights': 'the point light at the spot position (the mask is occlusion everywhere)',
       'camera.far': cam.far,
