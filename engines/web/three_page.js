@@ -116,8 +116,8 @@ function withOutput(loaded, output, pars = '') {
       .replace('#include <shadowmap_pars_fragment>', `#include <shadowmap_pars_fragment>\n${pars}`)
       .replace('#include <opaque_fragment>', output);
   };
-  // One program per patch (three.js keys a program by customProgramCacheKey, by default the source of
-  // onBeforeCompile, which is the same for every clone of one patch).
+  // One program per patch: three.js keys a program by customProgramCacheKey, by default the text of
+  // onBeforeCompile, which is this one closure's for both patches; the key names the output instead.
   material.customProgramCacheKey = () => `shadowref:${output}`;
   return material;
 }
