@@ -59,9 +59,10 @@ def block(table):
     lines += ["", "Causes:", ""]
     for c, text in table["causes"].items():
         lines.append(f"- **{letters[c]}** ({c}): {text}")
-    nj = table.get("not_judged")
-    if nj:
-        lines += ["", f"Not judged on these engines yet: {', '.join(nj['scenes'])}. {nj['why']}"]
+    names = {r["harness"]: r["engine"].split(",")[0].split(" ")[0] for r in table["runs"]}
+    for nj in table.get("not_judged", []):
+        on = " and ".join(names.get(h, h) for h in nj["harnesses"])
+        lines += ["", f"Not judged on {on} yet: {', '.join(nj['scenes'])}. {nj['why']}"]
     lines += ["", END]
     return "\n".join(lines)
 

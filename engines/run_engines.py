@@ -13,7 +13,8 @@ verdict that changed, a scene added or lost — fails, with the report to look a
 runs them all.
 
 Scenes in verdicts.json's `not_judged` are rendered by the harnesses that render every scene but not
-judged: the harnesses cannot yet give the engine what those scenes need (its `why` says what).
+judged on the harnesses each entry names: those harnesses cannot yet give their engine what the scenes
+need (the entry's `why` says what).
 
 --record rewrites the verdicts of verdicts.json from this run, keeping each *why* and *cause* whose
 verdict did not change and emptying the others (engines/readme_table.py then refuses a non-PASS
@@ -73,9 +74,15 @@ def render(r, exes, pack, out, work):
         sys.exit(f"{r['run']}: the harness failed (exit {p.returncode}):\n{p.stdout}")
 
 
+def not_judged_on(table, harness):
+    """The scenes verdicts.json's not_judged keeps from `harness`'s runs: each entry names the
+    harnesses that cannot render its scenes faithfully yet, and why."""
+    return {s for entry in table.get("not_judged", []) if harness in entry["harnesses"] for s in entry["scenes"]}
+
+
 def judged_scenes(r, pack, not_judged):
-    """The scenes a run is judged on: its own list, or every scene of the pack but those no harness
-    renders faithfully yet (verdicts.json's not_judged says which and why)."""
+    """The scenes a run is judged on: its own list, or every scene of the pack but those its harness
+    does not render faithfully yet (not_judged_on)."""
     if r.get("scenes"):
         return r["scenes"]
     return [f.stem for f in sorted((pack / "scenes").glob("*.json")) if f.stem not in not_judged]
@@ -144,7 +151,7 @@ def main():
         t0 = time.monotonic()
         candidates, verdict_dir = work / "renders" / r["run"], work / "verdicts" / r["run"]
         render(r, exes, pack, candidates, work)
-        scenes = judged_scenes(r, pack, set(table.get("not_judged", {}).get("scenes", [])))
+        scenes = judged_scenes(r, pack, not_judged_on(table, r["harness"]))
         observed = judge(r, a.shadowref.resolve(), pack, candidates, verdict_dir, cache, scenes)
         diff = differences(r["verdicts"], observed)
         counts = {}

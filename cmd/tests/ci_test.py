@@ -322,7 +322,7 @@ def our_candidates(exe, work):
 
 def three_candidates(exe, work):
     """three.js r187 BasicShadowMap's own renders of the pack (engines/web), its recorded FAILs, and the scenes
-    verdicts.json does not judge on the engines (not_judged: the harness cannot give three.js what they need)."""
+    verdicts.json does not judge on three.js (not_judged: the harness cannot give three.js what they need)."""
     here = pathlib.Path(__file__).resolve().parents[2]
     verdicts = json.loads((here / "engines" / "verdicts.json").read_text())
     three = next(r for r in verdicts["runs"] if r["run"] == "three-basic")
@@ -331,7 +331,8 @@ def three_candidates(exe, work):
     run([exe, "export", "--out", pack, "--cache", work / "cache"], expect=0)
     run(["node", here / "engines" / "web" / "render.mjs", "--engine", "three", "--pack", pack, "--out", out,
          "--variant", "basic"], expect=0)
-    return out, ["--catalogue", pack / "scenes"], known, set(verdicts.get("not_judged", {}).get("scenes", []))
+    not_judged = {s for entry in verdicts.get("not_judged", []) if "three" in entry["harnesses"] for s in entry["scenes"]}
+    return out, ["--catalogue", pack / "scenes"], known, not_judged
 
 
 def main():

@@ -37,6 +37,11 @@ const VARIANTS = {
   // bias 100 times Babylon's default.
   'none-back-faces': { filter: 'none', technique: 'shadowmap', forceBackFacesOnly: true },
   'none-bias-0.005': { filter: 'none', technique: 'shadowmap', bias: 0.005 },
+  // none-bias-0.005-no-alpha-test: none-bias-0.005 with the alpha test taken out of Babylon's depth
+  // pass alone: useOpacityTextureForTransparentShadow makes the generator take the material's
+  // opacityTexture (none on a glTF material) in place of its alpha-test texture, so no ALPHATEXTURE
+  // reaches the shadowMap shader; the camera's pass keeps its own alpha test.
+  'none-bias-0.005-no-alpha-test': { filter: 'none', technique: 'shadowmap', bias: 0.005, depthAlphaTest: false },
   // Contact-hardening shadows (useContactHardeningShadow: Babylon's PCSS), judged as pcss where
   // Babylon can draw them for the scene's light: its PCSS needs a single-view light (on a cube it
   // falls back to Poisson PCF: ShadowGenerator's filter setter), so a rect light is the spot light at
@@ -149,6 +154,37 @@ class ShadowTerm extends MaterialPluginBase {
   }
 }
 
+// The same output for a material the glTF loader made (PBRMaterial, whose final colour is
+// `finalColor`): the harness's surface for an alpha-masked mesh is a clone of its loaded material,
+// so that Babylon's own alpha test runs before the output is replaced (pbrBlockAlbedoOpacity: alpha =
+// the albedo texture's alpha x COLOR_0's (VERTEXALPHA) x the factor's, discarded below
+// ALPHATESTVALUE, the glTF alphaCutoff), and Babylon's depth pass takes its alpha test from it as from
+// the loaded material (ShadowGenerator.isReady: needAlphaTestingForMesh, getAlphaTestTexture).
+class PbrShadowTerm extends MaterialPluginBase {
+  constructor(material) {
+    super(material, 'PbrShadowTerm', 1000, {}, true, true);
+  }
+  getClassName() { return 'PbrShadowTerm'; }
+  getCustomCode(shaderType) {
+    return shaderType === 'fragment' ? { CUSTOM_FRAGMENT_BEFORE_FRAGCOLOR: 'finalColor = vec4(shadow, shadow, shadow, 1.0);' } : null;
+  }
+}
+
+// The face pass drawn by one of Babylon's own materials (for the meshes whose vertices Babylon
+// transforms itself: skinned ones, by its bones, and masked ones, whose alpha test must run): the
+// vertex colour the face pass sets, in place of the final colour (`color` in StandardMaterial,
+// `finalColor` in PBRMaterial).
+class FaceColour extends MaterialPluginBase {
+  constructor(material, output) {
+    super(material, 'FaceColour', 1000, {}, true, true);
+    this.output = output;
+  }
+  getClassName() { return 'FaceColour'; }
+  getCustomCode(shaderType) {
+    return shaderType === 'fragment' ? { CUSTOM_FRAGMENT_BEFORE_FRAGCOLOR: `${this.output} = vec4(vColor.rgb, 1.0);` } : null;
+  }
+}
+
 // The face pass: each vertex's colour, nothing else.
 Effect.ShadersStore.shadowrefFacesVertexShader = `precision highp float;
 attribute vec3 position; attribute vec4 color; uniform mat4 worldViewProjection; varying vec4 vColor;
@@ -200,6 +236,34 @@ async function render(url, variantName) {
   // the caster's material draws: the shadow pass keeps that culling.
   const loadedCulling = meshes[0].material ? meshes[0].material.backFaceCulling : true;
   shadowMaterial.backFaceCulling = loadedCulling;
+  // Per mesh, the surfaces of the two passes and the loaded vertex colours (COLOR_0) the face pass's
+  // colours stand in for. An alpha-masked mesh (its loaded material needs alpha testing: glTF's MASK)
+  // draws clones of its loaded material, its culling as loaded (a doubleSided card's both faces, in
+  // the depth pass too). A skinned mesh draws the shadow-term StandardMaterial, which Babylon skins
+  // in the camera's pass and its depth pass alike (bonesVertex), and its face pass a StandardMaterial
+  // too, so that both passes place its vertices with the same skinning.
+  const surfaces = new Map(meshes.map((m) => {
+    const colours = m.isVerticesDataPresent(VertexBuffer.ColorKind) ? m.getVerticesData(VertexBuffer.ColorKind) : null;
+    if (m.material && m.material.needAlphaTestingForMesh(m)) {
+      const shadow = m.material.clone(`${m.material.name}-shadow-term`);
+      new PbrShadowTerm(shadow);
+      const face = m.material.clone(`${m.material.name}-faces`);
+      new FaceColour(face, 'finalColor');
+      face.backFaceCulling = false;
+      return [m, { shadow, face, colours, masked: true }];
+    }
+    if (m.skeleton) {
+      const face = new StandardMaterial(`${m.name}-faces`, scene);
+      new FaceColour(face, 'color');
+      face.backFaceCulling = false;
+      return [m, { shadow: shadowMaterial, face, colours }];
+    }
+    return [m, { shadow: shadowMaterial, face: faceMaterial, colours }];
+  }));
+  const maskedMeshes = meshes.filter((m) => surfaces.get(m).masked).map((m) => ({ mesh: m.name,
+    alphaCutOff: m.material.alphaCutOff, alphaTestTexture: Boolean(m.material.getAlphaTestTexture()), hasVertexAlpha: m.hasVertexAlpha,
+    backFaceCulling: m.material.backFaceCulling }));
+  const skinnedMeshes = meshes.filter((m) => m.skeleton).map((m) => ({ mesh: m.name, bones: m.skeleton.bones.length }));
 
   const loadedLights = lights.map((l) => scene.lights.find((b) => b.name === `light_${l.index}`));
   const masks = [];
@@ -245,10 +309,11 @@ async function render(url, variantName) {
     }
     if (v.bias !== undefined) generator.bias = v.bias;
     if (v.forceBackFacesOnly) generator.forceBackFacesOnly = true;
+    if (v.depthAlphaTest === false) generator.useOpacityTextureForTransparentShadow = true;
     for (const m of meshes) {
       generator.addShadowCaster(m, false);
       m.receiveShadows = true;
-      m.material = shadowMaterial;
+      m.material = surfaces.get(m).shadow;
     }
     const views = cascaded ? null : recordShadowViews(generator, light);
     const shadowPixels = new Uint8Array(await renderFrame(scene));
@@ -261,7 +326,12 @@ async function render(url, variantName) {
       ...(cascaded ? { cascade_splits: cascades.splits, cascade_blend: generator.cascadeBlendPercentage } : {}) });
 
     for (const m of meshes) {
-      const positions = new Float32Array(m.getVerticesData(VertexBuffer.PositionKind));
+      const { face, colours: loaded } = surfaces.get(m);
+      // The triangles as Babylon draws them: a skinned mesh posed by Babylon's own skinning on the
+      // CPU (getPositionData with the skeleton: the same bone matrices and weights as bonesVertex),
+      // then the mesh's world matrix.
+      if (m.skeleton) m.skeleton.prepare(true);
+      const positions = m.skeleton ? Float32Array.from(m.getPositionData(true, true)) : new Float32Array(m.getVerticesData(VertexBuffer.PositionKind));
       const world = m.getWorldMatrix();
       for (let i = 0; i < positions.length; i += 3) {
         const p = Vector3.TransformCoordinates(new Vector3(positions[i], positions[i + 1], positions[i + 2]), world);
@@ -269,17 +339,24 @@ async function render(url, variantName) {
       }
       const away = turnedAway(positions, cam.position, l.homogeneous);
       const colours = new Float32Array(away.length * 12);
-      away.forEach((a, f) => { for (let k = 0; k < 3; k++) colours.set([a ? 0 : 1, 1, 0, 1], 12 * f + 4 * k); });
+      // A masked mesh's vertex alpha (COLOR_0's) stays the alpha its own alpha test reads.
+      const alpha = (f, k) => (loaded && m.hasVertexAlpha ? loaded[4 * (3 * f + k) + 3] : 1);
+      away.forEach((a, f) => { for (let k = 0; k < 3; k++) colours.set([a ? 0 : 1, 1, 0, alpha(f, k)], 12 * f + 4 * k); });
       m.setVerticesData(VertexBuffer.ColorKind, colours, false, 4);
-      m.material = faceMaterial;
+      m.material = face;
     }
     const facePixels = new Uint8Array(await renderFrame(scene));
-    for (const m of meshes) m.removeVerticesData(VertexBuffer.ColorKind);
+    for (const m of meshes) {
+      const { colours } = surfaces.get(m);
+      if (colours) m.setVerticesData(VertexBuffer.ColorKind, colours, false, 4);
+      else m.removeVerticesData(VertexBuffer.ColorKind);
+    }
     const filterName = { [ShadowGenerator.FILTER_NONE]: 'none', [ShadowGenerator.FILTER_PCF]: 'pcf',
       [ShadowGenerator.FILTER_POISSONSAMPLING]: 'poisson', [ShadowGenerator.FILTER_PCSS]: 'pcss' }[generator.filter] ??
       String(generator.filter);
     declared.push({ light: l.index, fit, generator: cascaded ? 'CascadedShadowGenerator' : 'ShadowGenerator', filter: filterName,
       bias: generator.bias, normalBias: generator.normalBias, forceBackFacesOnly: generator.forceBackFacesOnly,
+      ...(v.depthAlphaTest === false ? { useOpacityTextureForTransparentShadow: true } : {}),
       ...(cascaded ? { numCascades: generator.numCascades, lambda: generator.lambda } : {}),
       ...(generator.filter === ShadowGenerator.FILTER_PCSS ? { contactHardeningLightSizeUVRatio: generator.contactHardeningLightSizeUVRatio } : {}),
       ...(spot ? { light: `SpotLight at the rect's centre, angle ${spot.angle.toFixed(4)} rad` } : {}) });
@@ -320,6 +397,8 @@ async function render(url, variantName) {
       'spot lights': 'the point light at the spot position (the mask is occlusion everywhere)',
       ...(v.rectAsSpot ? { 'rect lights': "Babylon's SpotLight at the rect's centre (its PCSS needs one view)" } : {}),
       'camera.maxZ': cam.far,
+      ...(maskedMeshes.length ? { 'alpha-masked meshes': maskedMeshes } : {}),
+      ...(skinnedMeshes.length ? { 'skinned meshes': skinnedMeshes } : {}),
     },
     lights: lightViews,
   };

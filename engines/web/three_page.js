@@ -23,6 +23,13 @@ const VARIANTS = {
   // pcf-recommended with the bias back at 0.
   'pcf-near-fitted': { type: THREE.PCFShadowMap, technique: 'shadowmap-pcf', nearFitted: true },
   'pcf-recommended-no-bias': { type: THREE.PCFShadowMap, technique: 'shadowmap-pcf', mapSize: 2048, bias: 0 },
+  // pcf-depth-no-alpha-test: pcf with the alpha test taken out of three.js's depth pass alone (the
+  // depth material WebGLShadowMap made for a masked mesh loses its `map` and `alphaTest` just before
+  // it draws, in the mesh's onBeforeShadow); the camera's passes keep theirs.
+  'pcf-depth-no-alpha-test': { type: THREE.PCFShadowMap, technique: 'shadowmap-pcf', depthAlphaTest: false },
+  // pcf-bind-pose: pcf with every skeleton put back in its bind pose (Skeleton.pose, three.js's own),
+  // the pack's pose ignored: the skinned scenes' verdicts are the pose's.
+  'pcf-bind-pose': { type: THREE.PCFShadowMap, technique: 'shadowmap-pcf', bindPose: true },
 };
 
 const TYPE_NAMES = { [THREE.BasicShadowMap]: 'BasicShadowMap', [THREE.PCFShadowMap]: 'PCFShadowMap', [THREE.VSMShadowMap]: 'VSMShadowMap' };
@@ -90,6 +97,68 @@ function engineLight(scene, loaded, l, bounds, meshes, v) {
   return { light, fit: `cube views' far plane ${light.shadow.camera.far.toPrecision(6)}, near ${light.shadow.camera.near.toPrecision(6)}` };
 }
 
+// An alpha-masked glTF material (alphaMode MASK): GLTFLoader gives it `alphaTest` = alphaCutoff, the
+// mask as `map` and COLOR_0 as vertex colours (`vertexColors`, with alpha when COLOR_0 has four
+// components). Its own alpha test is three.js's: map_fragment, color_fragment and alphatest_fragment
+// (`diffuseColor.a < alphaTest` discards). The harness's surfaces for such a mesh are clones of the
+// loaded material, so that the camera discards exactly the texels three.js discards, and three.js's
+// depth pass builds its depth material from them as from the loaded one (WebGLShadowMap's
+// getDepthMaterial copies `map`, `alphaMap` and `alphaTest`, nothing else).
+const isMasked = (material) => material.alphaTest > 0;
+
+// The loaded material's clone with its output replaced: `output` is GLSL that sets gl_FragColor,
+// in place of the material's own colour (opaque_fragment); everything before it — the alpha test
+// among it — is the material's. `pars` adds declarations ahead of main.
+function withOutput(loaded, output, pars = '') {
+  const material = loaded.clone();
+  material.onBeforeCompile = (shader) => {
+    shader.fragmentShader = shader.fragmentShader
+      .replace('#include <shadowmap_pars_fragment>', `#include <shadowmap_pars_fragment>\n${pars}`)
+      .replace('#include <opaque_fragment>', output);
+  };
+  // One program per patch: three.js keys a program by customProgramCacheKey, by default the text of
+  // onBeforeCompile, which is this one closure's for both patches; the key names the output instead.
+  material.customProgramCacheKey = () => `shadowref:${output}`;
+  return material;
+}
+
+// The shadow pass's surface for a masked mesh: ShadowMaterial's own output, alpha = 1 − the shadow
+// term (shadowmask_pars_fragment's getShadowMask, as ShadowMaterial computes it), after the loaded
+// material's alpha test.
+function maskedShadowMaterial(loaded, shadowSide) {
+  const material = withOutput(loaded, 'gl_FragColor = vec4( 0.0, 0.0, 0.0, 1.0 - getShadowMask() );',
+    '#include <shadowmask_pars_fragment>');
+  material.side = THREE.DoubleSide;
+  material.shadowSide = shadowSide;
+  material.blending = THREE.NoBlending;
+  return material;
+}
+
+// The face pass's surface for a masked mesh: the per-corner colour (coverage, facing), after the loaded
+// material's alpha test (the colour attribute keeps COLOR_0's alpha, the vertex alpha).
+function maskedFaceMaterial(loaded) {
+  const material = withOutput(loaded, 'gl_FragColor = vec4( vColor.rgb, 1.0 );');
+  material.vertexColors = true;
+  material.side = THREE.DoubleSide;
+  material.blending = THREE.NoBlending;
+  return material;
+}
+
+// A mesh's triangles as the engine draws them, in world space, 9 numbers per face. A SkinnedMesh is
+// posed by three.js's own skinning on the CPU (SkinnedMesh.getVertexPosition: applyBoneTransform with
+// the bones' world matrices, the same linear blend the vertex shader's skinning_vertex computes);
+// other meshes are the pack's world-space triangles as loaded.
+function drawnPositions(m) {
+  const p = m.geometry.attributes.position;
+  if (!m.isSkinnedMesh) return p.array;
+  const out = new Float32Array(p.count * 3), v = new THREE.Vector3();
+  for (let i = 0; i < p.count; i++) {
+    m.getVertexPosition(i, v).applyMatrix4(m.matrixWorld);
+    out.set([v.x, v.y, v.z], 3 * i);
+  }
+  return out;
+}
+
 // The view and projection matrices three.js draws a light's shadow map with, read as it draws:
 // WebGLShadowMap.render calls the shadow camera's updateMatrixWorld once per view it renders (a
 // directional or spot light's one, through LightShadow.updateMatrices; each of a point light's six
@@ -125,6 +194,10 @@ async function render(url, variantName) {
 
   const meshes = [];
   scene.traverse((o) => { if (o.isMesh) meshes.push(o); });
+  if (v.bindPose) {
+    for (const m of meshes) if (m.isSkinnedMesh) m.skeleton.pose();
+    scene.updateMatrixWorld(true);
+  }
   const bounds = new THREE.Box3();
   for (const m of meshes) bounds.expandByObject(m);
   // One vertex per face corner, with the face's normal: glTF asks a loader for flat normals when a
@@ -135,6 +208,13 @@ async function render(url, variantName) {
     m.geometry.computeVertexNormals();
     m.castShadow = true;
     m.receiveShadow = true;
+    if (v.depthAlphaTest === false) {
+      m.onBeforeShadow = (renderer, object, camera, shadowCamera, geometry, depthMaterial) => {
+        depthMaterial.map = null;
+        depthMaterial.alphaMap = null;
+        depthMaterial.alphaTest = 0;
+      };
+    }
   }
   // The shadow pass's surface: three.js's ShadowMaterial draws alpha = 1 − its shadow term and nothing
   // else. Two-sided, because the contract's surfaces are seen from both sides; its depth pass draws
@@ -144,6 +224,21 @@ async function render(url, variantName) {
   shadowMaterial.blending = THREE.NoBlending;
   shadowMaterial.shadowSide = shadowSide;
   const faceMaterial = new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide });
+  // Per mesh: the shadow pass's and the face pass's surfaces, and the loaded colour attribute (COLOR_0)
+  // the face pass's colours replace. A masked mesh draws clones of its own material (above); every
+  // other mesh ShadowMaterial and a plain vertex-colour material, which a SkinnedMesh skins like any
+  // of three.js's materials (skinning_vertex), in the camera's passes and in the depth pass alike.
+  const surfaces = new Map(meshes.map((m) => {
+    const loaded = m.material, color = m.geometry.attributes.color;
+    if (!isMasked(loaded)) return [m, { shadow: shadowMaterial, face: faceMaterial, color }];
+    return [m, { shadow: maskedShadowMaterial(loaded, v.shadowSide ?? defaultShadowSide(v.type, loaded.side)),
+      face: maskedFaceMaterial(loaded), color }];
+  }));
+  // What the candidate records of the masked and skinned meshes (settings, never judged).
+  const masked = meshes.filter((m) => surfaces.get(m).shadow !== shadowMaterial).map((m) => ({
+    mesh: m.name, alphaTest: m.material.alphaTest, map: m.material.map !== null, vertexAlpha: Boolean(m.geometry.attributes.color?.itemSize === 4),
+    shadowSide: SIDE_NAMES[surfaces.get(m).shadow.shadowSide] }));
+  const skinned = meshes.filter((m) => m.isSkinnedMesh).map((m) => ({ mesh: m.name, bones: m.skeleton.bones.length }));
 
   renderer.shadowMap.type = v.type;
   renderer.setSize(cam.width, cam.height, false);
@@ -169,7 +264,12 @@ async function render(url, variantName) {
     for (const other of loadedLights) if (other !== light) other.visible = false;
     light.visible = true;
 
-    for (const m of meshes) m.material = shadowMaterial;
+    for (const m of meshes) {
+      const { shadow, color } = surfaces.get(m);
+      if (color) m.geometry.setAttribute('color', color);
+      else m.geometry.deleteAttribute('color');
+      m.material = shadow;
+    }
     renderer.setRenderTarget(target);
     renderer.clear();
     const views = recordShadowViews(light.shadow.camera);
@@ -182,11 +282,18 @@ async function render(url, variantName) {
     renderer.readRenderTargetPixels(target, 0, 0, cam.width, cam.height, shadowPixels);
 
     for (const m of meshes) {
-      const away = turnedAway(m.geometry.attributes.position.array, cam.position, l.homogeneous);
-      const colours = new Float32Array(away.length * 9);
-      away.forEach((a, f) => { for (let k = 0; k < 3; k++) colours.set([a ? 0 : 1, 1, 0], 9 * f + 3 * k); });
-      m.geometry.setAttribute('color', new THREE.BufferAttribute(colours, 3));
-      m.material = faceMaterial;
+      const { face, color } = surfaces.get(m);
+      const away = turnedAway(drawnPositions(m), cam.position, l.homogeneous);
+      // A masked mesh's vertex alpha (COLOR_0's fourth component) stays beside the face colours: its
+      // alpha test reads it.
+      const alpha = face !== faceMaterial && color && color.itemSize === 4 ? color : null;
+      const n = alpha ? 4 : 3;
+      const colours = new Float32Array(away.length * 3 * n);
+      away.forEach((a, f) => {
+        for (let k = 0; k < 3; k++) colours.set(alpha ? [a ? 0 : 1, 1, 0, alpha.getW(3 * f + k)] : [a ? 0 : 1, 1, 0], n * (3 * f + k));
+      });
+      m.geometry.setAttribute('color', new THREE.BufferAttribute(colours, n));
+      m.material = face;
     }
     light.castShadow = false;
     renderer.clear();
@@ -225,13 +332,21 @@ async function render(url, variantName) {
       'shadow.normalBias': v.normalBias ?? 0,
       'shadow.radius': radius,
       'material.shadowSide': SIDE_NAMES[shadowSide],
+      ...(v.depthAlphaTest === false ? { 'depth pass alpha test': 'off (control)' } : {}),
+      ...(v.bindPose ? { skeletons: 'bind pose (control)' } : {}),
       'shadow cameras': fits,
       'spot lights': 'the point light at the spot position (the mask is occlusion everywhere)',
       'camera.far': cam.far,
+      ...(masked.length ? { 'alpha-masked meshes': masked } : {}),
+      ...(skinned.length ? { 'skinned meshes': skinned } : {}),
     },
     lights: declared,
   };
-  for (const m of meshes) m.geometry.dispose();
+  for (const m of meshes) {
+    m.geometry.dispose();
+    const { shadow, face } = surfaces.get(m);
+    if (shadow !== shadowMaterial) [shadow, face].forEach((x) => x.dispose());
+  }
   target.dispose();
   return { width: cam.width, height: cam.height, masks, candidate };
 }
