@@ -230,7 +230,7 @@ struct TexelRay {
   double t_exit;
   Vec3<double> ng_exit;
   // Where the exit is an open mesh's face toward the light: what a pass that culls it too stores
-  // instead. 0 none (or beyond 8 faces); 1 at (t_behind, ng_behind); 2 nothing (lit).
+  // instead. -1 not traced yet; 0 none (or beyond 8 faces); 1 at (t_behind, ng_behind); 2 nothing (lit).
   int behind;
   double t_behind;
   Vec3<double> ng_behind;
@@ -340,48 +340,62 @@ bool CauseModel::texel_gives(const Lookup& k, Probes& probes, double dx, double 
   const RTCRayHit& first = ray.first;
   if (answer(stored(static_cast<double>(first.ray.tfar), Vec3<double>(first.hit.Ng_x, first.hit.Ng_y, first.hit.Ng_z))))
     return true;
+  RTCIntersectContext c;
+  rtcInitIntersectContext(&c);
+  // The next face along the ray beyond t (geomID invalid: none before the ray's end).
+  const auto next_after = [&](double t) {
+    RTCRayHit next{};
+    next.ray = first.ray;
+    next.ray.tnear = static_cast<float>(t + eps);
+    next.ray.tfar = static_cast<float>(ray.length);
+    next.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(embree_->handle(), &c, &next);
+    return next;
+  };
   if (ray.exit < 0) {
-    // Walk on to the first face the ray leaves through (normal along the ray) or the first open
-    // mesh; where that was an open mesh's front face, on to the first face it leaves through.
-    RTCIntersectContext c;
-    rtcInitIntersectContext(&c);
+    // Walk on to the first face the ray leaves through (normal along the ray) or the first open mesh.
     RTCRayHit r = first;
     double t = static_cast<double>(r.ray.tfar);
     ray.exit = 0;
     ray.behind = 0;
-    bool open_front_skipped = false;
     for (int step = 0; step < 8; ++step) {
       const Vec3<double> ng(r.hit.Ng_x, r.hit.Ng_y, r.hit.Ng_z);
       const bool leaves = ng.dot(ray.dir) > 0;
-      if (!open_front_skipped && (leaves || !scene_.casters[r.hit.geomID].closed)) {
+      if (leaves || !scene_.casters[r.hit.geomID].closed) {
         ray.exit = 1;
         ray.t_exit = t;
         ray.ng_exit = ng;
-        if (leaves) break;
-        open_front_skipped = true;
-      } else if (open_front_skipped && leaves) {
-        ray.behind = 1;
-        ray.t_behind = t;
-        ray.ng_behind = ng;
+        ray.behind = leaves ? 0 : -1;  // an open mesh's front face: what lies behind it, traced on demand
         break;
       }
-      RTCRayHit next{};
-      next.ray = r.ray;
-      next.ray.tnear = static_cast<float>(t + eps);
-      next.ray.tfar = static_cast<float>(ray.length);
-      next.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rtcIntersect1(embree_->handle(), &c, &next);
-      if (next.hit.geomID == RTC_INVALID_GEOMETRY_ID) {  // nothing drawn behind the culled faces
-        if (open_front_skipped) ray.behind = 2;
-        break;
-      }
-      r = next;
+      r = next_after(t);
+      if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;  // nothing drawn behind the culled front faces
       t = static_cast<double>(r.ray.tfar);
     }
   }
   if (ray.exit == 1 && answer(stored(ray.t_exit, ray.ng_exit))) return true;
   if (ray.behind == 0 || !open_meshes_clear(k, probes)) return false;
-  return ray.behind == 2 ? candidate_lit : answer(stored(ray.t_behind, ray.ng_behind));
+  if (ray.behind < 0) {
+    // Behind the open mesh's culled face: on to the first face the ray leaves through, or nothing.
+    ray.behind = 0;
+    double t = ray.t_exit;
+    for (int step = 0; step < 8; ++step) {
+      const RTCRayHit r = next_after(t);
+      if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+        ray.behind = 2;
+        break;
+      }
+      t = static_cast<double>(r.ray.tfar);
+      const Vec3<double> ng(r.hit.Ng_x, r.hit.Ng_y, r.hit.Ng_z);
+      if (ng.dot(ray.dir) > 0) {
+        ray.behind = 1;
+        ray.t_behind = t;
+        ray.ng_behind = ng;
+        break;
+      }
+    }
+  }
+  return ray.behind == 2 ? candidate_lit : ray.behind == 1 && answer(stored(ray.t_behind, ray.ng_behind));
 }
 
 bool CauseModel::open_meshes_clear(const Lookup& k, Probes& probes) const {
