@@ -176,9 +176,11 @@ int run_conform_command(const ConformArgs& a) {
   const auto log = [&](const std::string& line) {
     if (!a.quiet) std::cerr << "shadowref conform: " << line << "\n";
   };
+  // A step that has run for minutes is reported even with --quiet: it is a stall or a large scene.
+  const auto stalled = [](const std::string& line) { std::cerr << "shadowref conform: " << line << "\n" << std::flush; };
   conform::ConformResult r;
   try {
-    r = conform::run_conform(o, progress, log);
+    r = conform::run_conform(o, progress, log, stalled);
   } catch (const scene::SceneError& e) {
     throw BadInput(e.what());
   } catch (const std::invalid_argument& e) {
@@ -247,7 +249,7 @@ void register_conform_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--spp", args->spp, "reference samples per pixel (a square number)")->capture_default_str();
   cmd->add_flag("--references-only", args->references_only, "compute the references into the cache and stop");
-  cmd->add_flag("--quiet", args->quiet, "no progress lines");
+  cmd->add_flag("--quiet", args->quiet, "no progress lines (a step still running after two minutes is reported all the same)");
   add_expectations_option(*cmd, args->expectations);
   add_shard_options(*cmd, args->shard);
   cmd->footer(

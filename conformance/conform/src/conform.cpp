@@ -17,6 +17,7 @@
 
 #include "linked_inputs.hpp"
 #include "report_writer.hpp"
+#include "stall_watch.hpp"
 #include "shadowref/renderer/renderer.hpp"
 #include "shadowref/convention.hpp"
 #include "shadowref/scene/identifier.hpp"
@@ -51,10 +52,11 @@ std::filesystem::path candidate_folder(const std::filesystem::path& dir, const s
 // Everything a run holds between its phases. The scenes do not move once prepared (the prepared
 // scenes point at them).
 struct Run {
-  Run(const ConformOptions& options, const Log& l, ConformResult& r) : o(options), log(l), result(r) {}
+  Run(const ConformOptions& options, const Log& l, ConformResult& r, StallWatch& w) : o(options), log(l), result(r), watch(w) {}
   const ConformOptions& o;
   const Log& log;
   ConformResult& result;
+  StallWatch& watch;
   std::vector<scene::Scene> scenes;
   std::vector<scene::PreparedScene> prepared;
   std::vector<std::filesystem::path> reference_dirs;
@@ -176,6 +178,7 @@ void compute_references(Run& run) {
   const auto start = Clock::now();
   for (const scene::PreparedScene& p : run.prepared) {
     outputs::throw_if_interrupted();
+    run.watch.step("on the reference of " + p.scene->name);
     const CachedReference r = ensure_reference(p, run.cache, settings);
     if (!r.recomputed_because.empty())
       run.say("reference " + p.scene->name + ": the cached entry failed verification (" + r.recomputed_because + "): recomputed");
@@ -193,6 +196,7 @@ void open_renderer(Run& run) {
   if (run.o.candidate_dir) return;
   // llvmpipe's rasteriser threads; an explicit LP_NUM_THREADS in the environment wins.
   if (!std::getenv("LP_NUM_THREADS")) ::setenv("LP_NUM_THREADS", std::to_string(run.threads).c_str(), 1);
+  run.watch.step("opening the OpenGL context");
   run.our_renderer = std::make_unique<renderer::Renderer>(run.o.gl_api, run.o.backend);
   ConformResult& r = run.result;
   r.gl_vendor = run.our_renderer->info().vendor;
@@ -216,15 +220,18 @@ CaseResult run_case(Run& run, std::size_t si, const std::string& technique) {
   const ExtraTechnique* extra = found == o.extra_techniques.end() ? nullptr : &*found;
   const std::string judged_as = extra ? extra->judged_as : technique;
   if (const auto e = s.expect.find(judged_as); e != s.expect.end()) c.expected = e->second;
+  const std::string name = s.name + " x " + technique;
   try {
     if (run.our_renderer) {
       c.candidate_dir = std::filesystem::absolute(o.out / "renders" / s.name / technique);
       renderer::RenderOptions render_options = o.render_options;
       if (extra) render_options.faults = extra->faults;
       auto t = Clock::now();
+      run.watch.step("drawing " + name);
       const renderer::RenderResult r = run.our_renderer->render(run.prepared[si], extra ? extra->renders : technique, render_options);
       phases.render += since(t);
       t = Clock::now();
+      run.watch.step("writing " + name);
       renderer::write_outputs(r, run.our_renderer->info(), s, c.candidate_dir);
       phases.write += since(t);
       c.notes = r.notes;
@@ -235,6 +242,7 @@ CaseResult run_case(Run& run, std::size_t si, const std::string& technique) {
     auto t = Clock::now();
     CaseToJudge what{c.reference_dir, c.candidate_dir, judged_as, run.our_renderer != nullptr,
                      std::filesystem::absolute(o.out / "models" / s.name / judged_as)};
+    run.watch.step("judging " + name);
     c.judgement = run.judge.judge(&run.prepared[si], what);
     phases.judge += since(t);
     c.status = c.judgement->status;
@@ -244,6 +252,7 @@ CaseResult run_case(Run& run, std::size_t si, const std::string& technique) {
       for (const LinkedInput& l : inputs_outside(*o.candidate_dir, read)) c.read_through_links.emplace_back(l.file, l.resolves_to);
     }
     t = Clock::now();
+    run.watch.step("writing the error images of " + name);
     const std::filesystem::path error_dir = run.our_renderer ? c.candidate_dir : std::filesystem::absolute(o.out / "errors" / s.name / technique);
     c.error_images = compare::write_error_images(*c.comparison(), error_dir);
     // Keep where an engine's error images went, for the report.
@@ -321,13 +330,15 @@ void run_cases(Run& run, const Progress& progress) {
 
 }  // namespace
 
-ConformResult run_conform(const ConformOptions& o, const Progress& progress, const Log& log) {
+ConformResult run_conform(const ConformOptions& o, const Progress& progress, const Log& log, const Log& stalled) {
   const auto start = Clock::now();
   ConformResult result;
   result.techniques = plan_techniques(o);
   check_sizes(o);
   result.convention = std::string(o.convention->name);
-  Run run(o, log, result);
+  StallWatch watch(stalled, std::chrono::seconds(120));
+  watch.step("loading and preparing the scenes");
+  Run run(o, log, result, watch);
   run.threads = thread_count(o.jobs);
   plan_scenes(run);
   prepare(run);
@@ -339,6 +350,7 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
   }
   result.seconds = since(start);
   if (o.write_report && !o.references_only) {
+    watch.step("writing the reports");
     result.report_json = std::filesystem::absolute(o.out / "report.json");
     result.report_html = std::filesystem::absolute(o.out / "report" / "index.html");
     write_reports(result, o, run.cache);

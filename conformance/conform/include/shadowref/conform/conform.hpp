@@ -144,8 +144,11 @@ using Log = std::function<void(const std::string&)>;
 
 // Runs everything. Throws std::invalid_argument for bad options (unknown technique, backend),
 // scene::SceneError for a broken scene file, renderer::GlError when no context can be created;
-// a failure inside one case is that case's ERROR, not an exception.
-ConformResult run_conform(const ConformOptions& options, const Progress& progress = {}, const Log& log = {});
+// a failure inside one case is that case's ERROR, not an exception. `stalled` hears, from a thread of
+// its own, "still <step> after <n> s" every two minutes that one step (a reference, a case's drawing
+// or judging) lasts: far beyond any step of the default run, so a hung run says where it stands.
+ConformResult run_conform(const ConformOptions& options, const Progress& progress = {}, const Log& log = {},
+                          const Log& stalled = {});
 
 // The scene × technique table as text (one row per scene, one column per technique); with
 // expectations files, each cell that is not green says what it is against them ("FAIL known",
