@@ -84,7 +84,7 @@ enum class SkinDraw {
 
 // A skinned object's GPU data (GpuMesh::add_skin): per flat vertex, the CPU-posed position, the four
 // joint indices (as floats) and weights; the joint matrices at the pose and in the bind pose; and the
-// renderer's rigid block (u_skinned = 0), bound back after each skinned draw.
+// renderer's rigid block (u_skinned false), bound back after each skinned draw.
 struct GpuSkinData {
   std::span<const Vec4<float>> posed_vertices;
   std::span<const Vec4<float>> joints;
@@ -94,7 +94,7 @@ struct GpuSkinData {
   GLuint rigid_block = 0;
 };
 
-// The `Skin` block's contents (std140: kSceneVertexJoints mat4, then the int u_skinned), as bytes.
+// The `Skin` block's contents (std140: kSceneVertexJoints mat4, then the bool u_skinned, 4 bytes: 0 or 1), as bytes.
 std::vector<unsigned char> skin_block_bytes(std::span<const Mat4<float>> joints, bool skinned);
 
 // Homogeneous vertices (vec4) and optional 32-bit triangle indices on the GPU.

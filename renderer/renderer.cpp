@@ -540,7 +540,7 @@ struct Renderer::Impl {
   std::unique_ptr<Programs> programs;    // destroyed in ~Impl, while it has the context current
   GlInfo info;
   std::unique_ptr<MapStoragePool> maps;  // the same
-  GLuint rigid_skin_block = 0;           // the Skin block of every rigid draw (u_skinned = 0)
+  GLuint rigid_skin_block = 0;           // the Skin block of every rigid draw (u_skinned false)
 
   Impl(GlApi api, Driver driver) : context(create_gl_context(api, driver)), gl(*context) {
     maps = std::make_unique<MapStoragePool>(gl);

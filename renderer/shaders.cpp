@@ -23,11 +23,12 @@ layout(location = 2) in vec4 a_alpha_test; // a masked object's u, v, threshold,
                                            // GL's default (0, 0, 0, 1) elsewhere: threshold 0, no test
 layout(location = 3) in vec4 a_joints;     // a skinned object's four joint indices (GpuMesh)
 layout(location = 4) in vec4 a_weights;    // and their weights
-// The skinned object's joints at the pose, world_from_bind (scene/skin.hpp); u_skinned = 0 for every
-// other draw (the renderer's rigid block, bound between skinned draws): a_position as it is.
+// The skinned object's joints at the pose, world_from_bind (scene/skin.hpp); u_skinned false for
+// every other draw (the renderer's rigid block, bound between skinned draws): a_position as it is.
+// A std140 bool is 4 bytes, as an int: the block's bytes hold 0 or 1 there (frame.hpp).
 layout(std140) uniform Skin {
   mat4 u_joint_matrices[128];
-  int u_skinned;
+  bool u_skinned;
 };
 uniform mat4 u_clip_from_world;            // P · V (· S for planar shadows)
 uniform mat4 u_shadow_from_world;          // B · P_light · V_light (shadow maps), else anything
@@ -40,7 +41,7 @@ flat out float v_alpha_threshold;
 invariant gl_Position;
 // glTF's linear blend skinning (glTF 2.0 §3.7.3): Σ weight_k · jointMatrix_k · p_bind, in world space.
 vec4 posed_position() {
-  if (u_skinned == 0) return a_position;
+  if (!u_skinned) return a_position;
   return a_weights.x * (u_joint_matrices[int(a_joints.x)] * a_position) +
          a_weights.y * (u_joint_matrices[int(a_joints.y)] * a_position) +
          a_weights.z * (u_joint_matrices[int(a_joints.z)] * a_position) +

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -484,6 +485,35 @@ TEST(Programs, OnlyTheAlphaTestedBuildsCanDiscard) {
   for (const auto& [name, fragment] : fragments) {
     EXPECT_EQ(joined(shaders::with_alpha_test(fragment, false)).find("discard"), std::string::npos) << name;
     EXPECT_NE(joined(shaders::with_alpha_test(fragment, true)).find("discard"), std::string::npos) << name;
+  }
+}
+
+// A mode is a lookup's own code or a bool, never an integer a branch compares with a literal (a
+// number whose meaning lives in the C++ that sets it): every program's source, both builds.
+TEST(Programs, NoBranchComparesAnIntegerWithALiteral) {
+  std::vector<std::pair<std::string, std::string>> sources = {{"scene vertex", shaders::kSceneVertex}};
+  std::vector<std::pair<std::string, std::vector<std::string>>> fragments = {
+      {"flat", {shaders::kFlatFragment}},
+      {"moments", {shaders::kMomentsFragment}},
+      {"distance", {shaders::kDistanceFragment}},
+      {"packed depth", {shaders::kDepthPacking, shaders::kPackedDepthFragmentBody}},
+      {"surface", shaders::surface_fragment(nullptr)},
+  };
+  for (const outputs::TechniqueName& t : outputs::kTechniques)
+    if (const MapTechnique* m = find_map_technique(t.name))
+      fragments.emplace_back("surface (" + std::string(t.name) + ")", shaders::surface_fragment(&m->lookup));
+  for (const auto& [name, fragment] : fragments)
+    for (const bool tested : {false, true}) {
+      std::string all;
+      for (const std::string& s : shaders::with_alpha_test(fragment, tested)) all += s;
+      sources.emplace_back(name + (tested ? " (alpha-tested)" : ""), all);
+    }
+  // `if (` then, before its closing parenthesis, `==` or `!=` and an integer literal (a float such
+  // as 0.0 is a value, not a mode).
+  const std::regex branch(R"(\bif\s*\([^)]*[=!]=\s*-?[0-9]+[uU]?\s*\))");
+  for (const auto& [name, source] : sources) {
+    std::smatch m;
+    EXPECT_FALSE(std::regex_search(source, m, branch)) << name << ": " << m.str();
   }
 }
 
