@@ -177,7 +177,10 @@ int run_conform_command(const ConformArgs& a) {
     if (!a.quiet) std::cerr << "shadowref conform: " << line << "\n";
   };
   // A step that has run for minutes is reported even with --quiet: it is a stall or a large scene.
-  const auto stalled = [](const std::string& line) { std::cerr << "shadowref conform: " << line << "\n" << std::flush; };
+  // On a terminal it takes the place of the unfinished progress line rather than running on after it.
+  const auto stalled = [tty](const std::string& line) {
+    std::cerr << (tty ? "\r\033[K" : "") << "shadowref conform: " << line << "\n" << std::flush;
+  };
   conform::ConformResult r;
   try {
     r = conform::run_conform(o, progress, log, stalled);
