@@ -121,6 +121,33 @@ std::string gltf_triangle(const std::string& uri, int diamond = 0, const std::st
          {"POSITION": 0}}]}], "nodes": [)" + nodes + R"(], "scenes": [{"nodes": [0]}]})";
 }
 
+// A glTF scene (a camera, a KHR_lights_punctual point light, one triangle) whose primitive is
+// compressed by `required` as an exporter writes one, named in extensionsRequired: an extension the
+// suite does not read. As a .glb with `binary` (the JSON chunk alone, its buffer a data URI).
+std::string gltf_scene_requiring(const std::string& required, bool binary = false) {
+  std::string json = R"({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_lights_punctual", ")" + required +
+                     R"("], "extensionsRequired": [")" + required + R"("], "extensions": {"KHR_lights_punctual": {"lights":
+      [{"type": "point"}]}}, "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}}],
+      "buffers": [{"uri": ")" + std::string(kTriangleDataUri) + R"(", "byteLength": 36}], "bufferViews": [{"buffer": 0,
+      "byteLength": 36}], "accessors": [{"componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0],
+      "max": [1, 1, 0]}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "extensions": {")" + required +
+                     R"(": {"bufferView": 0, "attributes": {"POSITION": 0}}}}]}], "nodes": [{"camera": 0, "translation": [0, 0, 5]},
+      {"translation": [0, 3, 3], "extensions": {"KHR_lights_punctual": {"light": 0}}}, {"mesh": 0}],
+      "scenes": [{"nodes": [0, 1, 2]}]})";
+  if (!binary) return json;
+  json.append((4 - json.size() % 4) % 4, ' ');
+  std::string glb;
+  const auto le32 = [&](std::uint32_t v) {
+    for (int s = 0; s < 32; s += 8) glb.push_back(static_cast<char>((v >> s) & 0xff));
+  };
+  glb += "glTF";
+  le32(2);
+  le32(static_cast<std::uint32_t>(12 + 8 + json.size()));
+  le32(static_cast<std::uint32_t>(json.size()));
+  glb += "JSON" + json;
+  return glb;
+}
+
 // A PNG header (signature + IHDR with a correct CRC) claiming w × h 8-bit grey, and no pixel data.
 std::string png_header_only(std::uint32_t w, std::uint32_t h) {
   std::string ihdr = "IHDR";
@@ -401,6 +428,20 @@ std::vector<Case> make_cases() {
   cases.push_back({"spp_not_square_conform", good_catalogue, with(conform, {"--spp", "3"}), 4, "--spp"});
   cases.push_back({"missing_candidate_dir_conform", good_catalogue, with(conform, {"--candidate-dir", "@/nowhere"}), 4,
                    "@/nowhere"});
+  // An engine team's level compressed by its exporter (Draco, meshopt): a feature the suite does not read
+  // is one line naming it, as a scene (.gltf, .glb) and as a JSON scene's mesh file.
+  cases.push_back({"draco_required_gltf_scene_conform",
+                   [](const fs::path& dir) { write_text(dir / "level.gltf", gltf_scene_requiring("KHR_draco_mesh_compression")); },
+                   {"conform", "--scenes", "@/level.gltf", "--out", "@/out", "--quiet"}, 4, "KHR_draco_mesh_compression"});
+  cases.push_back({"meshopt_required_glb_scene_reference",
+                   [](const fs::path& dir) { write_text(dir / "level.glb", gltf_scene_requiring("EXT_meshopt_compression", true)); },
+                   {"reference", "--scene", "@/level.glb", "--out", "@/out"}, 4, "EXT_meshopt_compression"});
+  cases.push_back({"draco_required_mesh_file_conform",
+                   [](const fs::path& dir) {
+                     write_text(dir / "cat" / "draco.gltf", gltf_scene_requiring("KHR_draco_mesh_compression"));
+                     write_text(dir / "cat" / "scene.json", good_scene("objects", mesh_object("draco.gltf")));
+                   },
+                   conform, 4, "KHR_draco_mesh_compression"});
 
   // conform, compare, merge: an engine team's expectations files and shards (docs/ci.md).
   const auto expectations = [good](const std::string& text) {

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs every Debian 12 package shadowref needs to build, test and benchmark, then the web
-# harnesses' npm packages (engines/web/package-lock.json, from the npm registry, with `npm ci`).
+# harnesses' and gltf-transform's npm packages (their package-lock.json, from the npm registry, with `npm ci`).
 # Idempotent: when everything is present it prints nothing and exits 0.
 # Works as root or, for other users, through sudo.
 set -euo pipefail
@@ -23,15 +23,22 @@ packages=(
 command -v node >/dev/null 2>&1 || packages+=(nodejs)
 command -v npm >/dev/null 2>&1 || packages+=(npm)
 
-# The web harnesses' packages, exactly as the lockfile pins them; skipped when node_modules was
+# The npm packages, exactly as each lockfile pins them: the web harnesses' (engines/web) and
+# gltf-transform, the glTF tool other than ours that pack/tests/gltf_transform_test.py rewrites the
+# pack's scene.gltf with (pack/tests/gltf_transform). A folder is skipped when its node_modules was
 # installed from this very lockfile (the stamp is its copy). --ignore-scripts: no package runs code
-# at install time (puppeteer-core downloads no browser; the harness uses Debian's chromium).
+# at install time (puppeteer-core downloads no browser; the harness uses Debian's chromium; sharp,
+# which gltf-transform's texture commands load, comes as its prebuilt @img packages).
+npm_folder() {
+  local dir="$1"
+  if cmp -s "$dir/package-lock.json" "$dir/node_modules/.shadowref-lock.json" 2>/dev/null; then return 0; fi
+  echo "setup: npm ci in ${dir#"$root"/}" >&2
+  (cd "$dir" && npm ci --ignore-scripts --no-audit --no-fund --loglevel=error >/dev/null)
+  cp "$dir/package-lock.json" "$dir/node_modules/.shadowref-lock.json"
+}
 web_packages() {
-  local web="$root/engines/web"
-  if cmp -s "$web/package-lock.json" "$web/node_modules/.shadowref-lock.json" 2>/dev/null; then return 0; fi
-  echo "setup: npm ci in engines/web" >&2
-  (cd "$web" && npm ci --ignore-scripts --no-audit --no-fund --loglevel=error >/dev/null)
-  cp "$web/package-lock.json" "$web/node_modules/.shadowref-lock.json"
+  npm_folder "$root/engines/web"
+  npm_folder "$root/pack/tests/gltf_transform"
 }
 
 missing=()
