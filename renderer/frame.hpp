@@ -42,8 +42,9 @@ struct Program {
 };
 
 // The depth passes' fragment shaders (shaders.hpp): a constant colour (depth pre-pass, stencil
-// passes, planar black, a depth map), an RGBA8-packed depth, vsm's moments, a distance cube's distance.
-enum class DepthProgram { Flat, PackedDepth, Moments, Distance };
+// passes, planar black, a depth map), an RGBA8-packed depth, vsm's moments, a distance cube's
+// distance, and a float depth map's offset depth by hand (alone, or with vsm's moments).
+enum class DepthProgram { Flat, PackedDepth, Moments, Distance, OffsetDepth, MomentsOffsetDepth };
 
 // The renderer's programs (programs.cpp), each in two builds: without the alpha test (no discard:
 // the build every unmasked object draws with, keeping the rasteriser's early depth test) and with it

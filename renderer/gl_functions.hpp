@@ -22,6 +22,7 @@ namespace shadowref::renderer {
   X(PFNGLISENABLEDPROC, IsEnabled)                                        \
   X(PFNGLGETUNIFORMFVPROC, GetUniformfv)                                  \
   X(PFNGLGETTEXLEVELPARAMETERIVPROC, GetTexLevelParameteriv)              \
+  X(PFNGLGETFRAMEBUFFERATTACHMENTPARAMETERIVPROC, GetFramebufferAttachmentParameteriv) \
   X(PFNGLENABLEPROC, Enable)                                              \
   X(PFNGLDISABLEPROC, Disable)                                            \
   X(PFNGLVIEWPORTPROC, Viewport)                                          \

@@ -75,6 +75,8 @@ std::vector<std::string> depth_fragment(DepthProgram pass) {
     case DepthProgram::PackedDepth: return {shaders::kVersion, shaders::kDepthPacking, shaders::kPackedDepthFragmentBody};
     case DepthProgram::Moments: return {shaders::kVersion, shaders::kMomentsFragment};
     case DepthProgram::Distance: return {shaders::kVersion, shaders::kDistanceFragment};
+    case DepthProgram::OffsetDepth: return {shaders::kVersion, shaders::kOffsetDepthFragment};
+    case DepthProgram::MomentsOffsetDepth: return {shaders::kVersion, shaders::kDepthByHand, shaders::kMomentsFragment};
   }
   throw GlError("unknown depth program");
 }
@@ -85,6 +87,8 @@ const char* depth_name(DepthProgram pass) {
     case DepthProgram::PackedDepth: return "packed depth";
     case DepthProgram::Moments: return "moments";
     case DepthProgram::Distance: return "distance";
+    case DepthProgram::OffsetDepth: return "offset depth";
+    case DepthProgram::MomentsOffsetDepth: return "moments and offset depth";
   }
   return "?";
 }
@@ -92,7 +96,8 @@ const char* depth_name(DepthProgram pass) {
 }  // namespace
 
 Programs::Programs(const GlFunctions& gl) : gl_(gl) {
-  for (const DepthProgram pass : {DepthProgram::Flat, DepthProgram::PackedDepth, DepthProgram::Moments, DepthProgram::Distance})
+  for (const DepthProgram pass : {DepthProgram::Flat, DepthProgram::PackedDepth, DepthProgram::Moments, DepthProgram::Distance,
+                                 DepthProgram::OffsetDepth, DepthProgram::MomentsOffsetDepth})
     depth(pass);
   surface();
 }

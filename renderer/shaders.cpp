@@ -71,21 +71,44 @@ void main() {
 )glsl";
 
 // vsm's light pass (Donnelly & Lauritzen 2006): the first two moments of the fragment's depth plus
-// an offset done by hand as in the packed-depth pass (shadow_maps/vsm.cpp: only its constant part),
-// as view depth along the light's axis: linear, so that averaging moments means something, and
-// without the window depth's coarse float steps near 1.
+// the offset's constant done by hand as in the packed-depth pass (shadow_maps/vsm.cpp), as view
+// depth along the light's axis: linear, so that averaging moments means something, and without the
+// window depth's coarse float steps near 1. Built with SHADOWREF_DEPTH_BY_HAND (a float depth map),
+// it also writes the map's depth with the whole offset by hand, as kOffsetDepthFragment.
 const char* const kMomentsFragment = R"glsl(
 uniform vec2 u_layer_inv_view_depth;  // 1 / view depth = x * window depth + y
-uniform float u_offset_factor;        // glPolygonOffset's, with the convention's sign
-uniform float u_offset_units;
+uniform float u_offset_factor;        // glPolygonOffset's, with the convention's sign: the depth's only
+uniform float u_offset_units;         // the depth's and the moments'
 out vec4 o_moments;
 void main() {
   alpha_test();
   float z = gl_FragCoord.z;
+#ifdef SHADOWREF_DEPTH_BY_HAND
   float m = max(abs(dFdx(z)), abs(dFdy(z)));
-  z += u_offset_factor * m + u_offset_units / 16777215.0;
+  gl_FragDepth = clamp(z + u_offset_factor * m + u_offset_units / 16777216.0, 0.0, 1.0);
+#endif
+  z += u_offset_units / 16777215.0;
   float w = 1.0 / (u_layer_inv_view_depth.x * z + u_layer_inv_view_depth.y);
   o_moments = vec4(w, w * w, 0.0, 1.0);
+}
+)glsl";
+
+// A float depth map's pass (reversed-Z's GL_DEPTH_COMPONENT32F): glPolygonOffset's unit on a float
+// depth buffer is a step relative to the depth (the GL specification: 2^(e - 23), e the exponent of
+// the primitive's largest depth), not the 24-bit step the lookups declare (lookup.hpp), and under
+// reversed-Z depth falls toward 0 away from the light. Measured on level_cut's walls behind the
+// arcade, 2.5 m from the lantern (window depth about 0.27), front faces stored: GL's 8 units left
+// 256 px of self-shadowing where 4 steps of 2^-24 by hand leave 2 and 6 or 8 none, as in the 24-bit
+// conventions. So the whole offset is written by hand, glPolygonOffset's model with the 24-bit step:
+// factor * m + units * 2^-24, m the depth's largest change per texel.
+const char* const kOffsetDepthFragment = R"glsl(
+uniform float u_offset_factor;  // glPolygonOffset's, with the convention's sign
+uniform float u_offset_units;
+void main() {
+  alpha_test();
+  float z = gl_FragCoord.z;
+  float m = max(abs(dFdx(z)), abs(dFdy(z)));
+  gl_FragDepth = clamp(z + u_offset_factor * m + u_offset_units / 16777216.0, 0.0, 1.0);
 }
 )glsl";
 
@@ -131,6 +154,7 @@ uint unpack_depth_rgba8(vec4 texel) {
 )glsl";
 
 const char* const kVersion = "#version 330 core\n";
+const char* const kDepthByHand = "#define SHADOWREF_DEPTH_BY_HAND\n";
 
 const char* const kPackedDepthFragmentBody = R"glsl(
 // glPolygonOffset done by hand (RGBA8 has no depth to offset): o = factor * m + units * r, with

@@ -25,8 +25,14 @@ extern const char* const kFlatFragment;
 extern const char* const kVersion;
 // quantize_depth, pack_depth_rgba8, unpack_depth_rgba8: mirror of mathlib/depth_packing.hpp.
 extern const char* const kDepthPacking;
-// vsm's light pass: the fragment's depth along the light's view axis and its square (RG32F).
+// vsm's light pass: the fragment's depth along the light's view axis and its square (RG32F); with
+// kDepthByHand before it, the map's depth too, offset by hand.
 extern const char* const kMomentsFragment;
+// A float depth map's light pass: gl_FragDepth = the window depth plus glPolygonOffset's model done
+// by hand with the 24-bit step the lookups declare (GL's own unit is relative on a float buffer).
+extern const char* const kOffsetDepthFragment;
+// The line that makes kMomentsFragment write the offset depth by hand.
+extern const char* const kDepthByHand;
 // A distance cube's light pass (RenderOptions::cube_depth): gl_FragDepth = the distance from the
 // light over its range, plus glPolygonOffset's model done by hand.
 extern const char* const kDistanceFragment;

@@ -20,8 +20,9 @@
 // by hand), compared with the looked-up point's own distance, in every convention alike.
 // Conventions (mathlib's convention.hpp): the light's projection is in the run convention, like the
 // camera's; the map is 24-bit (32-bit float under reversed-Z), cleared to the far depth, drawn with
-// the "nearer" depth test and polygon offset of the convention's sign, compared with the
-// convention's "lit" compare (GL_LEQUAL; GL_GEQUAL under reversed-Z) through its bias matrix; its
+// the "nearer" depth test and polygon offset of the convention's sign (a float map's offset written
+// by hand with the 24-bit step, offset_by_hand: GL's unit there is relative to the depth), compared
+// with the convention's "lit" compare (GL_LEQUAL; GL_GEQUAL under reversed-Z) through its bias matrix; its
 // border holds the far depth, so that nothing occludes outside it.
 // Cascaded fits (csm, csm-pcf): a directional light's map is the prepared scene's cascades
 // (mathlib/cascades.hpp: practical splits, a stable sphere per slice snapped to whole texels, the
@@ -237,12 +238,22 @@ GLuint allocate_targets(const Frame& frame, LightMap& map, GLsizei layers, const
   return depth_rb;
 }
 
+// Whether the depth pass writes this map's depth with the offset by hand: a window-depth map in a
+// float depth buffer, where GL's polygon offset unit is relative to the depth (kOffsetDepthFragment)
+// and would not be the 24-bit step the lookup declares. A packed depth and a distance do it anyway.
+bool offset_by_hand(const RunConvention& conv, const LightMap& map, const MapLookup& lookup) {
+  return conv.float_depth && map.distance_range <= 0 && lookup.storage != MapStorage::PackedRgba8;
+}
+
 // The depth pass's fragment shader for this map: a distance cube's, the packed depth's, the moments',
-// or the plain one whose depth is the map.
-DepthProgram depth_program(const LightMap& map, const MapLookup& lookup) {
+// or the plain one whose depth is the map; under a float depth buffer, the moments' and the plain one
+// with the offset by hand.
+DepthProgram depth_program(const RunConvention& conv, const LightMap& map, const MapLookup& lookup) {
   if (map.distance_range > 0) return DepthProgram::Distance;
+  const bool by_hand = offset_by_hand(conv, map, lookup);
   return lookup.storage == MapStorage::PackedRgba8          ? DepthProgram::PackedDepth
-         : lookup.storage == MapStorage::RawDepthAndMoments ? DepthProgram::Moments
+         : lookup.storage == MapStorage::RawDepthAndMoments ? (by_hand ? DepthProgram::MomentsOffsetDepth : DepthProgram::Moments)
+         : by_hand                                          ? DepthProgram::OffsetDepth
                                                             : DepthProgram::Flat;
 }
 
@@ -300,10 +311,12 @@ void set_depth_pass_state(const Frame& frame, const LightFit& lc, const LightMap
   // the bias VSM needs against the float tie of a receiver with its own moments (without it the
   // Cornell box's tall block, edge-on to the light, reads its own face as an occluder); the slope
   // term would push a steep face behind the ground it stands on, and the filter would read that
-  // contact as lit.
+  // contact as lit (kMomentsFragment reads the factor only for the depth it writes by hand).
+  // Under a float depth buffer the map's depth takes the whole offset by hand too (offset_by_hand).
+  const bool by_hand = offset_by_hand(conv, map, lookup);
   programs.set([&](const Program& p) {
-    if (lookup.shader_offset != ShaderOffset::None) {
-      gl.Uniform1f(p.at(gl, "u_offset_factor"), lookup.shader_offset == ShaderOffset::ConstantOnly ? 0.0f : sign * factor);
+    if (lookup.shader_offset != ShaderOffset::None || by_hand) {
+      gl.Uniform1f(p.at(gl, "u_offset_factor"), sign * factor);
       gl.Uniform1f(p.at(gl, "u_offset_units"), sign * units);
     }
     if (lookup.shader_offset != ShaderOffset::Whole) gl.Uniform4f(p.colour, 0, 0, 0, 0);
@@ -313,20 +326,30 @@ void set_depth_pass_state(const Frame& frame, const LightFit& lc, const LightMap
   } else {
     const GLboolean colour = lookup.storage == MapStorage::RawDepthAndMoments ? GL_TRUE : GL_FALSE;
     gl.ColorMask(colour, colour, colour, colour);
+  }
+  if (by_hand) {
+    gl.Disable(GL_POLYGON_OFFSET_FILL);
+  } else if (lookup.shader_offset != ShaderOffset::Whole) {
     gl.Enable(GL_POLYGON_OFFSET_FILL);
     gl.PolygonOffset(sign * factor, sign * units);
   }
 }
 
 // What the depth pass draws with at this moment, as GL holds it: the offset (GL's, or the depth
-// shader's own where GL's is off: a packed depth, a distance), and the faces a closed caster keeps.
+// shader's own where GL's is off: a packed depth, a distance, a float map) and its unit, and the
+// faces a closed caster keeps.
 void record_drawn_state(const GlFunctions& gl, const Program& p, DrawnMap& drawn) {
   if (gl.IsEnabled(GL_POLYGON_OFFSET_FILL)) {
     gl.GetFloatv(GL_POLYGON_OFFSET_FACTOR, &drawn.slope_factor);
     gl.GetFloatv(GL_POLYGON_OFFSET_UNITS, &drawn.offset_units);
+    // GL's unit: one step of a fixed-point depth attachment, or relative to the depth on a float one.
+    GLint type = 0;
+    gl.GetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &type);
+    drawn.unit_depth = type == GL_FLOAT ? 0.0 : kWindowDepthPerUnit;
   } else if (const GLint f = p.at(gl, "u_offset_factor"); f >= 0) {
     gl.GetUniformfv(p.id, f, &drawn.slope_factor);
     gl.GetUniformfv(p.id, p.at(gl, "u_offset_units"), &drawn.offset_units);
+    drawn.unit_depth = drawn.distance ? 1.0 / 16777215.0 : kWindowDepthPerUnit;  // the shaders' own steps
   }
   drawn.slope_factor = std::abs(drawn.slope_factor);
   drawn.offset_units = std::abs(drawn.offset_units);
@@ -485,7 +508,7 @@ LightMap draw_light_map(Frame& frame, std::size_t light, const LightFit& lc, con
   const std::vector<Mat4<double>> projections = light_matrices(frame, lc, map);
   GLuint fbo = 0;
   const GLuint depth_rb = allocate_targets(frame, map, static_cast<GLsizei>(lc.views.size()), lookup, fbo);
-  const DepthProgram program = depth_program(map, lookup);
+  const DepthProgram program = depth_program(frame.convention(), map, lookup);
   const PassPrograms programs(frame, [&](bool tested) -> const Program& { return frame.programs.depth(program, tested); });
   set_depth_pass_state(frame, lc, map, lookup, programs);
   // FAULT (AlphaFault): how the depth pass treats masked casters; set back to none below, since the

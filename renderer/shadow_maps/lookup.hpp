@@ -72,7 +72,8 @@ struct MapLookup {
   // The depth pass.
   MapStorage storage;
   // glPolygonOffset's factor (the slope-scaled bias, in texels of depth slope) and units (steps of
-  // the 24-bit depth); what candidate.json declares as slope_bias_texels and depth_bias.
+  // the 24-bit depth, in every convention: a float depth map draws them by hand, light_map.cpp);
+  // what candidate.json declares as slope_bias_texels and depth_bias.
   float offset_factor;
   float offset_units;
   ShaderOffset shader_offset;

@@ -311,7 +311,7 @@ TEST(Renderer, OwnViewsMoveTheStaircasesAndAreDeclaredOwn) {
 TEST(Renderer, EveryMapDeclarationSaysWhatItsDepthPassDrew) {
   // One light each: directional, spot, point, rect; each scene has a closed caster (box or sphere).
   const char* const scenes[] = {"directional_light", "spot_light", "ground_sphere", "soft_penumbra"};
-  std::vector<RenderOptions> variants(6);
+  std::vector<RenderOptions> variants(7);
   for (RenderOptions& o : variants) o.shadow_map_size = 128;
   variants[1].depth_faces = outputs::DepthFaces::Front;
   variants[2].guard_band_texels = 3;
@@ -319,9 +319,14 @@ TEST(Renderer, EveryMapDeclarationSaysWhatItsDepthPassDrew) {
   variants[4].random_taps = 16;
   variants[4].normal_offset_texels = 1.0;
   variants[5].faults.shadow_map.no_polygon_offset = true;
-  // glPolygonOffset's unit is one step of the 24-bit depth (2^-24 of the window range, the
-  // declared unit); the shaders that add it by hand divide by 2^24 - 1 (a distance cube's declared
-  // unit is that): the two agree to 6e-8 relative.
+  // Float depth maps, whose offset GL would take in a unit relative to the depth.
+  variants[6].convention = find_run_convention("reversed-z");
+  variants[6].depth_faces = outputs::DepthFaces::Front;
+  // glPolygonOffset's unit on a 24-bit map is one step of the depth (2^-24 of the window range, the
+  // declared unit); the shaders that add it by hand divide by 2^24 (a packed depth: 2^24 - 1, the two
+  // agreeing to 6e-8 relative), a distance cube's by 2^24 - 1 (its declared unit). A float map's
+  // offset is drawn by hand: GL's own unit there (relative to the depth, DrawnMap::unit_depth 0)
+  // is no depth_bias a declaration could state.
   constexpr double kWindowStep = 1.0 / 16777216.0, kShaderStep = 1.0 / 16777215.0;
   int lights_checked = 0;
   for (const outputs::TechniqueName& t : outputs::kTechniques) {
@@ -340,6 +345,7 @@ TEST(Renderer, EveryMapDeclarationSaysWhatItsDepthPassDrew) {
           EXPECT_EQ(d.slope_bias_texels, double{m.slope_factor}) << m.lookup;
           EXPECT_EQ(d.depth == outputs::StoredDepth::Distance, m.distance) << m.lookup;
           const double step = m.distance ? kShaderStep : kWindowStep;
+          EXPECT_NEAR(m.unit_depth, step, 1e-7 * step) << m.lookup << ": the offset's unit is not the declared step";
           EXPECT_NEAR(d.depth_bias, double{m.offset_units} * step, 1e-7 * d.depth_bias) << m.lookup;
           const int texels = d.atlas_tile_size > 0 ? d.atlas_tile_size : d.shadow_map_size;
           EXPECT_EQ(texels, m.texels) << m.lookup;
@@ -348,7 +354,7 @@ TEST(Renderer, EveryMapDeclarationSaysWhatItsDepthPassDrew) {
       }
     }
   }
-  EXPECT_EQ(lights_checked, 7 * 4 * 6);
+  EXPECT_EQ(lights_checked, 7 * 4 * 7);
 }
 
 // The alpha rule's GLSL (scene::alpha_rule_glsl, shaders.cpp's alpha_test) against its C++
@@ -469,6 +475,8 @@ TEST(Programs, OnlyTheAlphaTestedBuildsCanDiscard) {
   std::vector<std::pair<std::string, std::vector<std::string>>> fragments = {
       {"flat", {shaders::kVersion, shaders::kFlatFragment}},
       {"moments", {shaders::kVersion, shaders::kMomentsFragment}},
+      {"offset depth", {shaders::kVersion, shaders::kOffsetDepthFragment}},
+      {"moments and offset depth", {shaders::kVersion, shaders::kDepthByHand, shaders::kMomentsFragment}},
       {"distance", {shaders::kVersion, shaders::kDistanceFragment}},
       {"packed depth", {shaders::kVersion, shaders::kDepthPacking, shaders::kPackedDepthFragmentBody}},
       {"surface", shaders::surface_fragment(nullptr)},

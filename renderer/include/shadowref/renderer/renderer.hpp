@@ -106,6 +106,10 @@ struct DrawnMap {
   float slope_factor = 0.0f;  // the offset's slope factor: GL_POLYGON_OFFSET_FACTOR, or the depth shader's own
                               // where GL's is off (a packed depth, a distance cube); a magnitude
   float offset_units = 0.0f;  // its constant, in the same place; a magnitude
+  // The window depth (a distance cube: the range's fraction) one of those units moves the stored
+  // depth: 2^-24 for GL's offset on a 24-bit map and for the shaders' own, 0 where the unit is
+  // relative to the depth itself (GL's offset on a float map, which no depth_bias can declare).
+  double unit_depth = 0.0;
   // The faces drawn on closed casters (from GL_CULL_FACE and its mode); nullopt when the pass drew none.
   std::optional<outputs::DepthFaces> closed_faces;
   bool distance = false;      // the layers hold distances (kDistanceFragment), not window depth
