@@ -288,10 +288,16 @@ def gltf(name, mesh, uvs=None, mask_png=None):
 
 TECHNIQUES = ["planar", "volume-zpass", "volume-zfail", "volume-zfail-clamp", "volume-robust", "volume-finite",
               "shadowmap", "shadowmap-pcf", "shadowmap-rgba8", "csm", "csm-pcf", "pcss", "vsm"]
-VOLUME_WHY = ("the foliage cards' whole polygons cast: a stencil volume is extruded from a card's silhouette edges, "
-              "which know nothing of its texels, so the leaves' holes are shadowed too (as in alpha_cards)")
-ZFAIL_WHY = (VOLUME_WHY + "; no one kind is predicted: at twice the resolution (the resolution-x2 sweep) about 200 px "
-             "of false light, not yet traced to a cause, join the cards' false shadow")
+VOLUME_WHY = ("a foliage card facing a light casts its whole polygon: a stencil volume is extruded from a card's "
+              "silhouette edges, which know nothing of its texels, so the leaves' holes are shadowed too (as in "
+              "alpha_cards); and the "
+              "cards are single-sided: a card whose front face is turned away from a light is no lit face under the "
+              "volumes' rule (plane . L >= 0) and casts nothing, so the shadows its leaves throw on the other cards "
+              "and its own unlit face read lit")
+ZFAIL_WHY = (VOLUME_WHY + ": false shadow and false light, so no one kind is predicted (level_cut's plant casts one "
+             "card of three under the sun and one under the lantern, and at twice the resolution its false light has "
+             "5 x 5 cores; the same cut with each card doubled by its reverse shows no false light at either "
+             "resolution)")
 PLANAR_WHY = ("the level shadows itself (columns on the arcade's walls, arches on the columns, the stairs on their "
               "treads, the character on itself): planar projection only darkens the floor, so those shadows are "
               "missing")
