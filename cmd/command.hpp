@@ -63,27 +63,6 @@ const RunConvention& parse_convention(const std::string& name);
 // `--shadow-map-size`'s check (outputs/limits.hpp): 0 (automatic) or a size in the limits; the
 // same line in every subcommand that takes it.
 CLI::Validator shadow_map_size_check();
-// --random-taps: 0, or a square of renderer::kMinRandomTapsPerAxis .. kMaxRandomTapsPerAxis.
-CLI::Validator random_taps_check();
-
-// Our renderer's correct variants on the command line (render_variant_options.cpp), the same in
-// `render` and `conform`: --random-taps, --depth-faces, --guard-band, --normal-offset-texels,
-// --cube-depth, --view-turn, --view-phase.
-struct RenderVariantArgs {
-  int random_taps = 0;
-  std::string depth_faces = "back";
-  int guard_band = 0;
-  double normal_offset_texels = 0;
-  std::string cube_depth = "window";
-  double view_turn = 0;
-  double view_phase = 0;
-  bool declare_light_matrices = false;
-  bool lispsm = false;
-};
-void add_render_variant_options(CLI::App& cmd, RenderVariantArgs& args);
-// Sets `options`' variant fields from `args`; BadInput when the guard band would make a map of
-// `shadow_map_size` texels larger than the limit.
-void apply_render_variants(const RenderVariantArgs& args, int shadow_map_size, renderer::RenderOptions& options);
 
 // `--expectations FILE` (repeatable) in conform, compare and merge (expectations_option.cpp); the
 // files read (BadInput naming the file and line); the terminal's lines for each new failure, new

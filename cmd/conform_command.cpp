@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "render_variant_options.hpp"
 #include "numbers.hpp"
 #include "shadowref/conform/catalogue.hpp"
 #include "shadowref/conform/conform.hpp"

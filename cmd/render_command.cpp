@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "render_variant_options.hpp"
 #include "shadowref/renderer/renderer.hpp"
 #include "shadowref/convention.hpp"
 #include "shadowref/outputs/limits.hpp"

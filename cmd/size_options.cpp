@@ -22,20 +22,4 @@ CLI::Validator shadow_map_size_check() {
       "0 or " + std::to_string(outputs::kMinShadowMapSize) + ".." + std::to_string(outputs::kMaxShadowMapSize), "");
 }
 
-CLI::Validator random_taps_check() {
-  std::string squares = "0";
-  for (int n = outputs::kMinRandomTapsPerAxis; n <= outputs::kMaxRandomTapsPerAxis; ++n) squares += ", " + std::to_string(n * n);
-  return CLI::Validator(
-      [squares](std::string& text) -> std::string {
-        long long v = 0;
-        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-        if (ec != std::errc() || end != text.data() + text.size()) return text + ": not a whole number";
-        if (v == 0) return "";
-        for (long long n = outputs::kMinRandomTapsPerAxis; n <= outputs::kMaxRandomTapsPerAxis; ++n)
-          if (v == n * n) return "";
-        return text + ": must be one of " + squares + " (a square: candidate.json's light_taps is its root)";
-      },
-      "0 or a square 4..64", "");
-}
-
 }  // namespace shadowref::cli

@@ -11,6 +11,8 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <system_error>
+#include <type_traits>
+#include <variant>
 #include <unistd.h>
 
 #include "shadowref/outputs/atomic_file.hpp"
@@ -20,6 +22,7 @@
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/report/ci_summary.hpp"
 #include "shadowref/report/html.hpp"
+#include "shadowref/renderer/render_variants.hpp"
 #include "shadowref/outputs/json_text.hpp"
 
 namespace shadowref::conform {
@@ -141,22 +144,24 @@ json plan_json(const ConformResult& r, const ConformOptions& o) {
 }
 
 json declarations_json(const ConformOptions& o) {
-  const renderer::RenderOptions& v = o.render_options;
-  return {{"mode", o.candidate_dir ? "candidate-dir" : "render"},
-          {"backend", o.candidate_dir ? json() : json(renderer::to_string(o.backend))},
-          {"shadow_map_size", o.shadow_map_size},
-          {"resolution_scale", o.resolution_scale},
-          {"resolution", {o.width, o.height}},
-          {"samples_per_axis", o.reference.samples_per_axis},
-          {"random_taps", v.random_taps},
-          {"depth_faces", outputs::to_string(v.depth_faces)},
-          {"guard_band_texels", v.guard_band_texels},
-          {"view_turn_degrees", v.view_turn_degrees},
-          {"view_phase_texels", v.view_phase_texels},
-          {"lispsm", v.lispsm},
-          {"declare_light_matrices", v.declare_light_matrices},
-          {"normal_offset_texels", v.normal_offset_texels},
-          {"cube_depth", outputs::to_string(v.cube_depth)}};
+  json d = {{"mode", o.candidate_dir ? "candidate-dir" : "render"},
+            {"backend", o.candidate_dir ? json() : json(renderer::to_string(o.backend))},
+            {"shadow_map_size", o.shadow_map_size},
+            {"resolution_scale", o.resolution_scale},
+            {"resolution", {o.width, o.height}},
+            {"samples_per_axis", o.reference.samples_per_axis}};
+  // Our renders' correct variants, each under its row's key (renderer/render_variants.hpp).
+  for (const renderer::RenderVariant& v : renderer::render_variants())
+    std::visit(
+        [&](auto member) {
+          const auto& value = o.render_options.*member;
+          if constexpr (std::is_enum_v<std::remove_cvref_t<decltype(value)>>)
+            d[std::string(v.key)] = outputs::to_string(value);
+          else
+            d[std::string(v.key)] = value;
+        },
+        v.field);
+  return d;
 }
 
 }  // namespace

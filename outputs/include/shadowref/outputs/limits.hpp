@@ -32,4 +32,16 @@ inline constexpr int kMaxGuardBandTexels = 64;
 // candidate.json's light_taps (taps per axis) says it exactly; 0: the filters' fixed grids.
 inline constexpr int kMinRandomTapsPerAxis = 2, kMaxRandomTapsPerAxis = 8;
 
+// "" when `taps` is an acceptable randomized kernel (0, or a square of the bounds above), else what is
+// wrong with it, as the end of a line that names the argument.
+inline std::string random_taps_problem(long long taps) {
+  std::string squares = "0";
+  for (long long n = kMinRandomTapsPerAxis; n <= kMaxRandomTapsPerAxis; ++n) {
+    if (taps == n * n) return "";
+    squares += ", " + std::to_string(n * n);
+  }
+  if (taps == 0) return "";
+  return "must be one of " + squares + " (a square: candidate.json's light_taps is its root)";
+}
+
 }  // namespace shadowref::outputs
