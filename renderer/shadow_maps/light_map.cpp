@@ -45,6 +45,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
@@ -606,6 +607,19 @@ GLuint MapStoragePool::texture(GLenum internal_format, GLenum format, GLenum typ
   gl_.GenTextures(1, &t);
   gl_.BindTexture(GL_TEXTURE_2D_ARRAY, t);
   gl_.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, static_cast<GLint>(internal_format), size, size, layers, 0, format, type, nullptr);
+  // A map the GL cannot hold is said here, with its size, rather than as an incomplete framebuffer
+  // later: llvmpipe refuses any texture over 1 GiB (a point light's six 8192-texel layers of 32-bit
+  // depth are 1.5 GiB) with GL_OUT_OF_MEMORY. An error flag left by an earlier call would be read
+  // here too; the render is lost either way, and the line says which call it follows.
+  if (const GLenum err = gl_.GetError(); err != GL_NO_ERROR) {
+    gl_.DeleteTextures(1, &t);
+    const double mib = static_cast<double>(size) * size * layers * (internal_format == GL_RG32F ? 8 : 4) / (1024.0 * 1024.0);
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "OpenGL error 0x%04X allocating a shadow map of %d x %d texels x %d layer(s) (%.0f MiB)%s", err, size, size,
+                  layers, mib, err == GL_OUT_OF_MEMORY ? ": more than the GL holds in one texture; a smaller --shadow-map-size fits" : "");
+    throw GlError(line);
+  }
   entries_.push_back({true, internal_format, size, layers, t, true});
   return t;
 }

@@ -467,6 +467,28 @@ TEST(Renderer, UnknownTechniqueIsRefused) {
   EXPECT_EQ(find_technique("no-such-technique"), nullptr);
 }
 
+// A map larger than the GL holds in one texture is said with its size, and the renderer draws the
+// next render as before. llvmpipe refuses any texture over 1 GiB: a point light's cube of six
+// 8192-texel layers of 32-bit depth is 1.5 GiB (before, the line was "the shadow-map framebuffer
+// is incomplete", which names neither the map nor the way out).
+TEST(Renderer, AMapTheGlCannotHoldIsSaidWithItsSize) {
+  const scene::Scene s = load("ground_sphere", 32);
+  RenderOptions big;
+  big.shadow_map_size = 8192;
+  if (test_driver() == Driver::Llvmpipe) {
+    try {
+      (void)renderer().render(s, "shadowmap", big);
+      ADD_FAILURE() << "llvmpipe held a 1.5 GiB cube";
+    } catch (const GlError& e) {
+      EXPECT_NE(std::string(e.what()).find("8192 x 8192 texels x 6 layer(s) (1536 MiB)"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("a smaller --shadow-map-size fits"), std::string::npos) << e.what();
+    }
+  }
+  const RenderResult after = renderer().render(s, "shadowmap");
+  ASSERT_EQ(after.masks.size(), 1u);
+  EXPECT_EQ(after.masks[0].width, 32);
+}
+
 // Only a masked object draws with a program that can discard. A fragment shader with a discard in
 // its text loses the rasteriser's early depth test (llvmpipe decides it from the shader), which made
 // every pass of scenes without a single mask half again slower (cascades of a self-shadowing torus,
