@@ -21,6 +21,8 @@ import math
 import os
 import struct
 
+from gltf_buffer import GltfBuffer
+
 SCENES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "conformance", "scenes")
 MESHES = os.path.join(SCENES, "meshes")
 
@@ -241,21 +243,8 @@ def pack(fmt, values):
 def gltf(name, mesh, uvs=None, mask_png=None):
     """One mesh node; with uvs and a mask, a MASK material whose baseColorTexture is the mask
     (embedded, NEAREST and REPEAT), as the pack writes one (docs/scene-format.md, "Alpha masks")."""
-    blob, views, accessors = bytearray(), [], []
-
-    def add(data, count, type_, ctype, minmax=None, target=None):
-        while len(blob) % 4:
-            blob.append(0)
-        view = {"buffer": 0, "byteOffset": len(blob), "byteLength": len(data)}
-        if target:
-            view["target"] = target
-        views.append(view)
-        blob.extend(data)
-        acc = {"bufferView": len(views) - 1, "componentType": ctype, "count": count, "type": type_}
-        if minmax:
-            acc["min"], acc["max"] = minmax
-        accessors.append(acc)
-        return len(accessors) - 1
+    buffer = GltfBuffer()
+    blob, views, accessors, add = buffer.blob, buffer.views, buffer.accessors, buffer.add
 
     p = mesh.positions
     assert len(p) < 65536

@@ -19,6 +19,8 @@ import math
 import os
 import struct
 
+from gltf_buffer import GltfBuffer
+
 SCENES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "conformance", "scenes")
 
 # name, parent, bind position (world; bind rotations are identity)
@@ -151,21 +153,8 @@ def pack(fmt, values):
 
 def gltf():
     m, pos = character()
-    blob, views, accessors = bytearray(), [], []
-
-    def add(data, count, type_, ctype, minmax=None, target=None):
-        while len(blob) % 4:
-            blob.append(0)
-        view = {"buffer": 0, "byteOffset": len(blob), "byteLength": len(data)}
-        if target:
-            view["target"] = target
-        views.append(view)
-        blob.extend(data)
-        acc = {"bufferView": len(views) - 1, "componentType": ctype, "count": count, "type": type_}
-        if minmax:
-            acc["min"], acc["max"] = minmax
-        accessors.append(acc)
-        return len(accessors) - 1
+    buffer = GltfBuffer()
+    blob, views, accessors, add = buffer.blob, buffer.views, buffer.accessors, buffer.add
 
     p = m.positions
     mins = [min(v[k] for v in p) for k in range(3)]

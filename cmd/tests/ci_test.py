@@ -27,11 +27,13 @@ import json
 import os
 import pathlib
 import shutil
-import struct
 import subprocess
 import sys
 import time
 import zlib
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "scripts"))
+from png8 import read_png, write_png  # noqa: E402 (the project's scripts folder)
 
 SCENES = "directional_light,camera_at_light,ground_sphere,light_near_caster"  # one per shard of 4 by their hash
 TECHNIQUES = "shadowmap,planar"
@@ -51,46 +53,6 @@ def run(args, env=None, expect=None):
     if expect is not None and p.returncode != expect:
         fail(f"{' '.join(map(str, args))}: exit {p.returncode}, expected {expect}\nstdout:\n{p.stdout}\nstderr:\n{p.stderr}")
     return p
-
-
-# -- 8-bit grey PNGs, without a PNG library ---------------------------------------------------------
-def read_png(path):
-    data = pathlib.Path(path).read_bytes()
-    pos, idat, w = 8, b"", 0
-    while pos < len(data):
-        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
-        body = data[pos + 8:pos + 8 + n]
-        if kind == b"IHDR":
-            w, h, depth, colour = struct.unpack(">IIBB", body[:10])
-            if depth != 8 or colour != 0:
-                fail(f"{path}: not 8-bit grey")
-        elif kind == b"IDAT":
-            idat += body
-        pos += 12 + n
-    raw, rows, prev = zlib.decompress(idat), [], bytearray(w)
-    for y in range(h):
-        f, line = raw[y * (w + 1)], bytearray(raw[y * (w + 1) + 1:(y + 1) * (w + 1)])
-        for x in range(w):
-            a = line[x - 1] if x else 0
-            b, c = prev[x], prev[x - 1] if x else 0
-            if f == 1: line[x] = (line[x] + a) & 255
-            elif f == 2: line[x] = (line[x] + b) & 255
-            elif f == 3: line[x] = (line[x] + (a + b) // 2) & 255
-            elif f == 4:
-                p = a + b - c
-                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                line[x] = (line[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        rows.append(line)
-        prev = line
-    return w, h, rows
-
-
-def write_png(path, w, h, rows):
-    def chunk(kind, body):
-        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body) & 0xffffffff)
-    raw = b"".join(b"\0" + bytes(r) for r in rows)
-    pathlib.Path(path).write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 0, 0, 0, 0)) +
-                                   chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
 
 
 # -- reports ----------------------------------------------------------------------------------------
