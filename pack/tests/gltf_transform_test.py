@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """A glTF written by a tool other than ours is judged as ours is (docs/scene-format.md, "Your own glTF
 scene"): the pack's scene.gltf of a catalogue scene (level_cut: dense meshes, an alpha-masked material,
-a skin, a rect light's extras, every light type) rewritten by gltf-transform 4.5.1
-(pack/tests/gltf_transform, pinned by its package-lock.json; scripts/setup.sh installs it), then
+a skin, a rect light's extras, every light type) rewritten by gltf-transform 4.3.0
+(pack/tests/gltf_transform, pinned by its package-lock.json; scripts/setup.sh installs it; the last
+release that runs on Debian 12's Node.js 18), then
 
   copy   `gltf-transform copy` to a binary .glb (one GLB buffer, gltf-transform's own accessor layout);
   weld   `gltf-transform weld` to a .gltf (the pack's three vertices per triangle welded into an indexed
