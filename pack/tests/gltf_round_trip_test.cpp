@@ -80,7 +80,9 @@ TEST_P(RoundTrip, PackSceneGltfReadsBackAsTheSameScene) {
     ASSERT_EQ(a.type, b.type) << what;
     if (b.type == scene::LightType::Point || b.type == scene::LightType::Spot) expect_near(a.position, b.position, tol, what);
     if (b.type == scene::LightType::Spot || b.type == scene::LightType::Directional) expect_near(a.direction, b.direction, kFrameTol, what);
-    if (b.type == scene::LightType::Spot) EXPECT_NEAR(a.cone_deg, b.cone_deg, kAngleTol) << what;
+    if (b.type == scene::LightType::Spot) {
+      EXPECT_NEAR(a.cone_deg, b.cone_deg, kAngleTol) << what;
+    }
     if (b.type == scene::LightType::Rect) {
       EXPECT_EQ(a.corner, b.corner) << what;
       EXPECT_EQ(a.edge_u, b.edge_u) << what;
@@ -130,7 +132,9 @@ TEST_P(RoundTrip, PackSceneGltfReadsBackAsTheSameScene) {
     for (std::size_t t = 0; t < b.mesh.triangles.size(); ++t)
       for (std::size_t k = 0; k < 3; ++k) {
         const std::uint32_t from = b.mesh.triangles[t][k];
-        if (textured) ASSERT_EQ(a.alpha->uvs[3 * t + k], b.alpha->uvs[from]) << b.name;
+        if (textured) {
+          ASSERT_EQ(a.alpha->uvs[3 * t + k], b.alpha->uvs[from]) << b.name;
+        }
         ASSERT_EQ(a.alpha->vertex_alpha[3 * t + k], b.alpha->vertex_alpha[from]) << b.name;
       }
   }
