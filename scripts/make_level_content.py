@@ -292,6 +292,26 @@ PLANAR_WHY = ("the level shadows itself (columns on the arcade's walls, arches o
               "missing")
 
 
+# Measured on level_cut in all four conventions: the densest unexplained 9 x 9 window of pcss and vsm
+# grows with the image, 18 at x2.25 (540 px, the bound: a PASS), 20 .. 21 at x2.5, 26 .. 27 at x3,
+# 36 .. 38 at x4 and 48 .. 50 at x5; hence a failure certain from 720 px (x3), and either below.
+PCSS_CONTACT_FROM_HEIGHT = 720
+PCSS_CONTACT_WHY = ("PCSS assumes one planar blocker at the blockers' mean depth: the character's legs end just over "
+                    "the floor under the area light, below a body that reaches 1.95 m, so the blocker search under a "
+                    "leg's end averages the leg with the body above it, the penumbra comes out too wide and the dark "
+                    "contact shadow under each leg is blurred into the light around it (too light, a strip of fixed "
+                    "size in the world: from 720 px tall it spans enough pixels to fail; two box legs under a box "
+                    "torso fail alike, the legs alone pass)")
+
+
+def cut_expect():
+    e = base_expect()
+    e["pcss"] = {"result": "fail", "errors": "too-light", "from_height": PCSS_CONTACT_FROM_HEIGHT, "why": PCSS_CONTACT_WHY}
+    e["vsm"] = {"result": "fail", "errors": "too-light", "from_height": PCSS_CONTACT_FROM_HEIGHT,
+                "why": "as pcss, whose blocker search and penumbra vsm shares: " + PCSS_CONTACT_WHY}
+    return e
+
+
 def expectations(overrides):
     out = {}
     for t in TECHNIQUES:
@@ -405,7 +425,7 @@ def scenes():
         "camera": {"position": [2.6, 4.6, 7.4], "target": [9.4, 1.0, -2.4], "up": [0, 1, 0], "fovy_deg": 60, "near": 0.1},
         "lights": LIGHTS,
         "objects": objects(True),
-        "expect": expectations(base_expect()),
+        "expect": expectations(cut_expect()),
     }
     return [level, cut]
 

@@ -7,8 +7,11 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <fstream>
 #include <map>
 #include <memory>
+
+#include <nlohmann/json.hpp>
 
 #include "shadowref/conform/catalogue.hpp"
 #include "shadowref/conform/conform.hpp"
@@ -194,6 +197,46 @@ TEST(ExpectedFailures, VsmFailsOnlyByBleedingLight) {
   const conform::CaseResult none = judge_render("no-bleeding", [](renderer::RenderResult&) {}, scene, "vsm", "pcss");
   ASSERT_TRUE(none.judgement) << none.error;
   EXPECT_EQ(none.status, conform::Status::XPass) << none.judgement->signature;
+}
+
+// An expected failure that shows only from an image height on ("from_height": its errors have a
+// fixed size in the world, as level_cut's pcss contact shadow): light_bleeding's vsm expectation with
+// "from_height" set just above the image (256 px) and at it. Below it, a technique that does not
+// bleed (our pcss, judged as vsm) is a PASS and our bleeding vsm is still the expected failure
+// (XFAIL, with its predicted kind); at it, the same pcss is an XPASS as without the key.
+TEST(ExpectedFailures, FromHeightExpectsTheFailureOnlyFromThatHeight) {
+  const char* scene = "light_bleeding";
+  const Fixture& f = fixture(scene);
+  const auto judged_with = [&](const std::string& name, int from_height, const std::string& rendered_as) {
+    std::ifstream in(f.scene.file);
+    nlohmann::json doc = nlohmann::json::parse(in);
+    doc["expect"]["vsm"]["from_height"] = from_height;
+    const fs::path file = f.root / name / "scene" / (std::string(scene) + ".json");
+    fs::create_directories(file.parent_path());
+    std::ofstream(file) << doc.dump(1);
+    renderer::RenderResult r = test::llvmpipe_renderer().render(f.prepared, rendered_as);
+    const fs::path dir = f.root / name / "candidates";
+    fs::remove_all(dir);
+    renderer::write_outputs(r, test::llvmpipe_renderer().info(), f.scene, dir / f.scene.name);
+    conform::ConformOptions o;
+    o.scenes = {file};
+    o.techniques = {"vsm"};
+    o.candidate_dir = dir;
+    o.out = f.root / name / "verdict";
+    o.cache = SHADOWREF_TEST_CACHE;
+    const conform::ConformResult res = conform::run_conform(o);
+    EXPECT_EQ(res.cases.size(), 1u);
+    return res.cases.at(0);
+  };
+  ASSERT_EQ(f.scene.height, 256);
+  const conform::CaseResult below = judged_with("from-height-pass-below", 257, "pcss");
+  EXPECT_EQ(below.status, conform::Status::Pass) << below.error;
+  const conform::CaseResult failing = judged_with("from-height-fail-below", 257, "vsm");
+  EXPECT_EQ(failing.status, conform::Status::XFail) << failing.error;
+  ASSERT_TRUE(failing.judgement);
+  EXPECT_NE(failing.judgement->signature.find("predicted kind"), std::string::npos) << failing.judgement->signature;
+  const conform::CaseResult at = judged_with("from-height-pass-at", 256, "pcss");
+  EXPECT_EQ(at.status, conform::Status::XPass) << at.error;
 }
 
 }  // namespace

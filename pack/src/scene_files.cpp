@@ -81,10 +81,12 @@ json manifest_head() {
 
 json manifest_entry(const scene::Scene& s, const fs::path& scene_file) {
   json expect = json::object();
-  for (const auto& [t, e] : s.expect)
+  for (const auto& [t, e] : s.expect) {
     expect[t] = !e.pass ? json{{"result", "fail"}, {"why", e.why}}
                 : e.warn ? json{{"result", "warn"}, {"why", e.why}}
                          : json{{"result", "pass"}};
+    if (e.from_height) expect[t]["from_height"] = e.from_height;
+  }
   return {{"name", s.name},
           {"description", s.description},
           {"resolution", {s.width, s.height}},

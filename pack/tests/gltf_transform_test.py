@@ -121,7 +121,10 @@ def main():
         run([a.shadowref, "conform", "--scenes", path, "--out", out, "--cache", cache, "--quiet"] + techniques, expect=(0, 2))
         got[name] = verdicts(out / "report.json")
         run([a.shadowref, "reference", "--scene", path, "--out", work / f"reference-{name}"])
-    want = {t: "PASS" if e["result"] == "pass" else "FAIL" for t, e in expect.items() if t in got["original"]}
+    # An expected failure that shows only from an image height on ("from_height") passes below it.
+    height = json.loads((SCENES / f"{a.scene}.json").read_text())["resolution"][1]
+    want = {t: "PASS" if e["result"] == "pass" or height < e.get("from_height", 0) else "FAIL"
+            for t, e in expect.items() if t in got["original"]}
     if not got["original"] or got["original"] != want:
         fail(f"the pack's scene.gltf: verdicts {got['original']}, the catalogue's expectations read as a glTF scene's {want}")
     for name in rewrites:

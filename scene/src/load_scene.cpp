@@ -354,7 +354,7 @@ void read_expect(const JsonNode& n, Scene& scene) {
       for (const auto& t : outputs::kTechniques) list += (list.empty() ? "" : ", ") + std::string(t.name);
       e.fail("unknown technique (known: " + list + ")");
     }
-    e.expect_object({"result", "why", "errors"});
+    e.expect_object({"result", "why", "errors", "from_height"});
     Expectation x;
     const JsonNode result = e.required("result");
     const std::string r = result.string();
@@ -371,6 +371,13 @@ void read_expect(const JsonNode& n, Scene& scene) {
       else if (v == "too-dark") x.errors = PredictedErrors::TooDark;
       else k.fail("must be \"too-light\" or \"too-dark\"");
       if (x.pass) k.fail("predicts the errors of an expected failure: only with \"result\": \"fail\"");
+    }
+    if (e.has("from_height")) {
+      const JsonNode h = e.child("from_height");
+      const long long v = h.integer();
+      if (v < 1 || v > outputs::kMaxResolution) h.fail("must be an image height in [1, " + std::to_string(outputs::kMaxResolution) + "]");
+      if (x.pass) h.fail("is the image height an expected failure shows from: only with \"result\": \"fail\"");
+      x.from_height = static_cast<int>(v);
     }
     scene.expect[item.key()] = x;
   }

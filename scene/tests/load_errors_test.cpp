@@ -109,6 +109,9 @@ const ErrorCase kCases[] = {
     {"ExpectWarnWithoutWhy", "/expect/planar/result", "\"warn\"", "expect.planar.why: is required (and non-empty) for an expected failure or warning"},
     {"ExpectErrorsUnknown", "/expect/planar", R"({"result": "fail", "why": "w", "errors": "dark"})", "expect.planar.errors: must be \"too-light\" or \"too-dark\""},
     {"ExpectErrorsOnPass", "/expect/planar", R"({"result": "pass", "errors": "too-light"})", "expect.planar.errors: predicts the errors of an expected failure: only with \"result\": \"fail\""},
+    {"ExpectFromHeightZero", "/expect/planar", R"({"result": "fail", "why": "w", "from_height": 0})", "expect.planar.from_height: must be an image height in [1, 16384]"},
+    {"ExpectFromHeightNotInteger", "/expect/planar", R"({"result": "fail", "why": "w", "from_height": 720.5})", "expect.planar.from_height: must be a whole number"},
+    {"ExpectFromHeightOnPass", "/expect/planar", R"({"result": "pass", "from_height": 720})", "expect.planar.from_height: is the image height an expected failure shows from: only with \"result\": \"fail\""},
     {"TagsNotStrings", "/tags", "[1]", "tags[0]: must be a string, not number"},
 };
 

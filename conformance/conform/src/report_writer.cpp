@@ -68,6 +68,7 @@ json case_json(const CaseResult& c, const outputs::StagedFolder& staged, std::se
   k["status"] = to_string(c.status);
   k["expected"] = !c.expected.pass ? "fail" : c.expected.warn ? "warn" : "pass";
   k["why"] = c.expected.why;
+  if (c.expected.from_height) k["expected_from_height"] = c.expected.from_height;
   if (c.judgement && !c.judgement->signature.empty()) k["signature"] = c.judgement->signature;
   k["reference_dir"] = c.reference_dir.string();
   k["candidate_dir"] = c.candidate_dir.string();

@@ -426,7 +426,11 @@ void case_info(std::ostringstream& h, const json& c) {
   if (c.contains("shard") || c.contains("host"))
     h << "<div class=\"notes\">judged on " << escape_html(str(c, "host", "?"))
       << (c.contains("shard") ? ", shard " + escape_html(str(c, "shard")) : std::string()) << "</div>";
-  if (!str(c, "why", "").empty()) h << "<div class=\"why\"><b>why it is expected to fail:</b> " << escape_html(str(c, "why")) << "</div>";
+  if (!str(c, "why", "").empty()) {
+    const int from = c.value("expected_from_height", 0);
+    h << "<div class=\"why\"><b>why it is expected to fail" << (from ? " from an image height of " + std::to_string(from) + " px" : "")
+      << ":</b> " << escape_html(str(c, "why")) << "</div>";
+  }
   if (!str(c, "signature", "").empty()) h << "<div class=\"why\"><b>signature:</b> " << escape_html(str(c, "signature")) << "</div>";
   if (!str(c, "unmet_expectation", "").empty())
     h << "<div class=\"why\"><b>expectation not met:</b> " << escape_html(str(c, "unmet_expectation")) << "</div>";
