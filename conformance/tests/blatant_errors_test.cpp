@@ -47,10 +47,11 @@ Fixture& fixture(const std::string& name = kScene) {
 }
 
 // Renders the scene with `rendered_as`, applies `defect` to the render, writes the candidate folder
-// and judges it as `technique`; returns the case.
+// and judges it as `technique` under the catalogue's scene file, or `scene_file` (the same scene with
+// other expectations); returns the case.
 conform::CaseResult judge_render(const std::string& name, const std::function<void(renderer::RenderResult&)>& defect,
                                  const std::string& scene_name, const std::string& technique,
-                                 const std::string& rendered_as) {
+                                 const std::string& rendered_as, const fs::path& scene_file = {}) {
   Fixture& f = fixture(scene_name);
   renderer::RenderResult r = test::llvmpipe_renderer().render(f.prepared, rendered_as);
   defect(r);
@@ -58,7 +59,7 @@ conform::CaseResult judge_render(const std::string& name, const std::function<vo
   fs::remove_all(dir);
   renderer::write_outputs(r, test::llvmpipe_renderer().info(), f.scene, dir / f.scene.name);
   conform::ConformOptions o;
-  o.scenes = {f.scene.file};
+  o.scenes = {scene_file.empty() ? f.scene.file : scene_file};
   o.techniques = {technique};
   o.candidate_dir = dir;
   o.out = f.root / name / "verdict";
@@ -214,19 +215,7 @@ TEST(ExpectedFailures, FromHeightExpectsTheFailureOnlyFromThatHeight) {
     const fs::path file = f.root / name / "scene" / (std::string(scene) + ".json");
     fs::create_directories(file.parent_path());
     std::ofstream(file) << doc.dump(1);
-    renderer::RenderResult r = test::llvmpipe_renderer().render(f.prepared, rendered_as);
-    const fs::path dir = f.root / name / "candidates";
-    fs::remove_all(dir);
-    renderer::write_outputs(r, test::llvmpipe_renderer().info(), f.scene, dir / f.scene.name);
-    conform::ConformOptions o;
-    o.scenes = {file};
-    o.techniques = {"vsm"};
-    o.candidate_dir = dir;
-    o.out = f.root / name / "verdict";
-    o.cache = SHADOWREF_TEST_CACHE;
-    const conform::ConformResult res = conform::run_conform(o);
-    EXPECT_EQ(res.cases.size(), 1u);
-    return res.cases.at(0);
+    return judge_render(name, [](renderer::RenderResult&) {}, scene, "vsm", rendered_as, file);
   };
   ASSERT_EQ(f.scene.height, 256);
   const conform::CaseResult below = judged_with("from-height-pass-below", 257, "pcss");
