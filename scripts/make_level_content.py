@@ -292,9 +292,9 @@ PLANAR_WHY = ("the level shadows itself (columns on the arcade's walls, arches o
               "missing")
 
 
-# Measured on level_cut in all four conventions: the densest unexplained 9 x 9 window of pcss and vsm
-# grows with the image, 18 at x2.25 (540 px, the bound: a PASS), 20 .. 21 at x2.5, 26 .. 27 at x3,
-# 36 .. 38 at x4 and 48 .. 50 at x5; hence a failure certain from 720 px (x3), and either below.
+# Measured on level_cut: the densest unexplained 9 x 9 window of pcss and vsm grows with the image,
+# 18 at x2.25 (540 px, the bound: a PASS), 26 .. 27 at x3 and 36 .. 38 at x4 in all four conventions,
+# 20 .. 21 at x2.5 and 48 .. 50 at x5 in gl; hence a failure certain from 720 px (x3), either below.
 PCSS_CONTACT_FROM_HEIGHT = 720
 PCSS_CONTACT_WHY = ("PCSS assumes one planar blocker at the blockers' mean depth: the character's legs end just over "
                     "the floor under the area light, below a body that reaches 1.95 m, so the blocker search under a "
