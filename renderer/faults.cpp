@@ -47,6 +47,7 @@ std::string describe(const Faults& f) {
   on(f.cascade.frustum_behind_camera, "cascade.frustum_behind_camera");
   on(f.soft.blocker_depth_from_receiver, "soft.blocker_depth_from_receiver");
   on(f.soft.taps_stay_in_face, "soft.taps_stay_in_face");
+  on(f.soft.search_whole_cone, "soft.search_whole_cone");
   if (f.soft.light_size_scale != 1.0) {
     char buf[48];
     std::snprintf(buf, sizeof buf, "soft.light_size_scale=%g", f.soft.light_size_scale);

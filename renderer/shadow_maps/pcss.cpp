@@ -1,6 +1,9 @@
 // pcss.cpp — percentage-closer soft shadows: Fernando 2005, "Percentage-closer soft shadows", for
-// rect lights. A blocker search over the light's rect seen through the map's near plane, the
-// penumbra estimated from the blockers' mean depth, and an 8 × 8 filter over the rect seen through
+// rect lights. A blocker search over the light's rect seen through the map's near plane and five
+// planes nearer the receiver, its depth the mean of the blockers that lie between the receiver and
+// the rect where it finds any (Fernando's search counts everything the near plane's slice sees
+// nearer than the receiver: on real content, walls and columns beside a shadow), the penumbra estimated
+// from the blockers' mean depth, and an 8 × 8 filter over the rect seen through
 // that depth, every tap compared with the receiver's own plane (Isidoro 2006's receiver-plane depth
 // bias, exact), a tap beyond a cube face's edge read from the neighbouring face. The map is read
 // raw and holds the first surfaces (the blockers' depths). With RenderOptions::random_taps N, the
@@ -19,6 +22,7 @@ uniform vec3 u_rect_u;               // the rect light's edges (world); u_light 
 uniform vec3 u_rect_v;
 uniform bool u_blocker_at_receiver;  // fault switches (renderer/faults.hpp, SoftShadowFaults)
 uniform bool u_taps_in_own_face;
+uniform bool u_search_whole_cone;
 // PCSS (Fernando 2005, "Percentage-closer soft shadows") for a rect light, in the map of its centre.
 // receiver_depth: the fragment's depth along the view axis of its layer. The receiver is the
 // fragment's own plane (its face normal), carried into texture space (planes stay planes under
@@ -26,8 +30,9 @@ uniform bool u_taps_in_own_face;
 // that tap's texel centre, where the map was rasterised: no self-shadowing at kernel scale on planar
 // receivers (Isidoro 2006's receiver-plane depth bias, exact instead of from derivatives).
 // 1. Blocker search: 6 x 6 taps over the light's rect seen from p through the nearest plane a
-//    blocker can lie on (the map's near plane, but at least a tenth of the way from the light);
-//    the blockers' mean depth d_b.
+//    blocker can lie on (the map's near plane, but at least a tenth of the way from the light),
+//    and through five planes ever nearer p; the mean depth d_b of the blockers that truly lie
+//    between p and the rect (penumbra_plane says why).
 // 2. Filter: 8 x 8 taps over the light's rect seen from p through the plane at d_b (the penumbra
 //    estimate (d_r - d_b) / d_b times the light, in the light's own shape); the unblocked fraction.
 const int kSearchTaps = 6;
@@ -79,29 +84,46 @@ float receiver_z_at(Tap tap) {
   vec4 s = u_layer_from_world[tap.layer] * vec4(v_world, 1.0);
   return s.z / s.w;
 }
+// Whether the surface stored at the tap (window depth `stored`) truly blocks a point of the light
+// from the receiver: it lies between the receiver and the light's plane, and the ray from the
+// receiver through it meets that plane inside the rect.
+bool blocks_the_rect(Tap tap, float stored) {
+  vec4 w = u_world_from_layer[tap.layer] * vec4(tap.c, stored, 1.0);
+  vec3 b = w.xyz / w.w;
+  vec3 ln = cross(u_rect_u, u_rect_v);
+  float dp = dot(ln, v_world - u_light.xyz), db = dot(ln, b - u_light.xyz);
+  if (dp * db <= 0.0 || abs(db) >= abs(dp)) return false;
+  vec3 h = v_world + (dp / (dp - db)) * (b - v_world) - u_light.xyz;
+  vec2 ab = vec2(dot(h, u_rect_u) / dot(u_rect_u, u_rect_u), dot(h, u_rect_v) / dot(u_rect_v, u_rect_v));
+  return all(lessThanEqual(abs(ab), vec2(0.5)));
+}
+// Whether the surface stored at the tap stands clear of the receiver's own plane, on the light's
+// side: a true blocker of a light point above the receiver's horizon lies on the segment to it, so
+// at that point's elevation above the horizon. Below sin 3° = 0.05 a texel read next to p may hold
+// the receiver's own surface or its neighbour on a curved or grazing receiver (depth steps, the
+// polygon offset), and counted at the receiver's depth it would collapse the filter onto p's own
+// texel: speckled self-shadowing on faces the light grazes (the Cornell box's tall block). The
+// blockers that only graze the horizon so dropped from the mean hide light points that matter
+// least to the estimate.
+bool clear_of_receiver(Tap tap, float stored) {
+  vec4 w = u_world_from_layer[tap.layer] * vec4(tap.c, stored, 1.0);
+  vec3 b = w.xyz / w.w - v_world;
+  vec3 n = gl_FrontFacing ? v_normal : -v_normal;
+  return dot(n, b) > 0.05 * length(b);
+}
 // The stored window depth at the tap when it holds something nearer than the receiver's plane
 // there (a blocker), else -1. `layer` is the fragment's. A tap read from another cube face counts
-// only when what it holds truly blocks a point of the light from the receiver: it lies between the
-// receiver and the light's plane, and the ray from the receiver through it meets that plane inside
-// the rect. Far from the fragment's own face the receiver's plane says nothing (near the light the
-// search's taps reach any direction: the ceiling the light hangs under, the far walls), so there
-// the geometry decides; near a seam, where a filter straddles two faces, both agree.
+// only when what it holds truly blocks a point of the light from the receiver (blocks_the_rect):
+// far from the fragment's own face the receiver's plane says nothing (near the light the search's
+// taps reach any direction: the ceiling the light hangs under, the far walls), so there the
+// geometry decides; near a seam, where a filter straddles two faces, both agree.
 float blocker_at(Tap tap, int layer) {
   if (tap.c.x < 0.0) return -1.0;
   float z = receiver_z_at(tap);
   float stored = texture(u_depth_map, vec3(tap.c, float(tap.layer))).r;
   bool lit = u_lit_greater ? z >= stored : z <= stored;
   if (lit) return -1.0;
-  if (tap.layer != layer) {
-    vec4 w = u_world_from_layer[tap.layer] * vec4(tap.c, stored, 1.0);
-    vec3 b = w.xyz / w.w;
-    vec3 ln = cross(u_rect_u, u_rect_v);
-    float dp = dot(ln, v_world - u_light.xyz), db = dot(ln, b - u_light.xyz);
-    if (dp * db <= 0.0 || abs(db) >= abs(dp)) return -1.0;
-    vec3 h = v_world + (dp / (dp - db)) * (b - v_world) - u_light.xyz;
-    vec2 ab = vec2(dot(h, u_rect_u) / dot(u_rect_u, u_rect_u), dot(h, u_rect_v) / dot(u_rect_v, u_rect_v));
-    if (any(greaterThan(abs(ab), vec2(0.5)))) return -1.0;
-  }
+  if (tap.layer != layer && !blocks_the_rect(tap, stored)) return -1.0;
   return stored;
 }
 // A blocker's depth along the view axis of `layer` (the fragment's): a blocker found in another
@@ -119,20 +141,42 @@ float penumbra_plane(vec4 plane, vec4 world_plane, float receiver_depth, int lay
   // where the rect's own image would fill the search.
   float near_depth = max(view_depth(u_reversed ? 1.0 : 0.0, layer), 0.1 * receiver_depth);
   float t_search = clamp(1.0 - near_depth / receiver_depth, 0.0, 1.0);
-  float sum = 0.0;
-  blockers = 0;
-  for (int j = 0; j < kSearchTaps; ++j)
-    for (int i = 0; i < kSearchTaps; ++i) {
-      vec2 ab = (vec2(i, j) + 0.5) / float(kSearchTaps) - 0.5;
-      vec3 l = u_light.xyz + ab.x * u_rect_u + ab.y * u_rect_v;
-      Tap tap = tap_at(v_world + (l - v_world) * t_search, layer, plane, world_plane);
-      float d = blocker_at(tap, layer);
-      if (d >= 0.0) {
-        sum += blocker_depth_in(tap, d, layer);
-        ++blockers;
+  // Slice k of the pyramid from p to the rect lies at t_search / 2^k (six slices: from the near
+  // plane down to 3 % of its way, where contact blockers lie). The near plane's slice alone is the
+  // textbook search: along the light centre's rays it takes in a cone far wider than the pyramid at
+  // any deeper depth, and what it finds there nearer than the receiver's plane (a wall or a column
+  // beside a long shadow, not between it and the light) is no blocker of p. So that slice says
+  // whether the search found anything; the mean depth is that of the blockers, in every slice,
+  // that truly block a point of the rect from p (blocks_the_rect) and stand clear of its plane
+  // (clear_of_receiver), or, where none does (a blocker between the taps' rays), the near
+  // slice's as in the textbook.
+  float cone_sum = 0.0, pyramid_sum = 0.0;
+  int cone = 0, pyramid = 0;
+  int slices = u_search_whole_cone ? 1 : 6;  // FAULT when set: the textbook search
+  for (int k = 0; k < slices; ++k) {
+    float t_k = t_search * exp2(-float(k));
+    for (int j = 0; j < kSearchTaps; ++j)
+      for (int i = 0; i < kSearchTaps; ++i) {
+        vec2 ab = (vec2(i, j) + 0.5) / float(kSearchTaps) - 0.5;
+        vec3 l = u_light.xyz + ab.x * u_rect_u + ab.y * u_rect_v;
+        Tap tap = tap_at(v_world + (l - v_world) * t_k, layer, plane, world_plane);
+        float d = blocker_at(tap, layer);
+        if (d < 0.0) continue;
+        float depth = blocker_depth_in(tap, d, layer);
+        if (k == 0) {
+          cone_sum += depth;
+          ++cone;
+        }
+        if (!u_search_whole_cone && blocks_the_rect(tap, d) && clear_of_receiver(tap, d)) {
+          pyramid_sum += depth;
+          ++pyramid;
+        }
       }
-    }
-  float blocker_depth = blockers == 0 ? receiver_depth : sum / float(blockers);
+  }
+  blockers = cone + pyramid;
+  float sum = pyramid > 0 ? pyramid_sum : cone_sum;
+  int counted = pyramid > 0 ? pyramid : cone;
+  float blocker_depth = blockers == 0 ? receiver_depth : sum / float(counted);
   if (u_blocker_at_receiver) blocker_depth = receiver_depth;  // FAULT: the receiver's own depth
   return clamp(1.0 - blocker_depth / receiver_depth, 0.0, 1.0);
 }
@@ -214,6 +258,7 @@ void set_rect_light_uniforms(const Frame& frame, const Program& p, std::size_t i
   gl.Uniform3f(p.at(gl, "u_rect_v"), v.x(), v.y(), v.z());
   gl.Uniform1i(p.at(gl, "u_blocker_at_receiver"), f.blocker_depth_from_receiver ? 1 : 0);
   gl.Uniform1i(p.at(gl, "u_taps_in_own_face"), f.taps_stay_in_face ? 1 : 0);
+  gl.Uniform1i(p.at(gl, "u_search_whole_cone"), f.search_whole_cone ? 1 : 0);
 }
 
 extern const MapLookup kPcssLookup{

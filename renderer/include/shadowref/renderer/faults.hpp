@@ -157,6 +157,12 @@ struct SoftShadowFaults {
   // A cube map's filter taps read only the fragment's own face: a tap across the face's edge falls
   // outside its map and reads as unblocked, so a penumbra that straddles a seam leaks light along it.
   bool taps_stay_in_face = false;
+  // The textbook blocker search (Fernando 2005): every surface the map holds nearer than the
+  // receiver's plane across the near plane's slice of the pyramid from the receiver to the rect
+  // counts, at its depth, though along the light centre's rays that slice takes in a cone far
+  // wider than the pyramid at the blocker's depth. A wall or column beside a long shadow then
+  // pulls the blockers' mean depth towards the receiver, and the penumbra comes out too hard.
+  bool search_whole_cone = false;
 };
 
 struct Faults {

@@ -111,7 +111,8 @@ inline constexpr Threshold kSoftShadow{
 // half the light's size stays at 1.0 % and is caught by the mean (0.093). Hence 3 %: 6 times the
 // worst correct case, 5 times below the mildest variant the ratio catches. vsm (the same penumbra,
 // moments filtered) on soft_penumbra: 0.14 % unexplained (0.32 % at 1024²), mean 0.044, in every
-// convention; its light bleeding on light_bleeding 3.8 .. 4.6 % with 5x5 cores (an expected failure).
+// convention; its light bleeding on light_bleeding 2.7 .. 3.2 %, always with 5x5 cores (an expected
+// failure, which its cores make certain).
 struct VisibilityThreshold {
   double unexplained_fail;   // unexplained / penumbra pixels above this: FAIL
   std::string_view why;
