@@ -271,13 +271,6 @@ constexpr Row kRows[] = {
      .field_class = "a cube map's filter taps confined to the fragment's own face (seams unfiltered)",
      .why = "the taps beyond the seam between the cube's downward and side faces read as unblocked: a line of "
             "light along the seam through the wall's shadow"},
-    {.name = "pcss-blocker-search-counts-the-whole-cone", .technique = "pcss",
-     .faults = on([](Faults& f) { f.soft.search_whole_cone = true; }), .convention = "gl",
-     .scenes = "soft_stray_blockers",
-     .field_class = "a PCSS blocker search that counts every surface nearer than the receiver in the near plane's slice (Fernando 2005's)",
-     .why = "the block under the light brings the cube map's near plane close, so the search's slice reads a cone some "
-            "50 degrees wide: the columns beside the far block's shadow, not between it and the light, count as "
-            "blockers near the receiver's depth, and the block's long penumbra comes out hard"},
     // ---- variance shadow maps over PCSS's penumbra -----------------------------------------------
     {.name = "vsm-blocker-search-reads-the-receiver", .technique = "vsm",
      .faults = on([](Faults& f) { f.soft.blocker_depth_from_receiver = true; }), .convention = "gl",
@@ -285,12 +278,6 @@ constexpr Row kRows[] = {
      .field_class = "a PCSS blocker search that returns the receiver's depth",
      .why = "the filter region shrinks to the receiver's own texels: the moments hold one depth and every soft "
             "shadow comes out hard"},
-    {.name = "vsm-blocker-search-counts-the-whole-cone", .technique = "vsm",
-     .faults = on([](Faults& f) { f.soft.search_whole_cone = true; }), .convention = "gl",
-     .scenes = "soft_stray_blockers",
-     .field_class = "a PCSS blocker search that counts every surface nearer than the receiver in the near plane's slice (Fernando 2005's)",
-     .why = "as pcss's: the columns beside the far block's shadow count as blockers, and the moments are averaged "
-            "over a region too small: the block's long penumbra comes out hard"},
     {.name = "vsm-penumbra-for-twice-the-light", .technique = "vsm",
      .faults = on([](Faults& f) { f.soft.light_size_scale = 2.0; }), .convention = "gl",
      .scenes = "soft_penumbra",

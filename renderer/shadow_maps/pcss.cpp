@@ -163,7 +163,8 @@ float penumbra_plane(vec4 plane, vec4 world_plane, float receiver_depth, int lay
         float d = blocker_at(tap, layer);
         if (d < 0.0) continue;
         float depth = blocker_depth_in(tap, d, layer);
-        if (k == 0) {
+        bool near_slice = k == 0;
+        if (near_slice) {
           cone_sum += depth;
           ++cone;
         }
