@@ -145,11 +145,11 @@ float penumbra_plane(vec4 plane, vec4 world_plane, float receiver_depth, int lay
   // plane down to 3 % of its way, where contact blockers lie). The near plane's slice alone is the
   // textbook search: along the light centre's rays it takes in a cone far wider than the pyramid at
   // any deeper depth, and what it finds there nearer than the receiver's plane (a wall or a column
-  // beside a long shadow, not between it and the light) is no blocker of p. So that slice says
-  // whether the search found anything; the mean depth is that of the blockers, in every slice,
-  // that truly block a point of the rect from p (blocks_the_rect) and stand clear of its plane
-  // (clear_of_receiver), or, where none does (a blocker between the taps' rays), the near
-  // slice's as in the textbook.
+  // beside a long shadow, not between it and the light) is no blocker of p. So a blocker found by
+  // that slice, or a tested one in any slice, says that there is one; the mean depth is that of
+  // the blockers, in every slice, that truly block a point of the rect from p (blocks_the_rect)
+  // and stand clear of its plane (clear_of_receiver), or, where none does (a blocker between the
+  // taps' rays), the near slice's as in the textbook.
   float cone_sum = 0.0, pyramid_sum = 0.0;
   int cone = 0, pyramid = 0;
   int slices = u_search_whole_cone ? 1 : 6;  // FAULT when set: the textbook search
