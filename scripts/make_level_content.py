@@ -315,6 +315,22 @@ def cut_expect():
     return e
 
 
+# Measured on the large level (2026-11-29, gl): the character is smaller in its view, so the same
+# contact shows later. vsm's densest window 14 at x2 (960 px), 36 at x3 (1440), 61 at x4 (1920),
+# nearly all too light (2 and 3 px of false shadow beside them: no kind predicted); pcss's 5, 15 and
+# 19 (with one 5x5 core of its lit fraction at x4), a single pixel over the bound, left expected to
+# pass until more heights and conventions say where it always fails.
+LEVEL_VSM_FROM_HEIGHT = 1440
+
+
+def level_expect():
+    e = base_expect()
+    e["vsm"] = {"result": "fail", "from_height": LEVEL_VSM_FROM_HEIGHT,
+                "why": "as on level_cut: " + PCSS_CONTACT_WHY + "; here the character is smaller in the view, and "
+                       "vsm's Chebyshev bound bleeds a little light on top, so it fails from 1440 px"}
+    return e
+
+
 def expectations(overrides):
     out = {}
     for t in TECHNIQUES:
@@ -416,7 +432,7 @@ def scenes():
         "camera": {"position": [-3.0, 9.5, 14.0], "target": [2.0, 1.0, -2.0], "up": [0, 1, 0], "fovy_deg": 60, "near": 0.1},
         "lights": LIGHTS,
         "objects": objects(False),
-        "expect": expectations(base_expect()),
+        "expect": expectations(level_expect()),
     }
     cut = {
         "name": "level_cut",
