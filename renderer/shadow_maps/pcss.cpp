@@ -84,12 +84,15 @@ float receiver_z_at(Tap tap) {
   vec4 s = u_layer_from_world[tap.layer] * vec4(v_world, 1.0);
   return s.z / s.w;
 }
-// Whether the surface stored at the tap (window depth `stored`) truly blocks a point of the light
-// from the receiver: it lies between the receiver and the light's plane, and the ray from the
-// receiver through it meets that plane inside the rect.
-bool blocks_the_rect(Tap tap, float stored) {
+// The world point of the surface stored at the tap (window depth `stored`).
+vec3 stored_point(Tap tap, float stored) {
   vec4 w = u_world_from_layer[tap.layer] * vec4(tap.c, stored, 1.0);
-  vec3 b = w.xyz / w.w;
+  return w.xyz / w.w;
+}
+// Whether a surface at world point b truly blocks a point of the light from the receiver: it lies
+// between the receiver and the light's plane, and the ray from the receiver through it meets that
+// plane inside the rect.
+bool blocks_the_rect(vec3 b) {
   vec3 ln = cross(u_rect_u, u_rect_v);
   float dp = dot(ln, v_world - u_light.xyz), db = dot(ln, b - u_light.xyz);
   if (dp * db <= 0.0 || abs(db) >= abs(dp)) return false;
@@ -97,7 +100,7 @@ bool blocks_the_rect(Tap tap, float stored) {
   vec2 ab = vec2(dot(h, u_rect_u) / dot(u_rect_u, u_rect_u), dot(h, u_rect_v) / dot(u_rect_v, u_rect_v));
   return all(lessThanEqual(abs(ab), vec2(0.5)));
 }
-// Whether the surface stored at the tap stands clear of the receiver's own plane, on the light's
+// Whether a surface at world point b stands clear of the receiver's own plane, on the light's
 // side: a true blocker of a light point above the receiver's horizon lies on the segment to it, so
 // at that point's elevation above the horizon. Below sin 3° = 0.05 a texel read next to p may hold
 // the receiver's own surface or its neighbour on a curved or grazing receiver (depth steps, the
@@ -105,11 +108,10 @@ bool blocks_the_rect(Tap tap, float stored) {
 // texel: speckled self-shadowing on faces the light grazes (the Cornell box's tall block). The
 // blockers that only graze the horizon so dropped from the mean hide light points that matter
 // least to the estimate.
-bool clear_of_receiver(Tap tap, float stored) {
-  vec4 w = u_world_from_layer[tap.layer] * vec4(tap.c, stored, 1.0);
-  vec3 b = w.xyz / w.w - v_world;
+bool clear_of_receiver(vec3 b) {
+  vec3 d = b - v_world;
   vec3 n = gl_FrontFacing ? v_normal : -v_normal;
-  return dot(n, b) > 0.05 * length(b);
+  return dot(n, d) > 0.05 * length(d);
 }
 // The stored window depth at the tap when it holds something nearer than the receiver's plane
 // there (a blocker), else -1. `layer` is the fragment's. A tap read from another cube face counts
@@ -123,15 +125,14 @@ float blocker_at(Tap tap, int layer) {
   float stored = texture(u_depth_map, vec3(tap.c, float(tap.layer))).r;
   bool lit = u_lit_greater ? z >= stored : z <= stored;
   if (lit) return -1.0;
-  if (tap.layer != layer && !blocks_the_rect(tap, stored)) return -1.0;
+  if (tap.layer != layer && !blocks_the_rect(stored_point(tap, stored))) return -1.0;
   return stored;
 }
 // A blocker's depth along the view axis of `layer` (the fragment's): a blocker found in another
 // cube face is carried back through its world point.
 float blocker_depth_in(Tap tap, float stored, int layer) {
   if (tap.layer == layer) return view_depth(stored, layer);
-  vec4 w = u_world_from_layer[tap.layer] * vec4(tap.c, stored, 1.0);
-  return (u_layer_from_world[layer] * vec4(w.xyz / w.w, 1.0)).w;
+  return (u_layer_from_world[layer] * vec4(stored_point(tap, stored), 1.0)).w;
 }
 // Steps 1 and 2's plane: the fraction of the way from p to the light at which the light's rect,
 // seen from p, covers the filter's texels (0 when the search finds no blocker: `blockers` is 0).
@@ -168,7 +169,9 @@ float penumbra_plane(vec4 plane, vec4 world_plane, float receiver_depth, int lay
           cone_sum += depth;
           ++cone;
         }
-        if (!u_search_whole_cone && blocks_the_rect(tap, d) && clear_of_receiver(tap, d)) {
+        if (u_search_whole_cone) continue;
+        vec3 b = stored_point(tap, d);
+        if (blocks_the_rect(b) && clear_of_receiver(b)) {
           pyramid_sum += depth;
           ++pyramid;
         }
