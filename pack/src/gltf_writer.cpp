@@ -291,7 +291,10 @@ json scene_gltf(const scene::Scene& s) {
   json scene_nodes = json::array();
   for (std::size_t n = 0; n < nodes.size(); ++n) scene_nodes.push_back(n);
   g["scene"] = 0;
+  // glTF's unit is the metre: a scene in another unit says which (scene.hpp, LengthUnit).
   g["scenes"] = {{{"name", s.name}, {"nodes", scene_nodes}}};
+  if (s.units.metres != 1.0)
+    g["scenes"][0]["extras"] = {{"units", std::string(s.units.symbol)}, {"metres_per_unit", s.units.metres}};
   g["nodes"] = nodes;
   g["materials"] = materials;
   if (!skins.empty()) g["skins"] = skins;

@@ -1,6 +1,7 @@
 // readme.cpp — the pack's README from its template (readme.hpp).
 #include "shadowref/pack/readme.hpp"
 
+#include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
@@ -28,12 +29,37 @@ std::string error_image_colours() {
   return t;
 }
 
+// A number for prose: 3 significant digits, no exponent for the sizes scenes have.
+std::string short_number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", v);
+  return text;
+}
+
+// The warnings of a scene's row: each light whose point lies nearer to a surface than
+// kCloseLightShare of the scene's size.
+std::string light_warnings(const json& s) {
+  std::string t;
+  const json& clearance = s["light_clearance"];
+  const double size = s["size"].get<double>();
+  const std::string unit = s["units"]["symbol"].get<std::string>();
+  for (std::size_t i = 0; i < clearance.size(); ++i) {
+    if (clearance[i].is_null()) continue;
+    const double d = clearance[i]["distance"].get<double>();
+    if (!(d < kCloseLightShare * size)) continue;
+    t += " **Light " + std::to_string(i) + " sits " + short_number(d) + " " + unit + " from a surface (" +
+         clearance[i]["object"].get<std::string>() + ")**: a shadow camera's near plane beyond that clips it.";
+  }
+  return t.empty() ? t : "." + t;  // the descriptions end without a full stop
+}
+
 std::string scene_rows(const json& manifest) {
   std::string t;
   for (const json& s : manifest["scenes"])
     t += (t.empty() ? "" : "\n") + ("| " + s["name"].get<std::string>() + " | " + std::to_string(s["resolution"][0].get<int>()) +
                                     "x" + std::to_string(s["resolution"][1].get<int>()) + " | " +
-                                    std::to_string(s["lights"].get<int>()) + " | " + s["description"].get<std::string>() + " |");
+                                    std::to_string(s["lights"].get<int>()) + " | " + s["units"]["name"].get<std::string>() +
+                                    " | " + s["description"].get<std::string>() + light_warnings(s) + " |");
   return t;
 }
 

@@ -3,7 +3,10 @@
 
 #include <cctype>
 #include <fstream>
+#include <limits>
+#include <span>
 
+#include "shadowref/light_fit.hpp"
 #include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/image.hpp"
 #include "shadowref/outputs/json_text.hpp"
@@ -71,6 +74,32 @@ void write_scene_files(const scene::Scene& s, const fs::path& scene_file, const 
   outputs::write_file_atomically(dir / "matrices.json", outputs::json_text(m, 2) + "\n");
 }
 
+namespace {
+
+// Per light, the surface nearest to its point (a rect light's centre; null for a directional
+// light): {"distance": in the scene's units, "object": its name}.
+json light_clearance(const scene::Scene& s) {
+  json out = json::array();
+  for (const scene::Light& l : s.lights) {
+    if (l.type == scene::LightType::Directional) {
+      out.push_back(nullptr);
+      continue;
+    }
+    const Vec3<double> at = scene::homogeneous(l).head<3>();
+    double nearest = std::numeric_limits<double>::infinity();
+    std::string object;
+    for (const scene::Object& o : s.objects) {
+      const TriangleMesh<float>* m = &o.mesh;
+      const double d = nearest_triangle_distance(at, std::span<const TriangleMesh<float>* const>(&m, 1));
+      if (d < nearest) nearest = d, object = o.name;
+    }
+    out.push_back({{"distance", nearest}, {"object", object}});
+  }
+  return out;
+}
+
+}  // namespace
+
 json manifest_head() {
   json manifest;
   manifest["tool"] = "shadowref export";
@@ -87,10 +116,14 @@ json manifest_entry(const scene::Scene& s, const fs::path& scene_file) {
                          : json{{"result", "pass"}};
     if (e.from_height) expect[t]["from_height"] = e.from_height;
   }
+  const auto [lo, hi] = scene::bounds(s);
   return {{"name", s.name},
           {"description", s.description},
           {"resolution", {s.width, s.height}},
           {"lights", s.lights.size()},
+          {"units", {{"symbol", s.units.symbol}, {"name", s.units.name}, {"metres", s.units.metres}}},
+          {"size", (hi - lo).norm()},
+          {"light_clearance", light_clearance(s)},
           {"scene_file", "scenes/" + scene_file.filename().string()},
           {"expect", expect}};
 }

@@ -61,6 +61,7 @@ TEST_P(RoundTrip, PackSceneGltfReadsBackAsTheSameScene) {
   const double tol = kFrameTol * scale_of(s);
 
   EXPECT_EQ(g.name, s.name);
+  EXPECT_EQ(g.units.symbol, s.units.symbol);
   EXPECT_EQ(g.width, s.width);
   EXPECT_EQ(g.height, s.height);
   expect_near(g.camera.position, s.camera.position, tol, "camera position");

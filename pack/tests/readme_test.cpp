@@ -15,8 +15,14 @@ using nlohmann::json;
 
 json two_scenes() {
   json m;
-  m["scenes"] = {{{"name", "a"}, {"description", "first"}, {"resolution", {64, 48}}, {"lights", 1}},
-                 {{"name", "b"}, {"description", "second"}, {"resolution", {8, 8}}, {"lights", 3}}};
+  const json metres = {{"symbol", "m"}, {"name", "metres"}, {"metres", 1.0}};
+  const json millimetres = {{"symbol", "mm"}, {"name", "millimetres"}, {"metres", 0.001}};
+  m["scenes"] = {{{"name", "a"}, {"description", "first"}, {"resolution", {64, 48}}, {"lights", 1}, {"units", metres},
+                  {"size", 10.0}, {"light_clearance", {{{"distance", 1.0}, {"object", "ground"}}}}},
+                 {{"name", "b"}, {"description", "second"}, {"resolution", {8, 8}}, {"lights", 3}, {"units", millimetres},
+                  {"size", 1000.0},
+                  {"light_clearance",
+                   {nullptr, {{"distance", 0.1}, {"object", "ceiling"}}, {{"distance", 10.0}, {"object", "floor"}}}}}};
   return m;
 }
 
@@ -34,7 +40,11 @@ TEST(Readme, TheTemplateFillsWithEveryTechniqueColourAndScene) {
     EXPECT_NE(t.find("| " + outputs::rgb_text(r.colour) + " " + std::string(r.colour_name) + " | " + std::string(r.legend) + " |\n"),
               std::string::npos)
         << r.name;
-  EXPECT_NE(t.find("| a | 64x48 | 1 | first |\n| b | 8x8 | 3 | second |\n"), std::string::npos);
+  // Each scene's units; a light nearer to a surface than kCloseLightShare of the scene's size (light 1
+  // of b, 0.1 mm in 1000 mm) is said, one at 1 % or farther (b's light 2 at 10 mm, a's light) is not.
+  EXPECT_NE(t.find("| a | 64x48 | 1 | metres | first |\n| b | 8x8 | 3 | millimetres | second. **Light 1 sits 0.1 mm from a "
+                   "surface (ceiling)**: a shadow camera's near plane beyond that clips it. |\n"),
+            std::string::npos);
   EXPECT_EQ(t.substr(t.size() - 2), "|\n");
 }
 

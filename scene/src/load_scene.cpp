@@ -393,7 +393,7 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& file,
     throw SceneError(file.string() + ": invalid JSON: " + e.what());
   }
   const JsonNode root(doc, "", file);
-  root.expect_object({"name", "description", "resolution", "camera", "lights", "objects", "expect", "tags", "invariants"});
+  root.expect_object({"name", "description", "units", "resolution", "camera", "lights", "objects", "expect", "tags", "invariants"});
   Scene scene;
   scene.file = file;
   // The name becomes a folder name (renders/<name>/, the reference cache's <name>-<key>/).
@@ -401,6 +401,12 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& file,
   scene.name = name.string();
   if (auto problem = identifier_problem(scene.name)) name.fail(*problem);
   if (auto d = root.optional("description")) scene.description = d->string();
+  if (auto u = root.optional("units")) {
+    const std::string symbol = u->string();
+    const LengthUnit* unit = find_length_unit(symbol);
+    if (!unit) u->fail("unknown unit '" + symbol + "' (known: " + length_unit_symbols() + ")");
+    scene.units = *unit;
+  }
   if (auto r = root.optional("resolution")) {
     if (r->array_size() != 2) r->fail("must be [width, height]");
     for (std::size_t i = 0; i < 2; ++i) {

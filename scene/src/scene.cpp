@@ -15,6 +15,18 @@ const char* to_string(LightType type) {
   return "unknown";
 }
 
+const LengthUnit* find_length_unit(std::string_view symbol) {
+  for (const LengthUnit& u : kLengthUnits)
+    if (u.symbol == symbol) return &u;
+  return nullptr;
+}
+
+std::string length_unit_symbols() {
+  std::string t;
+  for (const LengthUnit& u : kLengthUnits) t += (t.empty() ? "" : ", ") + std::string(u.symbol);
+  return t;
+}
+
 Vec4<double> homogeneous(const Light& light) {
   switch (light.type) {
     case LightType::Directional: return Vec4<double>(light.direction.x(), light.direction.y(), light.direction.z(), 0);

@@ -404,6 +404,16 @@ TEST(GltfScene, ReceiverFromNodeExtras) {
   EXPECT_NE(error_of(g.write()).find("nodes[2].extras.receiver"), std::string::npos) << error_of(g.write());
 }
 
+// glTF's unit is the metre; the pack's scene in another one says so in its scene's extras.units.
+TEST(GltfScene, UnitsFromTheScenesExtrasElseMetres) {
+  Gltf g = Gltf::minimal();
+  EXPECT_EQ(read_gltf_scene(g.write()).scene.units.symbol, "m");
+  g.doc()["scenes"][0]["extras"] = {{"units", "mm"}, {"metres_per_unit", 0.001}};
+  EXPECT_EQ(read_gltf_scene(g.write()).scene.units.symbol, "mm");
+  g.doc()["scenes"][0]["extras"]["units"] = "furlong";
+  EXPECT_NE(error_of(g.write()).find("scenes[0].extras.units: must be one of m, cm, mm"), std::string::npos) << error_of(g.write());
+}
+
 // Each refusal: one line naming the file and what is wrong.
 struct Refusal {
   const char* name;

@@ -25,7 +25,9 @@ struct ErrorCase {
 
 // Each case: what it proves is in its name; the expected text pins both the path and the reason.
 const ErrorCase kCases[] = {
-    {"UnknownTopLevelKey", "/colour", "1", "colour: unknown key (allowed here: name, description, resolution, camera, lights, objects, expect, tags, invariants)"},
+    {"UnknownTopLevelKey", "/colour", "1", "colour: unknown key (allowed here: name, description, units, resolution, camera, lights, objects, expect, tags, invariants)"},
+    {"UnknownUnit", "/units", "\"inch\"", "units: unknown unit 'inch' (known: m, cm, mm)"},
+    {"UnitNotString", "/units", "0.001", "units: must be a string, not number"},
     {"UnknownInvariant", "/invariants", "[\"no-shadow-at-all\"]", "invariants[0]: unknown invariant 'no-shadow-at-all' (known: no-cast-shadow)"},
     {"MissingName", "/name", nullptr, "name: is required"},
     {"NameNotString", "/name", "3", "name: must be a string, not number"},

@@ -118,6 +118,8 @@ TEST(Catalogue, EveryScene) {
     EXPECT_EQ(s.name, entry.path().stem().string()) << "the scene's name is its file name";
     EXPECT_TRUE(names.insert(s.name).second);
     EXPECT_FALSE(s.description.empty());
+    // The Cornell box keeps its published millimetres and says so; every other scene is in metres.
+    EXPECT_EQ(s.units.symbol, s.name == "cornell_box" ? "mm" : "m");
     for (const auto& t : outputs::kTechniques) EXPECT_EQ(s.expect.count(std::string(t.name)), 1u) << "no expectation for " << t.name;
     if (!s.has_tag("large")) {
       EXPECT_LE(static_cast<long>(s.width) * s.height, 320L * 240L * 2) << "default scenes stay modest";

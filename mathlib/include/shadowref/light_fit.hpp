@@ -118,18 +118,31 @@ inline int auto_map_size(const LightFitOptions& o, double tan_half_fov, int max_
   return static_cast<int>(std::clamp(std::ceil(want), double(kAutoMinSize), double(max_size)));
 }
 
-// A cube's near and far planes around `pos` for faces opened to tan_half (see the top of the file).
-inline std::pair<double, double> cube_depth_range(const Vec3<double>& pos,
-                                                  std::span<const TriangleMesh<float>* const> meshes, double tan_half) {
-  double closest = std::numeric_limits<double>::infinity(), farthest = 0;
-  for (const TriangleMesh<float>* m : meshes) {
+}  // namespace detail
+
+// The distance from `pos` to the nearest triangle of `meshes` (infinity when they have none): how
+// close a light sits to a surface, which a shadow camera's near plane must not clip. Brute force
+// over every triangle, in double.
+inline double nearest_triangle_distance(const Vec3<double>& pos, std::span<const TriangleMesh<float>* const> meshes) {
+  double closest = std::numeric_limits<double>::infinity();
+  for (const TriangleMesh<float>* m : meshes)
     for (const auto& t : m->triangles) {
       const Vec3<double> a = m->positions[t[0]].cast<double>(), b = m->positions[t[1]].cast<double>(),
                          c = m->positions[t[2]].cast<double>();
       closest = std::min(closest, (closest_point_on_triangle(pos, a, b, c) - pos).norm());
     }
+  return closest;
+}
+
+namespace detail {
+
+// A cube's near and far planes around `pos` for faces opened to tan_half (see the top of the file).
+inline std::pair<double, double> cube_depth_range(const Vec3<double>& pos,
+                                                  std::span<const TriangleMesh<float>* const> meshes, double tan_half) {
+  const double closest = nearest_triangle_distance(pos, meshes);
+  double farthest = 0;
+  for (const TriangleMesh<float>* m : meshes)
     for (const Vec3<float>& v : m->positions) farthest = std::max(farthest, (v.cast<double>() - pos).norm());
-  }
   const double far = std::max(farthest * 1.01, 1e-6);
   double near = 0.99 * closest / std::sqrt(1.0 + 2.0 * tan_half * tan_half);
   // The light touching a surface: geometry nearer than far · 1e-4 is clipped (a documented limit;

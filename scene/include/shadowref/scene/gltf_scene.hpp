@@ -5,6 +5,8 @@
 // What is read, from the default scene (else the first; else every root node), walked depth first
 // in the order the file lists nodes and children, node transforms applied (matrix, or T R S):
 //   name        the file's stem (a safe identifier: identifier.hpp), e.g. my_level.gltf → my_level.
+//   units       glTF's metre, or the unit the scene's extras.units names ("m", "cm", "mm"), as the
+//               pack writes a scene in another unit (scene.hpp, LengthUnit); any other value is refused.
 //   camera      the first node with a camera in that walk; perspective only: yfov → fovy_deg,
 //               znear → near, zfar → far (absent: the far plane at infinity, the suite's default).
 //               The eye is the node's origin, it looks along the node's −z with the node's +y up.

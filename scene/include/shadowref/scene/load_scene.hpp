@@ -2,6 +2,7 @@
 //
 // The format, key by key (every other key is an error, so a typo never goes unnoticed):
 //   name (string, required, a safe identifier: identifier.hpp), description (string),
+//   units (string: "m", "cm" or "mm", default "m": what one unit of every coordinate is; scene.hpp, LengthUnit),
 //   resolution ([W, H], integers in [1, 16384], default [256, 256]), tags (array of strings),
 //   invariants (array of strings: "no-cast-shadow" — no cast shadow is visible anywhere, judged on
 //   every surface pixel), expect ({technique: {result: "pass"|"fail", why: string (required for fail)}}, technique

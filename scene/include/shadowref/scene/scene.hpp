@@ -3,7 +3,8 @@
 // This is the in-memory form of one scene file (load_scene.hpp says the format key by key); load_scene.hpp fills it
 // and validates everything, so every field here is finite and within its documented range.
 // Units are whatever the scene file uses (metres for most of the catalogue, millimetres for the
-// Cornell box); nothing in shadowref assumes a unit, epsilons scale with the scene's extent.
+// Cornell box), stated by its "units" (LengthUnit); nothing in shadowref's maths reads the unit,
+// epsilons scale with the scene's extent.
 #pragma once
 
 #include <array>
@@ -12,6 +13,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "shadowref/conventions.hpp"
@@ -21,6 +23,21 @@
 #include "shadowref/scene/skin.hpp"
 
 namespace shadowref::scene {
+
+// A length unit a scene may be written in ("units" in the scene file, default metres). The pack
+// states it and its glTF carries it, because an engine takes glTF's metres for granted and a
+// physically based light falls off with distance in metres: a scene in millimetres (the Cornell
+// box's published data) is lit 10^6 times dimmer there. Shadows do not depend on it.
+struct LengthUnit {
+  std::string_view symbol;  // the scene file's value: "m", "cm", "mm"
+  std::string_view name;    // in words, plural: "metres"
+  double metres = 1;        // one unit, in metres
+};
+inline constexpr std::array<LengthUnit, 3> kLengthUnits{{{"m", "metres", 1.0}, {"cm", "centimetres", 0.01}, {"mm", "millimetres", 0.001}}};
+// The unit with this symbol; nullptr when none has it.
+const LengthUnit* find_length_unit(std::string_view symbol);
+// Every unit's symbol, for messages: "m, cm, mm".
+std::string length_unit_symbols();
 
 // The perspective camera. Aspect = width / height of the scene's resolution.
 struct Camera {
@@ -108,6 +125,7 @@ struct Scene {
   std::filesystem::path file;         // the scene file it was loaded from
   std::string name;
   std::string description;
+  LengthUnit units = kLengthUnits[0];  // what one unit of every coordinate is
   int width = 256;                    // resolution, each in [1, 16384]
   int height = 256;
   Camera camera;
