@@ -29,6 +29,7 @@
 #include "shadowref/conform/judge.hpp"
 #include "shadowref/conform/reference_cache.hpp"
 #include "shadowref/outputs/candidate.hpp"
+#include "shadowref/outputs/file_names.hpp"
 #include "shadowref/outputs/image.hpp"
 #include "shadowref/outputs/image_io.hpp"
 #include "shadowref/reference/causes.hpp"
@@ -191,32 +192,41 @@ std::vector<std::vector<Declaration>> chains() {
   };
 }
 
-// One scene: its prepared form, the reference (from the CTest fixtures' cache), our render's mask.
+// One scene: its prepared form, the reference (from the CTest fixtures' cache), our render's masks.
 struct SceneUnderTest : test::CatalogueScene {
   explicit SceneUnderTest(const std::string& name)
-      : CatalogueScene(name), control(test::llvmpipe_renderer().render(prepared, "shadowmap").masks.at(0)) {
+      : CatalogueScene(name), masks(test::llvmpipe_renderer().render(prepared, "shadowmap").masks), control(masks.at(0)) {
     renderer::RenderOptions o;
     o.declare_light_matrices = true;
     const renderer::RenderResult declared = test::llvmpipe_renderer().render(prepared, "shadowmap", o);
     // The same drawing: declaring the matrices changes what is said, not what is drawn.
-    if (declared.masks.at(0).pixels != control.pixels) ADD_FAILURE() << "declaring the matrices changed the mask";
+    for (std::size_t i = 0; i < masks.size(); ++i)
+      if (declared.masks.at(i).pixels != masks[i].pixels) ADD_FAILURE() << "declaring the matrices changed mask " << i;
     nlohmann::json keys = nlohmann::json::parse(outputs::declaration_text(declared.declaration));
     keys.erase("technique");
     our_matrices = keys.dump();
     our_matrices = our_matrices.substr(1, our_matrices.size() - 2);  // the keys, without the braces
   }
-  Image8 control;
-  std::string our_matrices;  // our render's declaration with its light matrices, kOurMatrices
+  std::vector<Image8> masks;  // our render's, one per light
+  Image8 control;             // light 0's (the single-light scenes' one mask)
+  std::string our_matrices;   // our render's declaration with its light matrices, kOurMatrices
   conform::Judge judge;
 
-  // Judges `mask` declared with `keys` (kOurMatrices: our_matrices), in folder `name`.
-  conform::CaseJudgement judged(const std::string& name, const Image8& mask, const std::string& keys) {
+  // Judges `mask` as light `light`'s, beside our render's masks of the other lights, declared with
+  // `keys` (kOurMatrices: our_matrices), in folder `name`.
+  conform::CaseJudgement judged(const std::string& name, const Image8& mask, const std::string& keys, std::size_t light = 0) {
     const fs::path dir = fs::path(SHADOWREF_TEST_OUT) / scene.name / name;
+    fs::remove_all(dir);  // no mask of an earlier run's layout left beside these
     fs::create_directories(dir);
-    outputs::write_png(mask, dir / "mask.png");
+    for (std::size_t i = 0; i < masks.size(); ++i)
+      outputs::write_png(i == light ? mask : masks[i], dir / outputs::mask_name(i, masks.size()));
     const std::string& said = keys == kOurMatrices ? our_matrices : keys;
     std::ofstream(dir / "candidate.json") << "{\"technique\": \"shadowmap\"" << (said.empty() ? "" : ", ") << said << "}\n";
     return judge.judge(&prepared, {reference, dir, "", false, {}});
+  }
+  // A mutant's name, with the light it mutates where the scene has several ("shifted-1px@light2").
+  std::string mutant_name(const char* mutant, std::size_t light) const {
+    return masks.size() == 1 ? std::string(mutant) : std::string(mutant) + "@light" + std::to_string(light);
   }
 };
 
@@ -305,41 +315,45 @@ TEST_P(DeclarationGrid, TheControlPassesAndNoDeclarationLetsAMutantPass) {
   EXPECT_EQ(declared.comparison.decision.verdict, compare::Verdict::Pass) << "the control, its light matrices declared";
   ASSERT_TRUE(declared.resolving_power);
   EXPECT_FALSE(declared.resolving_power->blind_to(conform::ProbeKind::Shift1)) << declared.resolving_power->summary();
-  // The reference's decided pixels (255): a mutant is judged where it changes one of them.
-  const Image8 decided = outputs::read_image8(s.reference / "decided.png", 1);
-  for (const Mutant& m : mutants()) {
-    Image8 mask = s.control;
-    m.mutate(mask);
-    bool changes_decided = false;
-    for (std::size_t i = 0; i < mask.pixels.size(); ++i)
-      changes_decided = changes_decided || (decided.pixels[i] == 255 && mask.pixels[i] != s.control.pixels[i]);
-    if (!changes_decided) continue;  // changes no decided pixel of this scene: nothing to judge
-    for (const Declaration& d : grid()) {
-      const conform::CaseJudgement j = s.judged(std::string(m.name) + "-" + d.name, mask, d.json);
-      const compare::MaskMetrics& t = j.comparison.total;
-      // The tiles' densest windows, the local-glitch bound's margin from below (thresholds.hpp).
-      if (std::string(m.name).rfind("swapped-tile", 0) == 0)
-        std::printf("%s %s declared %s: %s, %zu px unexplained, densest 9 x 9 window %zu\n", s.scene.name.c_str(), m.name,
-                    d.name.c_str(), compare::to_string(j.comparison.decision.verdict), t.unexplained, t.densest_unexplained);
-      if (known_gap(s.scene.name, m.name, d.name)) {
-        EXPECT_NE(j.comparison.decision.verdict, compare::Verdict::Fail)
-            << m.name << " declared " << d.name << " FAILs now: remove it from kKnownGaps";
-        // Never silently: the case says it is blind to the kind of error it lets through.
-        ASSERT_TRUE(j.resolving_power);
-        if (const std::optional<conform::ProbeKind> kind = probe_kind_of(m.name)) {
-          EXPECT_TRUE(j.resolving_power->blind_to(*kind) || j.resolving_power->sees_nothing_of(*kind))
-              << m.name << " declared " << d.name << " passes, but the case says: " << j.resolving_power->summary();
+  // The reference's decided pixels (255): a mutant is judged where it changes one of them. In a
+  // scene of several lights, each light's mask is mutated in turn, the others kept as drawn.
+  for (std::size_t light = 0; light < s.masks.size(); ++light) {
+    const Image8 decided = outputs::read_image8(s.reference / outputs::decided_name(light, s.masks.size()), 1);
+    for (const Mutant& m : mutants()) {
+      Image8 mask = s.masks[light];
+      m.mutate(mask);
+      bool changes_decided = false;
+      for (std::size_t i = 0; i < mask.pixels.size(); ++i)
+        changes_decided = changes_decided || (decided.pixels[i] == 255 && mask.pixels[i] != s.masks[light].pixels[i]);
+      if (!changes_decided) continue;  // changes no decided pixel of this scene: nothing to judge
+      const std::string name = s.mutant_name(m.name, light);
+      for (const Declaration& d : grid()) {
+        const conform::CaseJudgement j = s.judged(name + "-" + d.name, mask, d.json, light);
+        const compare::MaskMetrics& t = j.comparison.total;
+        // The tiles' densest windows, the local-glitch bound's margin from below (thresholds.hpp).
+        if (std::string(m.name).rfind("swapped-tile", 0) == 0)
+          std::printf("%s %s declared %s: %s, %zu px unexplained, densest 9 x 9 window %zu\n", s.scene.name.c_str(), name.c_str(),
+                      d.name.c_str(), compare::to_string(j.comparison.decision.verdict), t.unexplained, t.densest_unexplained);
+        if (known_gap(s.scene.name, name, d.name)) {
+          EXPECT_NE(j.comparison.decision.verdict, compare::Verdict::Fail)
+              << name << " declared " << d.name << " FAILs now: remove it from kKnownGaps";
+          // Never silently: the case says it is blind to the kind of error it lets through.
+          ASSERT_TRUE(j.resolving_power);
+          if (const std::optional<conform::ProbeKind> kind = probe_kind_of(m.name)) {
+            EXPECT_TRUE(j.resolving_power->blind_to(*kind) || j.resolving_power->sees_nothing_of(*kind))
+                << name << " declared " << d.name << " passes, but the case says: " << j.resolving_power->summary();
+          }
+          EXPECT_EQ(t.unexplained_core, 0u) << name << " declared " << d.name << ": not the predicted kind of gap";
+          EXPECT_LE(t.displaced, compare::kDisplaced.displaced_fail * static_cast<double>(t.edge_pixels))
+              << name << " declared " << d.name << ": not the predicted kind of gap";
+          continue;
         }
-        EXPECT_EQ(t.unexplained_core, 0u) << m.name << " declared " << d.name << ": not the predicted kind of gap";
-        EXPECT_LE(t.displaced, compare::kDisplaced.displaced_fail * static_cast<double>(t.edge_pixels))
-            << m.name << " declared " << d.name << ": not the predicted kind of gap";
-        continue;
+        EXPECT_EQ(j.comparison.decision.verdict, compare::Verdict::Fail)
+            << name << " declared " << d.name << ": " << compare::to_string(j.comparison.decision.verdict) << " with "
+            << t.unexplained << " px unexplained of " << t.wrong << " wrong (" << 100 * t.unexplained_ratio() << " % of "
+            << t.edge_pixels << " edge px, core " << t.unexplained_core << ", " << t.displaced << " displaced, densest 9 x 9 window "
+            << t.densest_unexplained << ")";
       }
-      EXPECT_EQ(j.comparison.decision.verdict, compare::Verdict::Fail)
-          << m.name << " declared " << d.name << ": " << compare::to_string(j.comparison.decision.verdict) << " with "
-          << t.unexplained << " px unexplained of " << t.wrong << " wrong (" << 100 * t.unexplained_ratio() << " % of "
-          << t.edge_pixels << " edge px, core " << t.unexplained_core << ", " << t.displaced << " displaced, densest 9 x 9 window "
-          << t.densest_unexplained << ")";
     }
   }
 }
@@ -348,25 +362,28 @@ TEST_P(DeclarationGrid, DeclaringLessNeverExplainsMore) {
   SceneUnderTest s(GetParam());
   std::vector<Mutant> masks = mutants();
   masks.insert(masks.begin(), Mutant{"control", [](Image8&) {}});
-  for (const Mutant& m : masks) {
-    Image8 mask = s.control;
-    m.mutate(mask);
-    for (const std::vector<Declaration>& chain : chains()) {
-      std::size_t before_unexplained = 0;
-      compare::Verdict before = compare::Verdict::Pass;
-      for (std::size_t i = 0; i < chain.size(); ++i) {
-        const conform::CaseJudgement j = s.judged(std::string(m.name) + "-chain-" + std::to_string(i), mask, chain[i].json);
-        if (i > 0) {
-          EXPECT_GE(j.comparison.total.unexplained, before_unexplained)
-              << m.name << ": declaring " << chain[i].name << " instead of " << chain[i - 1].name << " explained more";
-          EXPECT_GE(j.comparison.decision.verdict, before)
-              << m.name << ": declaring " << chain[i].name << " instead of " << chain[i - 1].name << " improved the verdict";
+  for (std::size_t light = 0; light < s.masks.size(); ++light)
+    for (const Mutant& m : masks) {
+      if (light > 0 && std::string(m.name) == "control") continue;  // one control: every light as drawn
+      Image8 mask = s.masks[light];
+      m.mutate(mask);
+      const std::string name = s.mutant_name(m.name, light);
+      for (const std::vector<Declaration>& chain : chains()) {
+        std::size_t before_unexplained = 0;
+        compare::Verdict before = compare::Verdict::Pass;
+        for (std::size_t i = 0; i < chain.size(); ++i) {
+          const conform::CaseJudgement j = s.judged(name + "-chain-" + std::to_string(i), mask, chain[i].json, light);
+          if (i > 0) {
+            EXPECT_GE(j.comparison.total.unexplained, before_unexplained)
+                << name << ": declaring " << chain[i].name << " instead of " << chain[i - 1].name << " explained more";
+            EXPECT_GE(j.comparison.decision.verdict, before)
+                << name << ": declaring " << chain[i].name << " instead of " << chain[i - 1].name << " improved the verdict";
+          }
+          before_unexplained = j.comparison.total.unexplained;
+          before = j.comparison.decision.verdict;
         }
-        before_unexplained = j.comparison.total.unexplained;
-        before = j.comparison.decision.verdict;
       }
     }
-  }
 }
 
 // A declared map size on the pack's grid is checked against the mask's own staircases
@@ -807,7 +824,7 @@ std::vector<const char*> grid_scenes() {
   if (!out.empty()) return out;
   return {"directional_light", "grazing_light", "contact_shadow", "ground_sphere", "cornell_box", "sun_horizon",
           "camera_at_light", "alpha_cards", "alpha_fence", "alpha_vertex", "single_sided_cards", "skinned_character",
-          "skinned_offscreen"};
+          "skinned_offscreen", "level_cut"};
 }
 INSTANTIATE_TEST_SUITE_P(Scenes, DeclarationGrid, ::testing::ValuesIn(grid_scenes()),
                          [](const ::testing::TestParamInfo<const char*>& i) { return std::string(i.param); });

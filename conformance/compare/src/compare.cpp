@@ -438,6 +438,18 @@ Decision decide(const MaskMetrics& m, const Threshold& t, const std::string& dis
   return j;
 }
 
+Decision decide_lights(const std::vector<MaskMetrics>& lights, const Threshold& threshold,
+                       const std::vector<std::string>& names, const std::vector<std::string>& displaced_how) {
+  if (lights.size() == 1) return decide(lights[0], threshold, displaced_how.empty() ? std::string() : displaced_how[0]);
+  Decision out;
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    Decision d = decide(lights[i], threshold, i < displaced_how.size() ? displaced_how[i] : std::string());
+    out.verdict = std::max(out.verdict, d.verdict);
+    for (std::string& reason : d.reasons) out.reasons.push_back((i < names.size() ? names[i] : "light " + std::to_string(i)) + ": " + reason);
+  }
+  return out;
+}
+
 FolderComparison compare_folders(const std::filesystem::path& reference_dir,
                                  const std::filesystem::path& candidate_dir, const Threshold& threshold,
                                  const CompareOptions& options) {
@@ -490,14 +502,14 @@ FolderComparison compare_folders(const std::filesystem::path& reference_dir,
     if (!out.visibility_total) out.visibility_total = VisibilityMetrics{};
     *out.visibility_total += out.visibility.back()->metrics;
   }
-  std::string displaced_how;  // each light's move, where one was found
-  for (std::size_t i = 0; i < out.per_light.size(); ++i) {
-    const Displacement& d = out.per_light[i].displacement;
-    if (d.fixed_unexplained == 0) continue;
-    displaced_how += (displaced_how.empty() ? "" : "; ") + (out.masks.size() > 1 ? out.masks[i] + ": " : std::string()) +
-                     describe(d.move);
+  // Each light decided alone (decide_lights), with its move where one was found.
+  std::vector<MaskMetrics> lights;
+  std::vector<std::string> displaced_how;
+  for (const MaskComparison& c : out.per_light) {
+    lights.push_back(c.metrics);
+    displaced_how.push_back(c.displacement.fixed_unexplained == 0 ? std::string() : describe(c.displacement.move));
   }
-  out.decision = decide(out.total, threshold, displaced_how);
+  out.decision = decide_lights(lights, threshold, out.masks, displaced_how);
   if (out.visibility_total) decide_visibility(*out.visibility_total, out.decision);
   return out;
 }

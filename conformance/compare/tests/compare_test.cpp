@@ -122,6 +122,29 @@ TEST(Judge, EachBoundGivesItsVerdict) {
   EXPECT_NE(j.reasons[0].find("core"), std::string::npos) << j.reasons[0];
 }
 
+// Several lights: each light's mask is decided alone. One light's shadows moved by a pixel (15
+// displaced px of its 1000 edge pixels, 1.5 %) FAIL beside a correct light of 10 000 edge pixels,
+// where their sum (15 of 11 000, 0.14 %) would pass; the reason names the light's mask.
+TEST(Judge, EachLightIsDecidedAlone) {
+  MaskMetrics correct, moved;
+  correct.edge_pixels = 10000;
+  moved.edge_pixels = 1000;
+  moved.wrong = moved.unexplained = moved.displaced = 15;
+  MaskMetrics total = correct;
+  total += moved;
+  EXPECT_EQ(decide(total, kShadowMap).verdict, Verdict::Pass) << "summed, the moved light hides behind the other's edges";
+  const Decision d = decide_lights({correct, moved}, kShadowMap, {"mask_0.png", "mask_1.png"}, {"", "moved by (1, 0) px"});
+  EXPECT_EQ(d.verdict, Verdict::Fail);
+  ASSERT_EQ(d.reasons.size(), 1u);
+  EXPECT_EQ(d.reasons[0].rfind("mask_1.png: 15 unexplained px", 0), 0u) << d.reasons[0];
+  EXPECT_NE(d.reasons[0].find("moved by (1, 0) px"), std::string::npos) << d.reasons[0];
+  // Both lights correct: PASS; one light alone: decide() itself, its reasons without a name.
+  EXPECT_EQ(decide_lights({correct, correct}, kShadowMap, {"mask_0.png", "mask_1.png"}, {}).verdict, Verdict::Pass);
+  const Decision one = decide_lights({moved}, kShadowMap, {"mask.png"}, {"moved by (1, 0) px"});
+  ASSERT_EQ(one.reasons.size(), 1u);
+  EXPECT_EQ(one.reasons[0], decide(moved, kShadowMap, "moved by (1, 0) px").reasons[0]);
+}
+
 TEST(Judge, UnexplainedErrorsWithoutAnyBoundaryAreAFailure) {
   MaskMetrics m;
   m.wrong = m.unexplained = 1;

@@ -157,22 +157,30 @@ ResolvingPower resolving_power(const std::filesystem::path& reference_dir, std::
   // FAIL: a probe that FAILs without it is judged without it, the same verdict at a fraction of the cost.
   compare::CompareOptions quick = o;
   quick.displacement_up_to = -1;
-  const auto judged = [&](const ProbeSpec& spec, const std::vector<Image8>& probes, const compare::CompareOptions& with) {
+  // Each light's metrics, and the verdict the judge gives them (compare::decide_lights).
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < lights; ++i) names.push_back(outputs::mask_name(i, lights));
+  struct Judged {
     compare::MaskMetrics total;
-    for (std::size_t i = 0; i < lights; ++i) total += compare::compare_mask(masks[i], decided[i], probes[i], spec.name, i, with).metrics;
-    return total;
+    compare::Verdict verdict = compare::Verdict::Pass;
+  };
+  const auto judged = [&](const ProbeSpec& spec, const std::vector<Image8>& probes, const compare::CompareOptions& with) {
+    std::vector<compare::MaskMetrics> each;
+    Judged j;
+    for (std::size_t i = 0; i < lights; ++i) {
+      each.push_back(compare::compare_mask(masks[i], decided[i], probes[i], spec.name, i, with).metrics);
+      j.total += each.back();
+    }
+    j.verdict = compare::decide_lights(each, threshold, names, {}).verdict;
+    return j;
   };
   ResolvingPower r;
   for (const ProbeSpec& spec : probe_specs()) {
     std::vector<Image8> probes;
     for (std::size_t i = 0; i < lights; ++i) probes.push_back(probed(masks[i], spec));
-    compare::MaskMetrics total = judged(spec, probes, quick);
-    compare::Verdict verdict = compare::decide(total, threshold).verdict;
-    if (verdict != compare::Verdict::Fail && total.unexplained > 0) {
-      total = judged(spec, probes, o);
-      verdict = compare::decide(total, threshold).verdict;
-    }
-    r.probes.push_back({spec.kind, spec.name, verdict, total.wrong, total.unexplained});
+    Judged j = judged(spec, probes, quick);
+    if (j.verdict != compare::Verdict::Fail && j.total.unexplained > 0) j = judged(spec, probes, o);
+    r.probes.push_back({spec.kind, spec.name, j.verdict, j.total.wrong, j.total.unexplained});
   }
   for (const ProbeKind k : kKinds) {
     bool changes = false, all_fail = true;

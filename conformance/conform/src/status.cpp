@@ -62,17 +62,27 @@ std::string unpredicted_errors(const compare::FolderComparison& c, scene::Predic
   std::string problem;
   const auto add = [&](const std::string& s) { problem += (problem.empty() ? "" : "; ") + s; };
   char buf[256];
-  const compare::MaskMetrics& m = c.total;
-  const std::size_t mask_other = light ? m.unexplained - m.unexplained_false_light : m.unexplained_false_light;
-  // Cores of the other kind: all cores less the predicted kind's (a core of one kind is a core of both).
-  const std::size_t mask_other_core = light ? m.unexplained_core - std::min(m.unexplained_core, m.unexplained_false_light_core)
-                                            : m.unexplained_false_light_core;
-  const double mask_ratio = m.edge_pixels ? static_cast<double>(mask_other) / static_cast<double>(m.edge_pixels) : 0.0;
-  if (mask_other_core > 0 || (c.threshold && mask_ratio > c.threshold->unexplained_fail)) {
-    std::snprintf(buf, sizeof buf, "mask: %zu px %s unexplained (%.2f %% of the edge pixels, %zu in cores)", mask_other,
-                  other_name, 100.0 * mask_ratio, mask_other_core);
-    add(buf);
+  // The unexplained pixels of the other kind, and those in cores (all cores less the predicted
+  // kind's: a core of one kind is a core of both).
+  const auto other_of = [light](const compare::MaskMetrics& m) {
+    return light ? m.unexplained - m.unexplained_false_light : m.unexplained_false_light;
+  };
+  const auto other_core_of = [light](const compare::MaskMetrics& m) {
+    return light ? m.unexplained_core - std::min(m.unexplained_core, m.unexplained_false_light_core) : m.unexplained_false_light_core;
+  };
+  // Each light's mask alone, as the verdict judges it (compare::decide_lights).
+  for (std::size_t i = 0; i < c.per_light.size(); ++i) {
+    const compare::MaskMetrics& m = c.per_light[i].metrics;
+    const std::size_t other = other_of(m), other_core = other_core_of(m);
+    const double ratio = m.edge_pixels ? static_cast<double>(other) / static_cast<double>(m.edge_pixels) : 0.0;
+    if (other_core > 0 || (c.threshold && ratio > c.threshold->unexplained_fail)) {
+      std::snprintf(buf, sizeof buf, "%s: %zu px %s unexplained (%.2f %% of the edge pixels, %zu in cores)",
+                    c.per_light.size() > 1 ? c.masks[i].c_str() : "mask", other, other_name, 100.0 * ratio, other_core);
+      add(buf);
+    }
   }
+  const compare::MaskMetrics& m = c.total;
+  const std::size_t mask_other = other_of(m);
   std::size_t vis_predicted = 0;
   if (c.visibility_total) {
     const compare::VisibilityMetrics& v = *c.visibility_total;

@@ -155,6 +155,16 @@ struct Decision {
 // warning beyond a pass bound, PASS otherwise.
 Decision decide(const MaskMetrics& metrics, const Threshold& threshold, const std::string& displaced_how = "");
 
+// The verdict of a case of several lights: each light's mask decided alone (decide(), with its
+// `displaced_how`), the worst of them, each reason led by the light's mask name (`names`). Summed
+// over the lights, one light's displaced or unexplained pixels would be weighed against every
+// light's edges, and one light's shadows moved by a pixel would pass beside three correct lights;
+// decided alone they FAIL as in a scene of that light alone. The sum's own verdict is never worse
+// (a ratio over the sum lies between the lights' ratios; cores and windows lie in one light's mask).
+// One light: decide() itself, its reasons as they are.
+Decision decide_lights(const std::vector<MaskMetrics>& lights, const Threshold& threshold,
+                       const std::vector<std::string>& names, const std::vector<std::string>& displaced_how);
+
 // A reference folder (mask.png or mask_<i>.png, decided.png or decided_<i>.png) against a
 // candidate folder with the same mask names.
 struct FolderComparison {
