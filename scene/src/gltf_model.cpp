@@ -87,10 +87,15 @@ Eigen::Matrix4d node_transform(const tinygltf::Node& node) {
   return a.matrix();
 }
 
-std::vector<int> scene_roots(const tinygltf::Model& model) {
+std::optional<std::size_t> shown_scene(const tinygltf::Model& model) {
   if (model.defaultScene >= 0 && static_cast<std::size_t>(model.defaultScene) < model.scenes.size())
-    return model.scenes[static_cast<std::size_t>(model.defaultScene)].nodes;
-  if (!model.scenes.empty()) return model.scenes.front().nodes;
+    return static_cast<std::size_t>(model.defaultScene);
+  if (!model.scenes.empty()) return 0;
+  return std::nullopt;
+}
+
+std::vector<int> scene_roots(const tinygltf::Model& model) {
+  if (const std::optional<std::size_t> at = shown_scene(model)) return model.scenes[*at].nodes;
   std::vector<int> roots;
   std::vector<bool> is_child(model.nodes.size(), false);
   for (const auto& n : model.nodes)

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,8 @@ Eigen::Matrix4d node_transform(const tinygltf::Node& node);
 
 // The root nodes of the default scene, else of the first scene, else every node that is no node's
 // child.
+// The scene a file shows: the default scene, else the first; nullopt when it lists none.
+std::optional<std::size_t> shown_scene(const tinygltf::Model& model);
 std::vector<int> scene_roots(const tinygltf::Model& model);
 
 // A hierarchy that names the same node many times over (node i's children [i+1, i+1], 60 deep) is

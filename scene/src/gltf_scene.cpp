@@ -500,15 +500,11 @@ GltfScene read_gltf_scene(const fs::path& file) {
   check_extensions(model, file, notes);
   // glTF's unit is the metre; a scene written by `shadowref export` in another one says so in its
   // scene's extras.units (scene.hpp, LengthUnit).
-  if (!model.scenes.empty()) {
-    const std::size_t at = model.defaultScene >= 0 && static_cast<std::size_t>(model.defaultScene) < model.scenes.size()
-                               ? static_cast<std::size_t>(model.defaultScene)
-                               : 0;
-    const Extras extras = extras_of(model.scenes[at].extras_json_string, "scenes[" + std::to_string(at) + "].extras", file);
+  if (const std::optional<std::size_t> at = detail::shown_scene(model)) {
+    const Extras extras = extras_of(model.scenes[*at].extras_json_string, "scenes[" + std::to_string(*at) + "].extras", file);
     if (const auto u = extras.value.find("units"); u != extras.value.end()) {
       const LengthUnit* unit = u->is_string() ? find_length_unit(u->get<std::string>()) : nullptr;
-      if (!unit) 
-        refuse(file, extras.path + ".units: must be one of " + length_unit_symbols() + " (glTF's own unit is the metre)");
+      if (!unit) refuse(file, extras.path + ".units: must be one of " + length_unit_symbols() + " (glTF's own unit is the metre)");
       s.units = *unit;
     }
   }
