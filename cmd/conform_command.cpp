@@ -248,7 +248,7 @@ void register_conform_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--candidate-dir", args->candidate_dir,
                   "judge these renders instead of ours: DIR/<scene>/mask.png (or DIR/<scene>/<technique>/mask.png), "
                   "as `shadowref export` describes");
-  cmd->add_option("--jobs", args->jobs, "threads for the reference and llvmpipe (0: the cores the machine can spare, all less the one-minute load average, at least 1)")
+  cmd->add_option("--jobs", args->jobs, "threads for the reference (0: the cores the machine can spare, all less the one-minute load average, at least 1); llvmpipe always rasterises in the drawing thread")
       ->check(CLI::Range(0, 256))
       ->capture_default_str();
   cmd->add_option("--spp", args->spp, "reference samples per pixel (a square number)")->capture_default_str();

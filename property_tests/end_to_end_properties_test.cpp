@@ -122,7 +122,6 @@ TEST(EndToEndProperties, reference_sees_no_shadow_from_the_light) {
 }
 
 TEST(EndToEndProperties, every_renderer_technique_sees_no_shadow_from_the_light) {
-  setenv("LP_NUM_THREADS", "1", 0);  // the suite shares small machines
   std::unique_ptr<renderer::Renderer> gl;
   try {
     gl = std::make_unique<renderer::Renderer>(renderer::GlApi::OSMesa, renderer::Driver::Llvmpipe);

@@ -1,8 +1,10 @@
 // determinism_render.cpp — a small driver for determinism_test.cpp: renders one scene with every
 // technique on llvmpipe at a reduced resolution, writes the outputs as `shadowref render` does
-// (renderer::write_outputs), and prints one line per image file: "<technique>/<file> <FNV-1a 64>".
-// llvmpipe reads LP_NUM_THREADS once, at context creation, so the thread count is a property of
-// the process: the test runs this driver with different environments and compares the lines.
+// (renderer::write_outputs), and prints one line per image file: "<technique>/<file> <FNV-1a 64>",
+// then the number of llvmpipe rasteriser threads the process has ("llvmpipe threads: N"; the
+// renderer asks for none, whatever LP_NUM_THREADS says: renderer/gl_context.cpp). llvmpipe reads its
+// environment once, at context creation, so the test runs this driver as a child with the
+// environment it wants.
 //
 // Usage: determinism_render SCENE.json MAX_SIDE OUT_DIR
 #include <cstdint>
@@ -53,6 +55,11 @@ int main(int argc, char** argv) {
         std::printf("%s/%s %016llx\n", std::string(t.name).c_str(), f.c_str(),
                     static_cast<unsigned long long>(fnv1a(slurp(dir / f))));
     }
+    // llvmpipe names its rasteriser threads "llvmpipe-<i>" (each task's comm in /proc).
+    int llvmpipe_threads = 0;
+    for (const auto& task : std::filesystem::directory_iterator("/proc/self/task"))
+      llvmpipe_threads += slurp(task.path() / "comm").rfind("llvmpipe", 0) == 0;
+    std::printf("llvmpipe threads: %d\n", llvmpipe_threads);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "determinism_render: %s\n", e.what());
     return 4;

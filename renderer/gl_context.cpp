@@ -43,6 +43,18 @@ std::unique_ptr<GlContext> create_gl_context(GlApi api, Driver driver) {
     throw GlError(std::string("this process already uses the ") + to_string(*first_driver) +
                   " driver; Mesa cannot switch to " + to_string(driver) + " (run another process)");
   if (driver != Driver::Native) setenv("GALLIUM_DRIVER", to_string(driver), 1);
+  // llvmpipe rasterises in the calling thread (LP_NUM_THREADS=0, read when Mesa creates its screen),
+  // whatever the environment asks for. Why: with rasteriser threads, Mesa 22.3's llvmpipe can free a
+  // fence while the thread that signals it has yet to unlock the fence's mutex. lp_fence_signal
+  // increments the count, broadcasts and only then unlocks, while llvmpipe_fence_finish reads the
+  // count without the mutex (lp_fence_signalled): a waiter that sees the fence complete drops it, and
+  // the rasteriser thread then unlocks freed memory. The process dies with SIGSEGV in malloc, SIGABRT
+  // in pthread's priority check, or SIGILL on `xend` (glibc's elided unlock of a mutex that is not
+  // locked), about once in 4 000 `shadowref conform` processes under load; a delay between the
+  // broadcast and the unlock makes it one in three with one rasteriser thread, and never without
+  // threads (docs/architecture.md, "The GL context"). Drawing at 256² takes the same time: the
+  // calling thread only waited for the rasteriser threads before. The pixels are the same.
+  if (driver == Driver::Llvmpipe) setenv("LP_NUM_THREADS", "0", 1);
   first_driver = driver;
 
   std::unique_ptr<GlContext> context = api == GlApi::OSMesa ? create_osmesa_context() : create_egl_context();

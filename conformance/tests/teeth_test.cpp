@@ -288,7 +288,7 @@ int write_ctest_script(const std::filesystem::path& file, const std::string& fix
     for (const std::string& s : scenes) fixtures += (fixtures.empty() ? "" : ";") + fixture_prefix + convention + "_" + s;
     f << "add_test([=[conformance.teeth." << name << "]=] [=[" << exe << "]=] [=[" << name << "]=])\n"
       << "set_tests_properties([=[conformance.teeth." << name << "]=] PROPERTIES LABELS [=[conformance;teeth;llvmpipe;convention-"
-      << convention << "]=] FIXTURES_REQUIRED [=[" << fixtures << "]=] ENVIRONMENT LP_NUM_THREADS=1 TIMEOUT " << kRowTimeout << ")\n";
+      << convention << "]=] FIXTURES_REQUIRED [=[" << fixtures << "]=] TIMEOUT " << kRowTimeout << ")\n";
   };
   for (const Row& r : rows()) add(std::string(r.name), std::string(r.convention), r.scene_list());
   for (const Control& c : controls()) add(c.name, c.convention, c.scenes);
@@ -307,7 +307,7 @@ int write_ctest_script(const std::filesystem::path& file, const std::string& fix
                               : size.name == "256x384" ? "conformance.sweep.resolution-256x384" : "";
     f << "add_test([=[" << name << "]=] [=[" << exe << "]=] --at [=[" << size.name << "]=])\n"
       << "set_tests_properties([=[" << name << "]=] PROPERTIES LABELS [=[conformance;teeth;sweep;llvmpipe]=] FIXTURES_REQUIRED [=["
-      << fixtures << "]=] ENVIRONMENT LP_NUM_THREADS=1 TIMEOUT " << kRowsAtSizeTimeout << (after.empty() ? "" : " DEPENDS " + after) << ")\n";
+      << fixtures << "]=] TIMEOUT " << kRowsAtSizeTimeout << (after.empty() ? "" : " DEPENDS " + after) << ")\n";
   }
   return f ? 0 : 1;
 }

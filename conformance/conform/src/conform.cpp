@@ -194,8 +194,6 @@ void compute_references(Run& run) {
 // Draw: our renderer, unless an engine team's candidates are judged.
 void open_renderer(Run& run) {
   if (run.o.candidate_dir) return;
-  // llvmpipe's rasteriser threads; an explicit LP_NUM_THREADS in the environment wins.
-  if (!std::getenv("LP_NUM_THREADS")) ::setenv("LP_NUM_THREADS", std::to_string(run.threads).c_str(), 1);
   run.watch.step("opening the OpenGL context");
   run.our_renderer = std::make_unique<renderer::Renderer>(run.o.gl_api, run.o.backend);
   ConformResult& r = run.result;

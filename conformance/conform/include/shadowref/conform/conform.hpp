@@ -58,7 +58,7 @@ struct ConformOptions {
   std::filesystem::path out = "conformance-out";
   std::filesystem::path cache;                  // empty: <out>/reference-cache
   ReferenceSettings reference;
-  int jobs = 0;                                 // threads for the reference and llvmpipe; 0: the cores spare (outputs/spare_cores.hpp)
+  int jobs = 0;                                 // threads for the reference; 0: the cores spare (outputs/spare_cores.hpp)
   // An engine team's renders instead of ours: <candidate_dir>/<scene>/mask.png (or
   // <scene>/<technique>/mask.png); `techniques` then names the one technique judged.
   std::optional<std::filesystem::path> candidate_dir;
