@@ -734,6 +734,44 @@ TEST(OpenMeshesCulled, AWideFilterOverAMapWithoutTheGroundIsExplainedButALostCar
   EXPECT_GT(m.unexplained_core, 0u) << "the cards' whole shadows are lost, not a boundary band";
 }
 
+// The judge keeps one resolving power per reference, threshold and declaration as judged. A
+// cascaded technique declares "cascades": 0 for its default count, so csm-pcf's declaration reads
+// as shadowmap-pcf's but for the technique's name, which the cause model reads (it looks a point up
+// in its cascade): on sun_horizon the two differ at the reference's third tile, which one 2048-texel
+// map's texel spans and a cascade's does not. A judge that has probed shadowmap-pcf must still give
+// csm-pcf what a judge that never saw shadowmap-pcf gives it.
+TEST(ResolvingPowerCache, ACascadedTechniqueIsProbedWithItsCascades) {
+  const test::CatalogueScene sun("sun_horizon");
+  const auto judged_as = [&](conform::Judge& judge, const char* technique) {
+    const fs::path dir = fs::path(SHADOWREF_TEST_OUT) / "resolving-power-cache" / technique;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    fs::copy_file(sun.reference / "mask.png", dir / "mask.png");  // the truth itself: a correct render
+    std::ofstream(dir / "candidate.json") << "{\"technique\": \"" << technique << "\", \"filter_radius_texels\": 1, "
+                                          << "\"slope_bias_texels\": 3, \"light_views\": \"pack\"}\n";
+    const conform::CaseJudgement j = judge.judge(&sun.prepared, {sun.reference, dir, "", false, {}});
+    EXPECT_EQ(j.comparison.decision.verdict, compare::Verdict::Pass) << technique;
+    return j.resolving_power.value();
+  };
+  const auto tiles = [](const conform::ResolvingPower& r) {
+    std::string s;
+    for (const conform::Probe& p : r.probes)
+      if (p.kind == conform::ProbeKind::Tile8) s += p.name + ": " + compare::to_string(p.verdict) + ", " + std::to_string(p.unexplained) + " unexplained\n";
+    return s;
+  };
+  conform::Judge fresh;
+  const conform::ResolvingPower alone = judged_as(fresh, "csm-pcf");
+  conform::Judge shared;
+  const conform::ResolvingPower map = judged_as(shared, "shadowmap-pcf");
+  const conform::ResolvingPower after = judged_as(shared, "csm-pcf");
+  std::printf("shadowmap-pcf's tiles:\n%scsm-pcf's, alone:\n%scsm-pcf's, after shadowmap-pcf:\n%s", tiles(map).c_str(),
+              tiles(alone).c_str(), tiles(after).c_str());
+  // The two techniques' probes differ here, so that the cache's key is what is being tested.
+  ASSERT_NE(tiles(map), tiles(alone));
+  EXPECT_EQ(tiles(after), tiles(alone));
+  EXPECT_EQ(after.summary(), alone.summary());
+}
+
 // Per-light declarations ("lights" in candidate.json) reach their own light only, and buy nothing
 // there either: on two_lights (two point lights over a ground), our correct masks with an entry for
 // light 1 only judge light 0 as without it; light 1's mask made all shadowed FAILs under the largest

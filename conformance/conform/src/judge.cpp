@@ -200,10 +200,19 @@ CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJud
   j.comparison = compare::compare_folders(c.reference_dir, c.candidate_dir, threshold, options);
 
   // 5. What the verdict could have seen, once per reference, threshold and declaration as judged.
-  // The key is what the probes' verdicts depend on: not the technique's name, producer or version
-  // (the volume techniques and planar share one answer per scene).
+  // The key is what the probes' verdicts depend on: not the producer or version, nor the technique's
+  // name (the volume techniques and planar share one answer per scene, shadowmap and
+  // shadowmap-rgba8 another) but for what the cause model reads of it: whether it is cascaded, its
+  // "cascades": 0 then meaning the default count (csm-pcf's declaration text is shadowmap-pcf's
+  // otherwise, and a point is looked up in its cascade, not in one map).
+  const auto cause_relevant = [](const std::string& technique) {
+    const outputs::TechniqueName* t = outputs::find_technique_name(technique);
+    return t && t->cascaded ? std::string("cascaded") : std::string();
+  };
   outputs::CandidateDeclaration keyed = judged;
-  keyed.technique = keyed.producer = keyed.version = "";
+  keyed.producer = keyed.version = "";
+  keyed.technique = cause_relevant(keyed.technique);
+  for (outputs::CandidateDeclaration& l : keyed.lights) l.technique = cause_relevant(l.technique);
   const std::string key = c.reference_dir.string() + '\n' + std::string(threshold.name) + '\n' + outputs::declaration_text(keyed);
   auto known = resolving_.find(key);
   if (known == resolving_.end()) known = resolving_.emplace(key, resolving_power(c.reference_dir, s.lights.size(), threshold, options)).first;
