@@ -1,5 +1,6 @@
 // renderer_bench.cpp — time per frame of every technique of the OpenGL renderer on three catalogue
-// scenes at 512² and 1024², on Mesa's llvmpipe through OSMesa (LP_NUM_THREADS picks its threads).
+// scenes at 512² and 1024², on Mesa's llvmpipe through OSMesa, rasterising in the calling thread
+// (the renderer sets LP_NUM_THREADS=0: docs/architecture.md, "The GL context").
 // The time is the renderer's own frame time (RenderResult::frame_ms: every pass to glFinish and
 // the read-back), reported as manual time; pixels_per_s counts the frame's pixels. What depends on
 // the scene alone (casters, adjacency, light fitting) is in the prepared scene, built once.

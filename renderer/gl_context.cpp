@@ -52,8 +52,9 @@ std::unique_ptr<GlContext> create_gl_context(GlApi api, Driver driver) {
   // in pthread's priority check, or SIGILL on `xend` (glibc's elided unlock of a mutex that is not
   // locked), about once in 4 000 `shadowref conform` processes under load; a delay between the
   // broadcast and the unlock makes it one in three with one rasteriser thread, and never without
-  // threads (docs/architecture.md, "The GL context"). Drawing at 256² takes the same time: the
-  // calling thread only waited for the rasteriser threads before. The pixels are the same.
+  // threads (docs/architecture.md, "The GL context"). The cost: one frame at 1024² takes 1.3 - 1.7
+  // times as long on two cores, a run of many cases at 256² no longer (bench/README.md). The pixels
+  // are the same.
   if (driver == Driver::Llvmpipe) setenv("LP_NUM_THREADS", "0", 1);
   first_driver = driver;
 
