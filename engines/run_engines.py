@@ -71,7 +71,7 @@ def render(r, exes, pack, out, work):
         cmd = under_xvfb([exes[r["harness"]], "--pack", pack, "--out", out, "--variant", r["variant"]], work)
     # The native harnesses draw with Mesa's llvmpipe, in the calling thread as our renderer does: its
     # rasteriser threads can free a fence under the thread that signals it (docs/architecture.md,
-    # "The GL context"). The pixels are the same either way.
+    # "The GL context"). Every recorded engine verdict is the same either way (engines.verdicts).
     env = dict(os.environ, LP_NUM_THREADS="0")
     p = run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
     if p.returncode != 0:
