@@ -115,12 +115,6 @@ std::optional<CauseModel::Surface> CauseModel::surface_at(int x, int y) const {
   return Surface{found.p, found.n};
 }
 
-namespace {
-// tan θ for a polygon whose normal meets the light ray at |cos θ| = c, capped at kMaxBiasSlope.
-double capped_tan(double c) {
-  return std::min(kMaxBiasSlope, c > 0 ? std::sqrt(std::max(0.0, 1.0 - c * c)) / c : kMaxBiasSlope);
-}
-}  // namespace
 
 namespace {
 // The sign of view-space z that points away from the light, read from a projection: a perspective
@@ -206,7 +200,61 @@ std::optional<CauseModel::TexelCell> CauseModel::texel_cell(std::size_t light, i
   c.n = s->n;
   c.offset = s->n.dot(s->p);
   c.p = s->p;
+  c.texel = k->texel * std::max(1.0, k->texel_aspect);
   return c;
+}
+
+CauseModel::StoredAlong CauseModel::stored_along(std::size_t light, const Vec3<double>& through) const {
+  StoredAlong out;
+  const Vec4<double>& L = scene_.lights[light];
+  const Vec3<double> dir = -L.head<3>().normalized();  // the way the light travels (w = 0)
+  const double eps = embree_->epsilon(), span = 4 * embree_->extent() + (through - 0.5 * (scene_.bounds[0] + scene_.bounds[1])).norm();
+  const Vec3<double> o = through - span * dir;
+  RTCIntersectContext c;
+  rtcInitIntersectContext(&c);
+  // The next face along the ray beyond t (geomID invalid: none before the ray's end).
+  const auto next_after = [&](double t) {
+    RTCRayHit r;
+    start_ray(o, dir, static_cast<float>(2 * span), r);
+    r.ray.tnear = static_cast<float>(t);
+    rtcIntersect1(embree_->handle(), &c, &r);
+    return r;
+  };
+  const auto normal = [](const RTCRayHit& r) { return Vec3<double>(r.hit.Ng_x, r.hit.Ng_y, r.hit.Ng_z); };
+  const auto add = [&](const RTCRayHit& r) {
+    out.surfaces.push_back({o + static_cast<double>(r.ray.tfar) * dir, normal(r)});
+  };
+  RTCRayHit r = next_after(0);
+  if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+    out.nothing = true;
+    return out;
+  }
+  add(r);
+  // On to the first face the ray leaves through, or the first open mesh (explain()'s walk).
+  for (int step = 0; step < 8; ++step) {
+    const bool leaves = normal(r).dot(dir) > 0;
+    if (leaves || !scene_.casters[r.hit.geomID].closed) {
+      add(r);
+      if (leaves) return out;
+      // An open mesh's face toward the light, culled: the next face left through, or nothing.
+      double t = static_cast<double>(r.ray.tfar);
+      for (int behind = 0; behind < 8; ++behind) {
+        const RTCRayHit b = next_after(t + eps);
+        if (b.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
+        if (normal(b).dot(dir) > 0) {
+          add(b);
+          return out;
+        }
+        t = static_cast<double>(b.ray.tfar);
+      }
+      out.nothing = true;
+      return out;
+    }
+    r = next_after(static_cast<double>(r.ray.tfar) + eps);
+    if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
+  }
+  out.nothing = true;  // nothing drawn behind the culled front faces (or a walk too long to follow)
+  return out;
 }
 
 double CauseModel::Lookup::depth(const Vec3<double>& w) const {

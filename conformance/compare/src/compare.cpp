@@ -71,6 +71,7 @@ MaskMetrics& MaskMetrics::operator+=(const MaskMetrics& o) {
   unexplained += o.unexplained;
   unexplained_false_light += o.unexplained_false_light;
   unexplained_acne += o.unexplained_acne;
+  unexplained_zigzag += o.unexplained_zigzag;
   unexplained_false_light_core += o.unexplained_false_light_core;
   unexplained_core += o.unexplained_core;
   edge_pixels += o.edge_pixels;
@@ -317,6 +318,10 @@ WrongPixels judge_wrong_pixels(const Image8& reference, const Image8& candidate,
   WrongPixels wp;
   wp.codes = wrong.empty() ? nullptr : zero_bytes(n);
   wp.flagged = wrong.empty() ? nullptr : zero_bytes(n);
+  // The pixels no correct render gives together, marked in `codes` until each is judged below.
+  constexpr std::uint8_t kImpossible = 0x80;
+  if (options.impossible && !wrong.empty())
+    for (const std::size_t i : (*options.impossible)(light, reference, candidate, wrong)) wp.codes[i] = kImpossible;
   for (const std::size_t i : wrong) {
     const Class r = classify(ref[i]), c = classify(cand[i]);
     const int x = static_cast<int>(i % stride), y = static_cast<int>(i / stride);
@@ -335,11 +340,15 @@ WrongPixels judge_wrong_pixels(const Image8& reference, const Image8& candidate,
       ++m.false_light;
       paint = &error_colour(ErrorClass::FalseLight);
     }
+    const bool impossible = wp.codes[i] == kImpossible;
     wp.codes[i] = code;
     ++m.wrong;
-    // A cause for a shadow error (coverage has none).
+    // A cause for a shadow error (coverage has none), unless it is one of the impossible ones.
     Cause cause = Cause::Unexplained;
-    if (code != kCoverage && options.explain) cause = (*options.explain)(light, x, y, c == kLit);
+    if (impossible && code != kCoverage)
+      ++m.unexplained_zigzag;
+    else if (code != kCoverage && options.explain)
+      cause = (*options.explain)(light, x, y, c == kLit);
     if (cause == Cause::TexelFootprint) {
       ++m.explained_texel;
       paint = &error_colour(ErrorClass::Texel);

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "shadowref/conform/staircases.hpp"
+#include "shadowref/conform/zigzags.hpp"
 #include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/errors.hpp"
 #include "shadowref/outputs/file_names.hpp"
@@ -22,13 +23,15 @@ namespace {
 // fraction of every light with an area. `causes` gets them in words.
 struct Explainers {
   compare::Explainer mask;
+  compare::ImpossiblePixels impossible;
   compare::VisibilityExplainer visibility;
   compare::VisibilityTexelShift texel_shift;
 };
 
-compare::CompareOptions options_for(const scene::Scene& s, const compare::Threshold& threshold,
+compare::CompareOptions options_for(const scene::PreparedScene& prepared, const compare::Threshold& threshold,
                                     const outputs::TechniqueName* technique, const outputs::CandidateDeclaration& declared,
                                     reference::CauseModel* model, Explainers& explainers, std::string& causes) {
+  const scene::Scene& s = *prepared.scene;
   compare::CompareOptions o;
   o.no_cast_shadow_invariant = s.invariant_no_cast_shadow;
   causes = "none (an exact technique, or one the suite does not know: every wrong pixel is unexplained)";
@@ -38,6 +41,18 @@ compare::CompareOptions options_for(const scene::Scene& s, const compare::Thresh
     };
     o.explain = &explainers.mask;
     causes = "texel footprint and depth bias, from the scene and the candidate's declaration";
+    bool zigzags = false;
+    for (std::size_t i = 0; i < s.lights.size(); ++i) zigzags = zigzags || zigzags_apply(prepared, i, technique, declared.for_light(i));
+    if (zigzags) {
+      explainers.impossible = [model, &prepared, technique, &declared](std::size_t light, const outputs::Image8& reference,
+                                                                      const outputs::Image8& candidate, const std::vector<std::size_t>& wrong) {
+        const outputs::CandidateDeclaration& d = declared.for_light(light);
+        if (!zigzags_apply(prepared, light, technique, d)) return std::vector<std::size_t>{};
+        return find_zigzags(*model, prepared, light, d, reference, candidate, wrong).impossible;
+      };
+      o.impossible = &explainers.impossible;
+      causes += "; a directional light's shadow edges that zigzag faster than any texel grid allows (unexplained)";
+    }
   }
   if (technique && technique->family == outputs::TechniqueFamily::SoftShadow) {
     explainers.visibility = [model, &declared](std::size_t light, int x, int y) {
@@ -195,7 +210,7 @@ CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJud
           ? checked_against_staircases(*model, s, c.candidate_dir, j.declaration, staircases)
           : j.declaration;
   Explainers explainers;
-  const compare::CompareOptions options = options_for(s, threshold, named, judged, model, explainers, j.causes);
+  const compare::CompareOptions options = options_for(*prepared, threshold, named, judged, model, explainers, j.causes);
   if (!staircases.empty()) j.causes += "; " + staircases;
   j.comparison = compare::compare_folders(c.reference_dir, c.candidate_dir, threshold, options);
 

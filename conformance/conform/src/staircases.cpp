@@ -10,19 +10,7 @@
 #include "shadowref/reference/causes.hpp"
 
 namespace shadowref::conform {
-namespace {
-
 using Cell = reference::CauseModel::TexelCell;
-
-// Two points on one receiver plane: the same plane through both (a cube's two faces meet at an edge;
-// a caster's top and the ground beneath it are parallel but apart). The tolerances are far above the
-// float rounding of a traced hit (about 1e-6 of the scene) and far below any two surfaces' angle or gap.
-bool one_plane(const Cell& a, const Cell& b) {
-  const double gap = (b.p - a.p).norm();
-  return a.n.dot(b.n) > 1.0 - 1e-6 && std::abs(a.n.dot(b.p) - a.offset) <= 1e-4 * gap;
-}
-
-}  // namespace
 
 bool staircases_apply(const outputs::CandidateDeclaration& d) {
   return d.light_views != outputs::LightViews::Own && d.shadow_map_size > 0 && d.filter_radius_texels == 0 &&
@@ -50,7 +38,7 @@ StaircaseCheck check_staircases(const reference::CauseModel& model, const output
     if (!crossing) return;
     const std::optional<Cell>& ca = cell(ax, ay);
     const std::optional<Cell>& cb = cell(bx, by);
-    if (!ca || !cb || ca->view != cb->view || !one_plane(*ca, *cb)) return;
+    if (!ca || !cb || ca->view != cb->view || !ca->shares_plane(*cb)) return;
     ++c.crossings;
     c.in_one_texel += ca->column == cb->column && ca->row == cb->row;
   };

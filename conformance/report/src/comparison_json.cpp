@@ -31,6 +31,7 @@ nlohmann::json to_json(const compare::MaskMetrics& m) {
           {"unexplained", m.unexplained},
           {"unexplained_false_light", m.unexplained_false_light},
           {key(ErrorClass::Acne), m.unexplained_acne},
+          {"unexplained_zigzag", m.unexplained_zigzag},
           {"unexplained_core", m.unexplained_core},
           {"densest_unexplained", m.densest_unexplained},
           {"edge_pixels", m.edge_pixels},

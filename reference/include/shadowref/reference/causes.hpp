@@ -31,7 +31,9 @@
 // only for wrong ones).
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -53,6 +55,11 @@ using outputs::Cause;
 // tan θ above this (θ > 84°) is taken as this: at grazing incidence the slope term would explain
 // any error, and a 10-fold slope is already more than any engine's slope-scaled bias allows for.
 inline constexpr double kMaxBiasSlope = 10.0;
+
+// tan θ for a polygon whose normal meets the light ray at |cos θ| = c, capped at kMaxBiasSlope.
+inline double capped_tan(double c) {
+  return std::min(kMaxBiasSlope, c > 0 ? std::sqrt(std::max(0.0, 1.0 - c * c)) / c : kMaxBiasSlope);
+}
 
 // The largest slope bias a correct map needs is kCorrectBiasMargin times the one that removes acne
 // across the mask's reach h (in texels): a lookup whose texel centre is up to h texels from the
@@ -140,8 +147,32 @@ class CauseModel {
     Vec3<double> n;
     double offset = 0;  // n · p
     Vec3<double> p;
+    double texel = 0;  // the texel's longer side at p, in world units (a declared view's may not be square)
+    // Whether `o` lies on this cell's receiver plane: the same plane through both (a cube's two faces
+    // meet at an edge; a caster's top and the ground beneath it are parallel but apart). The
+    // tolerances are far above the float rounding of a traced hit (about 1e-6 of the scene) and far
+    // below any two surfaces' angle or gap.
+    bool shares_plane(const TexelCell& o) const {
+      const double gap = (o.p - p).norm();
+      return n.dot(o.n) > 1.0 - 1e-6 && std::abs(n.dot(o.p) - offset) <= 1e-4 * gap;
+    }
   };
   std::optional<TexelCell> texel_cell(std::size_t light, int x, int y, const outputs::CandidateDeclaration& declared) const;
+
+  // What a map of directional light `light` may store along the light's ray through world point
+  // `through` (run from beyond the scene's box): the surfaces explain() compares with — the first
+  // face met (front faces drawn); the first face the ray leaves a closed caster through, or the first
+  // open mesh (front faces culled); and behind an open mesh's face toward the light, the next face
+  // left through (that face culled). Each as its point and geometric normal; `nothing` where one of
+  // them is no surface at all (the map's far depth). Cost: up to 17 rays.
+  struct Stored {
+    Vec3<double> p, ng;
+  };
+  struct StoredAlong {
+    std::vector<Stored> surfaces;
+    bool nothing = false;
+  };
+  StoredAlong stored_along(std::size_t light, const Vec3<double>& through) const;
 
  private:
   // The surface seen through pixel (x, y)'s centre (as the reference finds it): its point and its

@@ -64,6 +64,7 @@ struct MaskMetrics {
   std::size_t unexplained = 0;      // wrong and explained by nothing
   std::size_t unexplained_false_light = 0;  // of those, false light (the rest: false shadow or coverage)
   std::size_t unexplained_acne = 0;  // of those, self-shadowing: the receiver's own surface stored with too little bias
+  std::size_t unexplained_zigzag = 0;  // of those, pixels no texel grid gives together (CompareOptions::impossible)
   std::size_t unexplained_core = 0; // unexplained pixels whose (2 kCoreRadius + 1)² neighbourhood is all unexplained
   std::size_t unexplained_false_light_core = 0;  // the same over the unexplained false light alone
   std::size_t edge_pixels = 0;      // reference pixels with a 4-neighbour of another class (lit,
@@ -117,9 +118,16 @@ using outputs::Cause;
 // Asked, when the threshold has bands, for every wrong pixel (x, y) of light `light` that is
 // decided (or judged by the scene's invariant): why may the candidate honestly answer `candidate_lit` there?
 using Explainer = std::function<Cause(std::size_t light, int x, int y, bool candidate_lit)>;
+// Asked once per mask, before any pixel is explained, with the reference and candidate masks of
+// light `light` and the wrong pixels' indices (row-major): the wrong pixels that no correct render
+// gives together, whatever each may be explained by alone (conform/zigzags.hpp: a shadow edge
+// that zigzags faster than any texel grid allows). They count as unexplained (`impossible`).
+using ImpossiblePixels = std::function<std::vector<std::size_t>(std::size_t light, const Image8& reference,
+                                                                const Image8& candidate, const std::vector<std::size_t>& wrong)>;
 
 struct CompareOptions {
   const Explainer* explain = nullptr;  // null: every wrong pixel is unexplained (exact techniques)
+  const ImpossiblePixels* impossible = nullptr;  // null: none asked for
   // The scene's invariant holds on every surface pixel (the camera at the light sees no cast
   // shadow): undecided pixels where the reference is lit are judged too, for false shadows.
   bool no_cast_shadow_invariant = false;
