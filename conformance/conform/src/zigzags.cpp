@@ -66,6 +66,24 @@ double gap(const std::vector<Vec2>& shadow, const std::vector<Vec2>& lit, double
   return lo - hi;
 }
 
+// The vertices of the convex hull of `p` (Andrew's monotone chain; collinear points dropped): a
+// linear function's least and greatest over the points are at them, so gap() over the hulls is
+// gap() over the points, at a fraction of the cost.
+std::vector<Vec2> hull(std::vector<Vec2> p) {
+  std::sort(p.begin(), p.end());
+  p.erase(std::unique(p.begin(), p.end()), p.end());
+  if (p.size() < 3) return p;
+  const auto cross = [](const Vec2& o, const Vec2& a, const Vec2& b) { return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]); };
+  std::vector<Vec2> h(2 * p.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < p.size(); h[k++] = p[i++])
+    while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+  for (std::size_t i = p.size() - 1, t = k + 1; i > 0; h[k++] = p[--i])
+    while (k >= t && cross(h[k - 2], h[k - 1], p[i - 1]) <= 0) --k;
+  h.resize(k - 1);
+  return h;
+}
+
 EdgePoint on_edge(const Pixel& p, double a) {
   const double c = std::cos(a), s = std::sin(a);
   return {-s * p.q[0] + c * p.q[1], c * p.q[0] + s * p.q[1], p.shadowed};
@@ -266,6 +284,8 @@ ZigzagFinding find_zigzags(const reference::CauseModel& model, const scene::Prep
           if (k == kLighting) li.push_back(q);
         }
       if (sh.empty() || li.empty()) return std::nullopt;
+      sh = hull(std::move(sh));
+      li = hull(std::move(li));
       const double fine = std::numbers::pi / 3600.0;  // 0.05°
       double best = -INFINITY, best_a = around;
       for (double a = around - half; a <= around + half; a += 10 * fine)
