@@ -137,18 +137,27 @@ bool zigzags_apply(const scene::PreparedScene& scene, std::size_t light, const o
          d.sampling == outputs::Sampling::Grid && d.light_views != outputs::LightViews::Declared;
 }
 
-ZigzagFinding find_zigzags(const reference::CauseModel& model, const scene::PreparedScene& scene, std::size_t light,
-                           const outputs::CandidateDeclaration& d, const outputs::Image8& reference,
-                           const outputs::Image8& candidate, const std::vector<std::size_t>& wrong) {
-  ZigzagFinding found;
+namespace {
+
+// A window the check looks at: its densest point and its bounds (inclusive).
+struct Window {
+  int cx, cy, x0, y0, x1, y1;
+};
+
+// The windows, densest first: centred on a wrong pixel whose 9 × 9 window holds more wrong pixels
+// than the local-glitch bound, half a window from any taken before, where the candidate crosses a
+// row or column more often than the reference; at most kMaxZigzagWindows. `is_wrong` gets the wrong
+// lit/shadowed pixels.
+std::vector<Window> windows_of(const outputs::Image8& reference, const outputs::Image8& candidate, const std::vector<std::size_t>& wrong,
+                               std::vector<std::uint8_t>& is_wrong) {
   const int w = candidate.width, h = candidate.height;
-  const auto at = [w](int x, int y) { return static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x); };
-  // The wrong lit/shadowed pixels and their count in every 9 × 9 window (a summed-area table).
-  std::vector<std::uint8_t> is_wrong(candidate.pixels.size(), 0);
+  is_wrong.assign(candidate.pixels.size(), 0);
   for (const std::size_t i : wrong)
     if (lit_or_shadowed(reference.pixels[i]) && lit_or_shadowed(candidate.pixels[i])) is_wrong[i] = 1;
+  // Their count in every 9 × 9 window, from a summed-area table.
   std::vector<int> sum(static_cast<std::size_t>(w + 1) * static_cast<std::size_t>(h + 1), 0);
   const auto S = [&](int x, int y) -> int& { return sum[static_cast<std::size_t>(y) * static_cast<std::size_t>(w + 1) + static_cast<std::size_t>(x)]; };
+  const auto at = [w](int x, int y) { return static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x); };
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) S(x + 1, y + 1) = S(x, y + 1) + S(x + 1, y) - S(x, y) + is_wrong[at(x, y)];
   const int r = compare::kClusterRadius;
@@ -161,178 +170,242 @@ ZigzagFinding find_zigzags(const reference::CauseModel& model, const scene::Prep
       if (static_cast<std::size_t>(n) > compare::kLocalGlitch.densest_fail) seeds.emplace_back(n, at(x, y));
     }
   std::sort(seeds.begin(), seeds.end(), [](const auto& a, const auto& b) { return a.first > b.first || (a.first == b.first && a.second < b.second); });
-
-  const Vec3<double> dir = -scene.lights[light].head<3>().normalized();  // the way the light travels
-  const Vec3<double> u = (std::abs(dir.z()) < 0.9 ? dir.cross(Vec3<double>(0, 0, 1)) : dir.cross(Vec3<double>(1, 0, 0))).normalized();
-  const Vec3<double> v = dir.cross(u);
-  const double extent = (scene.bounds[1] - scene.bounds[0]).norm();
-  const double precision = 2 * extent * reference::kDepthPrecision;  // a directional map's depths span about the scene
+  std::vector<Window> out;
   std::vector<std::pair<int, int>> taken;
-  std::vector<std::uint8_t> certified(candidate.pixels.size(), 0);
-
   for (const auto& [density, centre] : seeds) {
-    if (found.windows == kMaxZigzagWindows) break;
+    if (out.size() == kMaxZigzagWindows) break;
     const int cx = static_cast<int>(centre % static_cast<std::size_t>(w)), cy = static_cast<int>(centre / static_cast<std::size_t>(w));
     bool near = false;
     for (const auto& [tx, ty] : taken) near = near || (std::abs(cx - tx) <= kWindowRadius / 2 && std::abs(cy - ty) <= kWindowRadius / 2);
     if (near) continue;
     taken.emplace_back(cx, cy);
-    const int x0 = std::max(0, cx - kWindowRadius), y0 = std::max(0, cy - kWindowRadius);
-    const int x1 = std::min(w - 1, cx + kWindowRadius), y1 = std::min(h - 1, cy + kWindowRadius);
-    if (!more_crossings(reference, candidate, x0, y0, x1, y1)) continue;
-    ++found.windows;
+    const Window win{cx, cy, std::max(0, cx - kWindowRadius), std::max(0, cy - kWindowRadius), std::min(w - 1, cx + kWindowRadius),
+                     std::min(h - 1, cy + kWindowRadius)};
+    if (more_crossings(reference, candidate, win.x0, win.y0, win.x1, win.y1)) out.push_back(win);
+  }
+  return out;
+}
 
-    // The receiver plane: the centre's; the window's pixels on it, facing the light.
-    const std::optional<Cell> plane = model.texel_cell(light, cx, cy, d);
-    if (!plane) continue;
-    std::vector<Pixel> px;
-    double texel = 0, dmin = INFINITY, dmax = -INFINITY;
-    Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) {
-        if (!lit_or_shadowed(candidate.pixels[at(x, y)])) continue;
-        const std::optional<Cell> c = model.texel_cell(light, x, y, d);
-        if (!c || !plane->shares_plane(*c)) continue;
-        const Vec2 q{c->p.dot(u), c->p.dot(v)};
-        px.push_back({at(x, y), q, outputs::mask_class(candidate.pixels[at(x, y)]) == outputs::kClassShadowed, is_wrong[at(x, y)] != 0});
-        texel = std::max(texel, c->texel);
-        dmin = std::min(dmin, c->p.dot(dir));
-        dmax = std::max(dmax, c->p.dot(dir));
-        for (int k = 0; k < 2; ++k) lo[k] = std::min(lo[k], q[k]), hi[k] = std::max(hi[k], q[k]);
-      }
-    if (px.size() < 3 || !(texel > 0)) continue;
+// The light's plane: `dir` the way the light travels, `u` and `v` across it.
+struct LightFrame {
+  Vec3<double> dir, u, v;
+};
 
-    // The texels any lookup of these pixels may read, as a distance from each pixel's point: an own
-    // view's texel up to √2 wider than the fit's at the declared size (a turned view that still
-    // covers the fit), its centre within half its diagonal (one fit texel), the filter's taps within
-    // its radius of them along both axes (2 r fit texels); a declared normal offset moves them all.
-    const Vec3<double> along = plane->n - plane->n.dot(dir) * dir;
-    const double reach = (1.0 + 2.0 * d.filter_radius_texels) * texel + along.norm() * (d.normal_offset + d.normal_offset_texels * texel);
-    for (int k = 0; k < 2; ++k) lo[k] -= reach, hi[k] += reach;
-    double step = texel / kSamplesPerTexel;
-    const double widest = std::max(hi[0] - lo[0], hi[1] - lo[1]);
-    if (widest / step > static_cast<double>(kMaxSamplesPerAxis - 1)) step = widest / static_cast<double>(kMaxSamplesPerAxis - 1);
-    if (step > texel / kMaxSamplesPerTexel) continue;  // too wide to sample finely enough
-    // The samples within the reach of some pixel's point (a disc of cells around each).
-    const int nx = static_cast<int>(std::floor((hi[0] - lo[0]) / step)) + 1, ny = static_cast<int>(std::floor((hi[1] - lo[1]) / step)) + 1;
-    const auto cell_at = [nx](int i, int j) { return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i); };
-    enum Sample : std::uint8_t { kUnasked, kAsked, kShadowing, kLighting, kEither, kBoundary };
-    std::vector<std::uint8_t> sample(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny), kUnasked);
-    const int disc = static_cast<int>(std::ceil(reach / step)) + 1;
-    for (const Pixel& p : px) {
-      const int ci = static_cast<int>(std::lround((p.q[0] - lo[0]) / step)), cj = static_cast<int>(std::lround((p.q[1] - lo[1]) / step));
-      for (int j = std::max(0, cj - disc); j <= std::min(ny - 1, cj + disc); ++j)
-        for (int i = std::max(0, ci - disc); i <= std::min(nx - 1, ci + disc); ++i)
-          if ((i - ci) * (i - ci) + (j - cj) * (j - cj) <= disc * disc) sample[cell_at(i, j)] = kAsked;
+// A window's pixels on the receiver plane of its centre, facing the light, with what the samples
+// need of them: the declared map's texel there (its largest), their depths along the light and the
+// box of their points in the light's plane.
+struct OnePlane {
+  Cell plane;
+  std::vector<Pixel> px;
+  double texel = 0, dmin = INFINITY, dmax = -INFINITY;
+  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+};
+
+std::optional<OnePlane> pixels_of(const reference::CauseModel& model, std::size_t light, const outputs::CandidateDeclaration& d,
+                                  const LightFrame& f, const outputs::Image8& candidate, const std::vector<std::uint8_t>& is_wrong,
+                                  const Window& win) {
+  const std::optional<Cell> centre = model.texel_cell(light, win.cx, win.cy, d);
+  if (!centre) return std::nullopt;
+  OnePlane o{*centre, {}};
+  const auto at = [&](int x, int y) { return static_cast<std::size_t>(y) * static_cast<std::size_t>(candidate.width) + static_cast<std::size_t>(x); };
+  for (int y = win.y0; y <= win.y1; ++y)
+    for (int x = win.x0; x <= win.x1; ++x) {
+      if (!lit_or_shadowed(candidate.pixels[at(x, y)])) continue;
+      const std::optional<Cell> c = model.texel_cell(light, x, y, d);
+      if (!c || !o.plane.shares_plane(*c)) continue;
+      const Vec2 q{c->p.dot(f.u), c->p.dot(f.v)};
+      o.px.push_back({at(x, y), q, outputs::mask_class(candidate.pixels[at(x, y)]) == outputs::kClassShadowed, is_wrong[at(x, y)] != 0});
+      o.texel = std::max(o.texel, c->texel);
+      o.dmin = std::min(o.dmin, c->p.dot(f.dir));
+      o.dmax = std::max(o.dmax, c->p.dot(f.dir));
+      for (int k = 0; k < 2; ++k) o.lo[k] = std::min(o.lo[k], q[k]), o.hi[k] = std::max(o.hi[k], q[k]);
     }
-    // What each sample's texel stores, for every window pixel: shadowing whatever bias a correct map
-    // adds, lighting whatever bias, or either. The most a correct map adds, in texels of a stored
-    // polygon's slope: the cause model's cap for false light (kCorrectBiasMargin × twice the mask's
-    // reach) or the distance its false shadows allow (the whole reach), an own texel √2 wide.
+  if (o.px.size() < 3 || !(o.texel > 0)) return std::nullopt;
+  return o;
+}
+
+// What the texels within reach of a window's pixels store, sampled on a square lattice of the
+// light's plane: shadowing every pixel whatever bias a correct map adds, lighting every one, or
+// either (allowed only between the two kinds).
+class StoredSamples {
+ public:
+  // nullopt where the lattice would be coarser than kMaxSamplesPerTexel.
+  static std::optional<StoredSamples> sample(const reference::CauseModel& model, const scene::PreparedScene& scene, std::size_t light,
+                                             const outputs::CandidateDeclaration& d, const LightFrame& f, const OnePlane& o,
+                                             double reach) {
+    StoredSamples s;
+    s.lo_ = {o.lo[0] - reach, o.lo[1] - reach};
+    const Vec2 hi{o.hi[0] + reach, o.hi[1] + reach};
+    s.step_ = o.texel / kSamplesPerTexel;
+    const double widest = std::max(hi[0] - s.lo_[0], hi[1] - s.lo_[1]);
+    if (widest / s.step_ > static_cast<double>(kMaxSamplesPerAxis - 1)) s.step_ = widest / static_cast<double>(kMaxSamplesPerAxis - 1);
+    if (s.step_ > o.texel / kMaxSamplesPerTexel) return std::nullopt;  // too wide to sample finely enough
+    s.nx_ = static_cast<int>(std::floor((hi[0] - s.lo_[0]) / s.step_)) + 1;
+    s.ny_ = static_cast<int>(std::floor((hi[1] - s.lo_[1]) / s.step_)) + 1;
+    s.kind_.assign(static_cast<std::size_t>(s.nx_) * static_cast<std::size_t>(s.ny_), kUnasked);
+    // The samples within the reach of some pixel's point (a disc of cells around each).
+    const int disc = static_cast<int>(std::ceil(reach / s.step_)) + 1;
+    for (const Pixel& p : o.px) {
+      const int ci = static_cast<int>(std::lround((p.q[0] - s.lo_[0]) / s.step_)), cj = static_cast<int>(std::lround((p.q[1] - s.lo_[1]) / s.step_));
+      for (int j = std::max(0, cj - disc); j <= std::min(s.ny_ - 1, cj + disc); ++j)
+        for (int i = std::max(0, ci - disc); i <= std::min(s.nx_ - 1, ci + disc); ++i)
+          if ((i - ci) * (i - ci) + (j - cj) * (j - cj) <= disc * disc) s.at(i, j) = kAsked;
+    }
+    // The most bias a correct map adds, in texels of a stored polygon's slope: the cause model's cap
+    // for false light (kCorrectBiasMargin × twice the mask's reach) or the distance its false
+    // shadows allow (the whole reach), an own texel √2 wide; and the depth format's precision (a
+    // directional map's depths span about the scene).
     const double needed = std::sqrt(2.0) * std::max(reference::kCorrectBiasMargin * 2.0 *
                                                         (reference::grid_uncertainty_texels(d) +
                                                          std::min(d.filter_radius_texels, reference::kMaxMaskFilterTexels)),
                                                     1.0 + 2.0 * d.filter_radius_texels);
-    const double depth_at = 0.5 * (dmin + dmax);
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        std::uint8_t& k = sample[cell_at(i, j)];
+    const double precision = 2 * (scene.bounds[1] - scene.bounds[0]).norm() * reference::kDepthPrecision;
+    const double depth_at = 0.5 * (o.dmin + o.dmax);
+    for (int j = 0; j < s.ny_; ++j)
+      for (int i = 0; i < s.nx_; ++i) {
+        std::uint8_t& k = s.at(i, j);
         if (k == kUnasked) continue;
-        const double a = lo[0] + i * step, b = lo[1] + j * step;
-        const reference::CauseModel::StoredAlong st = model.stored_along(light, a * u + b * v + depth_at * dir);
+        const Vec2 q = s.point(i, j);
+        const reference::CauseModel::StoredAlong st = model.stored_along(light, q[0] * f.u + q[1] * f.v + depth_at * f.dir);
         bool all_shadow = !st.nothing, all_light = true;
         for (const reference::CauseModel::Stored& t : st.surfaces) {
-          const double depth = t.p.dot(dir);
-          const bool own_plane = std::abs(plane->n.dot(t.p) - plane->offset) <= 1e-4 * texel;
-          const double bias = needed * texel * reference::capped_tan(std::abs(t.ng.normalized().dot(dir))) + precision;
-          all_shadow = all_shadow && !own_plane && depth + bias < dmin;
-          all_light = all_light && (own_plane || depth >= dmax);
+          const double depth = t.p.dot(f.dir);
+          const bool own_plane = std::abs(o.plane.n.dot(t.p) - o.plane.offset) <= 1e-4 * o.texel;
+          const double bias = needed * o.texel * reference::capped_tan(std::abs(t.ng.normalized().dot(f.dir))) + precision;
+          all_shadow = all_shadow && !own_plane && depth + bias < o.dmin;
+          all_light = all_light && (own_plane || depth >= o.dmax);
         }
         k = all_shadow ? kShadowing : all_light ? kLighting : kEither;
       }
     // A sample that may store either is allowed on the boundary alone (a ray that grazes a caster's
     // silhouette, where its walk through the caster is a matter of rounding): both kinds beside it.
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        if (sample[cell_at(i, j)] != kEither) continue;
+    for (int j = 0; j < s.ny_; ++j)
+      for (int i = 0; i < s.nx_; ++i) {
+        if (s.at(i, j) != kEither) continue;
         bool sh = false, li = false;
         for (int dj = -1; dj <= 1; ++dj)
           for (int di = -1; di <= 1; ++di) {
-            if (i + di < 0 || j + dj < 0 || i + di >= nx || j + dj >= ny) continue;
-            sh = sh || sample[cell_at(i + di, j + dj)] == kShadowing;
-            li = li || sample[cell_at(i + di, j + dj)] == kLighting;
+            if (i + di < 0 || j + dj < 0 || i + di >= s.nx_ || j + dj >= s.ny_) continue;
+            sh = sh || s.at(i + di, j + dj) == kShadowing;
+            li = li || s.at(i + di, j + dj) == kLighting;
           }
-        if (sh && li) sample[cell_at(i, j)] = kBoundary;
+        if (sh && li) s.at(i, j) = kBoundary;
       }
-    ++found.judged;
-    // The range of the edge normal's angle (into the shadow) over the samples that `near` keeps: a
-    // line of such a normal separates their shadowing samples from their lighting ones, as the
-    // true edge's does when they lie on one straight edge (nullopt: they do not, or some sample
-    // there may store either). Looked for within `half` of `around` (radians).
-    std::vector<Vec2> sh, li;
-    const auto separation = [&](const auto& keeps, double around, double half) -> std::optional<std::pair<double, double>> {
-      sh.clear();
-      li.clear();
-      for (int j = 0; j < ny; ++j)
-        for (int i = 0; i < nx; ++i) {
-          const std::uint8_t k = sample[cell_at(i, j)];
-          if (k == kUnasked || k == kAsked) continue;
-          const Vec2 q{lo[0] + i * step, lo[1] + j * step};
-          if (!keeps(q)) continue;
-          if (k == kEither) return std::nullopt;
-          if (k == kShadowing) sh.push_back(q);
-          if (k == kLighting) li.push_back(q);
-        }
-      if (sh.empty() || li.empty()) return std::nullopt;
-      sh = hull(std::move(sh));
-      li = hull(std::move(li));
-      const double fine = std::numbers::pi / 3600.0;  // 0.05°
-      double best = -INFINITY, best_a = around;
-      for (double a = around - half; a <= around + half; a += 10 * fine)
-        if (const double g = gap(sh, li, a); g > best) best = g, best_a = a;
-      if (!(best > 0)) return std::nullopt;
-      double a_lo = best_a, a_hi = best_a;
-      while (a_lo > best_a - std::numbers::pi && gap(sh, li, a_lo - fine) > 0) a_lo -= fine;
-      while (a_hi < best_a + std::numbers::pi && gap(sh, li, a_hi + fine) > 0) a_hi += fine;
-      return std::make_pair(a_lo - fine, a_hi + fine);  // a step beyond: the range's true ends lie within it
-    };
-    const double margin = reach + step;  // a sample stands for the texels within half a step of it
-    for (std::size_t j = 0; j < px.size(); ++j) {
-      if (!px[j].wrong) continue;
-      // The edge's normal where j's lookups read: from the samples within twice its reach.
-      const auto around_j = separation(
-          [&](const Vec2& q) { return std::hypot(q[0] - px[j].q[0], q[1] - px[j].q[1]) <= 2 * margin; }, std::numbers::pi,
-          std::numbers::pi);
-      if (!around_j) continue;
-      const double a = 0.5 * (around_j->first + around_j->second);
-      std::size_t tries = 0;
-      for (const auto& t : zigzags_at(px, a, j)) {
-        if (++tries > kTriesPerPixel) break;
-        // The triple's box along the edge and its normal, and the samples within reach of it: where
-        // the boundary between its three pixels runs, and every texel a lookup there reads.
-        const double c = std::cos(a), sn = std::sin(a);
-        double e0 = INFINITY, e1 = -INFINITY, s0 = INFINITY, s1 = -INFINITY;
-        for (const std::size_t k : t) {
-          const double e = -sn * px[k].q[0] + c * px[k].q[1], sv = c * px[k].q[0] + sn * px[k].q[1];
-          e0 = std::min(e0, e), e1 = std::max(e1, e), s0 = std::min(s0, sv), s1 = std::max(s1, sv);
-        }
-        const auto in_box = [&](const Vec2& q) {
-          const double e = -sn * q[0] + c * q[1], sv = c * q[0] + sn * q[1];
-          const double de = std::max({0.0, e0 - e, e - e1}), ds = std::max({0.0, s0 - sv, sv - s1});
-          return std::hypot(de, ds) <= margin + (e1 - e0 + s1 - s0) * std::sin(around_j->second - around_j->first);
-        };
-        const auto range = separation(in_box, a, std::numbers::pi / 36);
-        if (!range) continue;
-        // Certified only if it holds over the whole range of the edge's normal there.
-        const auto holds_at = [&](double b) { return no_grid_gives(on_edge(px[t[0]], b), on_edge(px[t[1]], b), on_edge(px[t[2]], b)); };
-        bool holds = holds_at(range->second);
-        for (double b = range->first; b < range->second && holds; b += std::numbers::pi / 3600.0) holds = holds_at(b);
-        if (!holds) continue;
-        for (const std::size_t k : t)
-          if (px[k].wrong) certified[px[k].index] = 1;
-        break;
+    return s;
+  }
+
+  double step() const { return step_; }
+
+  // The range of the edge normal's angle (into the shadow) over the samples that `keeps` keeps: a
+  // line of such a normal separates their shadowing samples from their lighting ones, as the true
+  // edge's does when they lie on one straight edge (nullopt: they do not, or some sample there may
+  // store either). Looked for within `half` of `around` (radians).
+  template <class Keeps>
+  std::optional<std::pair<double, double>> separation(const Keeps& keeps, double around, double half) {
+    sh_.clear();
+    li_.clear();
+    for (int j = 0; j < ny_; ++j)
+      for (int i = 0; i < nx_; ++i) {
+        const std::uint8_t k = at(i, j);
+        if (k == kUnasked || k == kAsked) continue;
+        const Vec2 q = point(i, j);
+        if (!keeps(q)) continue;
+        if (k == kEither) return std::nullopt;
+        if (k == kShadowing) sh_.push_back(q);
+        if (k == kLighting) li_.push_back(q);
       }
+    if (sh_.empty() || li_.empty()) return std::nullopt;
+    sh_ = hull(std::move(sh_));
+    li_ = hull(std::move(li_));
+    const double fine = std::numbers::pi / 3600.0;  // 0.05°
+    double best = -INFINITY, best_a = around;
+    for (double a = around - half; a <= around + half; a += 10 * fine)
+      if (const double g = gap(sh_, li_, a); g > best) best = g, best_a = a;
+    if (!(best > 0)) return std::nullopt;
+    double a_lo = best_a, a_hi = best_a;
+    while (a_lo > best_a - std::numbers::pi && gap(sh_, li_, a_lo - fine) > 0) a_lo -= fine;
+    while (a_hi < best_a + std::numbers::pi && gap(sh_, li_, a_hi + fine) > 0) a_hi += fine;
+    return std::make_pair(a_lo - fine, a_hi + fine);  // a step beyond: the range's true ends lie within it
+  }
+
+ private:
+  enum Kind : std::uint8_t { kUnasked, kAsked, kShadowing, kLighting, kEither, kBoundary };
+  std::uint8_t& at(int i, int j) { return kind_[static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i)]; }
+  Vec2 point(int i, int j) const { return {lo_[0] + i * step_, lo_[1] + j * step_}; }
+  Vec2 lo_{};
+  double step_ = 0;
+  int nx_ = 0, ny_ = 0;
+  std::vector<std::uint8_t> kind_;
+  std::vector<Vec2> sh_, li_;  // separation()'s scratch
+};
+
+// Marks in `certified` the wrong pixels of every zigzag among o's pixels that the samples allow:
+// each wrong pixel as the middle, at the edge's normal from the samples within twice `margin` of it,
+// its first kTriesPerPixel triples, each certified only where the samples within `margin` of the box
+// it spans are one straight edge and over the whole range of that edge's normal.
+void certify(const OnePlane& o, StoredSamples& samples, double margin, std::vector<std::uint8_t>& certified) {
+  const std::vector<Pixel>& px = o.px;
+  for (std::size_t j = 0; j < px.size(); ++j) {
+    if (!px[j].wrong) continue;
+    const auto around_j = samples.separation(
+        [&](const Vec2& q) { return std::hypot(q[0] - px[j].q[0], q[1] - px[j].q[1]) <= 2 * margin; }, std::numbers::pi, std::numbers::pi);
+    if (!around_j) continue;
+    const double a = 0.5 * (around_j->first + around_j->second);
+    std::size_t tries = 0;
+    for (const auto& t : zigzags_at(px, a, j)) {
+      if (++tries > kTriesPerPixel) break;
+      // The triple's box along the edge and its normal, and the samples within reach of it: where
+      // the boundary between its three pixels runs, and every texel a lookup there reads.
+      const double c = std::cos(a), sn = std::sin(a);
+      double e0 = INFINITY, e1 = -INFINITY, s0 = INFINITY, s1 = -INFINITY;
+      for (const std::size_t k : t) {
+        const double e = -sn * px[k].q[0] + c * px[k].q[1], sv = c * px[k].q[0] + sn * px[k].q[1];
+        e0 = std::min(e0, e), e1 = std::max(e1, e), s0 = std::min(s0, sv), s1 = std::max(s1, sv);
+      }
+      const auto in_box = [&](const Vec2& q) {
+        const double e = -sn * q[0] + c * q[1], sv = c * q[0] + sn * q[1];
+        const double de = std::max({0.0, e0 - e, e - e1}), ds = std::max({0.0, s0 - sv, sv - s1});
+        return std::hypot(de, ds) <= margin + (e1 - e0 + s1 - s0) * std::sin(around_j->second - around_j->first);
+      };
+      const auto range = samples.separation(in_box, a, std::numbers::pi / 36);
+      if (!range) continue;
+      // Certified only if it holds over the whole range of the edge's normal there.
+      const auto holds_at = [&](double b) { return no_grid_gives(on_edge(px[t[0]], b), on_edge(px[t[1]], b), on_edge(px[t[2]], b)); };
+      bool holds = holds_at(range->second);
+      for (double b = range->first; b < range->second && holds; b += std::numbers::pi / 3600.0) holds = holds_at(b);
+      if (!holds) continue;
+      for (const std::size_t k : t)
+        if (px[k].wrong) certified[px[k].index] = 1;
+      break;
     }
+  }
+}
+
+}  // namespace
+
+ZigzagFinding find_zigzags(const reference::CauseModel& model, const scene::PreparedScene& scene, std::size_t light,
+                           const outputs::CandidateDeclaration& d, const outputs::Image8& reference,
+                           const outputs::Image8& candidate, const std::vector<std::size_t>& wrong) {
+  ZigzagFinding found;
+  LightFrame f;
+  f.dir = -scene.lights[light].head<3>().normalized();
+  f.u = (std::abs(f.dir.z()) < 0.9 ? f.dir.cross(Vec3<double>(0, 0, 1)) : f.dir.cross(Vec3<double>(1, 0, 0))).normalized();
+  f.v = f.dir.cross(f.u);
+  std::vector<std::uint8_t> is_wrong, certified(candidate.pixels.size(), 0);
+  for (const Window& win : windows_of(reference, candidate, wrong, is_wrong)) {
+    ++found.windows;
+    const std::optional<OnePlane> o = pixels_of(model, light, d, f, candidate, is_wrong, win);
+    if (!o) continue;
+    // The texels any lookup of these pixels may read, as a distance from each pixel's point: an own
+    // view's texel up to √2 wider than the fit's at the declared size (a turned view that still
+    // covers the fit), its centre within half its diagonal (one fit texel), the filter's taps within
+    // its radius of them along both axes (2 r fit texels); a declared normal offset moves them all.
+    const Vec3<double> along = o->plane.n - o->plane.n.dot(f.dir) * f.dir;
+    const double reach = (1.0 + 2.0 * d.filter_radius_texels) * o->texel + along.norm() * (d.normal_offset + d.normal_offset_texels * o->texel);
+    std::optional<StoredSamples> samples = StoredSamples::sample(model, scene, light, d, f, *o, reach);
+    if (!samples) continue;
+    ++found.judged;
+    certify(*o, *samples, reach + samples->step(), certified);  // a sample stands for the texels within half a step of it
   }
   for (std::size_t i = 0; i < certified.size(); ++i)
     if (certified[i]) found.impossible.push_back(i);
