@@ -115,7 +115,6 @@ std::optional<CauseModel::Surface> CauseModel::surface_at(int x, int y) const {
   return Surface{found.p, found.n};
 }
 
-
 namespace {
 // The sign of view-space z that points away from the light, read from a projection: a perspective
 // one's w row (w = P(3,2) z grows with distance), an orthographic one's depth row (NDC z runs from
