@@ -38,6 +38,46 @@ Vec3<double> unproject(const Mat4<double>& inv, double x, double y, double z) {
   return h.head<3>() / h.w();
 }
 
+Vec3<double> normal_of(const RTCRayHit& r) { return Vec3<double>(r.hit.Ng_x, r.hit.Ng_y, r.hit.Ng_z); }
+
+// How a walk along a light ray ended: at a face, at the ray's end (nothing more drawn), or after
+// kWalkFaces faces without an answer (a walk too long to follow).
+enum class WalkEnd { Face, Nothing, TooLong };
+struct WalkStop {
+  WalkEnd end;
+  RTCRayHit hit;  // the face, where end is Face
+  bool leaves;    // whether that face's normal points along the ray (the ray leaves a caster there)
+};
+constexpr int kWalkFaces = 8;
+
+// The two walks along a map's ray that every pass with culling makes (explain()'s rule, shared by
+// texel_gives and stored_along). `next_after(t)` traces the next face beyond t along the unit `dir`.
+// From face `r` on: the first face the ray leaves through, or the first face of an open mesh
+// (`open(geomID)`) — what a pass that culls front faces stores.
+template <class NextAfter, class IsOpen>
+WalkStop walk_to_exit(RTCRayHit r, const Vec3<double>& dir, double eps, const NextAfter& next_after, const IsOpen& open) {
+  for (int step = 0; step < kWalkFaces; ++step) {
+    const bool leaves = normal_of(r).dot(dir) > 0;
+    if (leaves || open(r.hit.geomID)) return {WalkEnd::Face, r, leaves};
+    r = next_after(static_cast<double>(r.ray.tfar) + eps);
+    if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {WalkEnd::Nothing, r, false};
+  }
+  return {WalkEnd::TooLong, r, false};
+}
+
+// Beyond t (an open mesh's face toward the light, culled too): the first face the ray leaves through.
+template <class NextAfter>
+WalkStop walk_out_behind(double t, const Vec3<double>& dir, double eps, const NextAfter& next_after) {
+  RTCRayHit b{};
+  for (int step = 0; step < kWalkFaces; ++step) {
+    b = next_after(t + eps);
+    if (b.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {WalkEnd::Nothing, b, false};
+    if (normal_of(b).dot(dir) > 0) return {WalkEnd::Face, b, true};
+    t = static_cast<double>(b.ray.tfar);
+  }
+  return {WalkEnd::TooLong, b, false};
+}
+
 }  // namespace
 
 
@@ -219,40 +259,27 @@ CauseModel::StoredAlong CauseModel::stored_along(std::size_t light, const Vec3<d
     rtcIntersect1(embree_->handle(), &c, &r);
     return r;
   };
-  const auto normal = [](const RTCRayHit& r) { return Vec3<double>(r.hit.Ng_x, r.hit.Ng_y, r.hit.Ng_z); };
-  const auto add = [&](const RTCRayHit& r) {
-    out.surfaces.push_back({o + static_cast<double>(r.ray.tfar) * dir, normal(r)});
-  };
-  RTCRayHit r = next_after(0);
+  const auto add = [&](const RTCRayHit& r) { out.surfaces.push_back({o + static_cast<double>(r.ray.tfar) * dir, normal_of(r)}); };
+  const RTCRayHit r = next_after(0);
   if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
     out.nothing = true;
     return out;
   }
   add(r);
-  // On to the first face the ray leaves through, or the first open mesh (explain()'s walk).
-  for (int step = 0; step < 8; ++step) {
-    const bool leaves = normal(r).dot(dir) > 0;
-    if (leaves || !scene_.casters[r.hit.geomID].closed) {
-      add(r);
-      if (leaves) return out;
-      // An open mesh's face toward the light, culled: the next face left through, or nothing.
-      double t = static_cast<double>(r.ray.tfar);
-      for (int behind = 0; behind < 8; ++behind) {
-        const RTCRayHit b = next_after(t + eps);
-        if (b.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
-        if (normal(b).dot(dir) > 0) {
-          add(b);
-          return out;
-        }
-        t = static_cast<double>(b.ray.tfar);
-      }
-      out.nothing = true;
+  // On to the first face the ray leaves through, or the first open mesh; behind an open mesh's
+  // face toward the light (culled), the next face left through. Any other end: nothing drawn.
+  const auto open = [&](unsigned geom) { return !scene_.casters[geom].closed; };
+  const WalkStop exit = walk_to_exit(r, dir, eps, next_after, open);
+  if (exit.end == WalkEnd::Face) {
+    add(exit.hit);
+    if (exit.leaves) return out;
+    const WalkStop behind = walk_out_behind(static_cast<double>(exit.hit.ray.tfar), dir, eps, next_after);
+    if (behind.end == WalkEnd::Face) {
+      add(behind.hit);
       return out;
     }
-    r = next_after(static_cast<double>(r.ray.tfar) + eps);
-    if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
   }
-  out.nothing = true;  // nothing drawn behind the culled front faces (or a walk too long to follow)
+  out.nothing = true;
   return out;
 }
 
@@ -385,61 +412,39 @@ bool CauseModel::texel_gives(const Lookup& k, Probes& probes, double dx, double 
   };
   const auto answer = [&](double depth) { return (k.depth_p <= depth + eps) == candidate_lit; };
   const RTCRayHit& first = ray.first;
-  if (answer(stored(static_cast<double>(first.ray.tfar), Vec3<double>(first.hit.Ng_x, first.hit.Ng_y, first.hit.Ng_z))))
-    return true;
+  if (answer(stored(static_cast<double>(first.ray.tfar), normal_of(first)))) return true;
   RTCIntersectContext c;
   rtcInitIntersectContext(&c);
   // The next face along the ray beyond t (geomID invalid: none before the ray's end).
   const auto next_after = [&](double t) {
     RTCRayHit next{};
     next.ray = first.ray;
-    next.ray.tnear = static_cast<float>(t + eps);
+    next.ray.tnear = static_cast<float>(t);
     next.ray.tfar = static_cast<float>(ray.length);
     next.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(embree_->handle(), &c, &next);
     return next;
   };
   if (ray.exit < 0) {
-    // Walk on to the first face the ray leaves through (normal along the ray) or the first open mesh.
-    RTCRayHit r = first;
-    double t = static_cast<double>(r.ray.tfar);
-    ray.exit = 0;
+    // On to the first face the ray leaves through (normal along the ray) or the first open mesh.
+    const WalkStop exit = walk_to_exit(first, ray.dir, eps, next_after, [&](unsigned geom) { return !scene_.casters[geom].closed; });
+    ray.exit = exit.end == WalkEnd::Face ? 1 : 0;  // nothing drawn behind the culled front faces, or a walk too long
     ray.behind = 0;
-    for (int step = 0; step < 8; ++step) {
-      const Vec3<double> ng(r.hit.Ng_x, r.hit.Ng_y, r.hit.Ng_z);
-      const bool leaves = ng.dot(ray.dir) > 0;
-      if (leaves || !scene_.casters[r.hit.geomID].closed) {
-        ray.exit = 1;
-        ray.t_exit = t;
-        ray.ng_exit = ng;
-        ray.behind = leaves ? 0 : -1;  // an open mesh's front face: what lies behind it, traced on demand
-        break;
-      }
-      r = next_after(t);
-      if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;  // nothing drawn behind the culled front faces
-      t = static_cast<double>(r.ray.tfar);
+    if (exit.end == WalkEnd::Face) {
+      ray.t_exit = static_cast<double>(exit.hit.ray.tfar);
+      ray.ng_exit = normal_of(exit.hit);
+      ray.behind = exit.leaves ? 0 : -1;  // an open mesh's front face: what lies behind it, traced on demand
     }
   }
   if (ray.exit == 1 && answer(stored(ray.t_exit, ray.ng_exit))) return true;
   if (ray.behind == 0 || !open_meshes_clear(k, probes)) return false;
   if (ray.behind < 0) {
     // Behind the open mesh's culled face: on to the first face the ray leaves through, or nothing.
-    ray.behind = 0;
-    double t = ray.t_exit;
-    for (int step = 0; step < 8; ++step) {
-      const RTCRayHit r = next_after(t);
-      if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
-        ray.behind = 2;
-        break;
-      }
-      t = static_cast<double>(r.ray.tfar);
-      const Vec3<double> ng(r.hit.Ng_x, r.hit.Ng_y, r.hit.Ng_z);
-      if (ng.dot(ray.dir) > 0) {
-        ray.behind = 1;
-        ray.t_behind = t;
-        ray.ng_behind = ng;
-        break;
-      }
+    const WalkStop behind = walk_out_behind(ray.t_exit, ray.dir, eps, next_after);
+    ray.behind = behind.end == WalkEnd::Face ? 1 : behind.end == WalkEnd::Nothing ? 2 : 0;
+    if (behind.end == WalkEnd::Face) {
+      ray.t_behind = static_cast<double>(behind.hit.ray.tfar);
+      ray.ng_behind = normal_of(behind.hit);
     }
   }
   return ray.behind == 2 ? candidate_lit : ray.behind == 1 && answer(stored(ray.t_behind, ray.ng_behind));
@@ -455,7 +460,7 @@ bool CauseModel::open_meshes_clear(const Lookup& k, Probes& probes) const {
     clear = 0;
     double t = 0;
     const Vec3<double> o = k.p + 4 * eps * k.n;
-    for (int step = 0; step < 8; ++step) {
+    for (int step = 0; step < kWalkFaces; ++step) {
       RTCRayHit r;
       start_ray(o, k.to_light, static_cast<float>(std::min(k.light_distance, 1e30)), r);
       r.ray.tnear = static_cast<float>(t);
@@ -464,8 +469,7 @@ bool CauseModel::open_meshes_clear(const Lookup& k, Probes& probes) const {
         clear = 1;
         break;
       }
-      const Vec3<double> ng(r.hit.Ng_x, r.hit.Ng_y, r.hit.Ng_z);
-      if (!scene_.casters[r.hit.geomID].closed && ng.dot(k.to_light) > 0) break;
+      if (!scene_.casters[r.hit.geomID].closed && normal_of(r).dot(k.to_light) > 0) break;
       t = static_cast<double>(r.ray.tfar) + eps;
     }
   }
