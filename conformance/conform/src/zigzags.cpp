@@ -66,43 +66,50 @@ double gap(const std::vector<Vec2>& shadow, const std::vector<Vec2>& lit, double
   return lo - hi;
 }
 
-// The vertices of the convex hull of `p` (Andrew's monotone chain; collinear points dropped): a
-// linear function's least and greatest over the points are at them, so gap() over the hulls is
-// gap() over the points, at a fraction of the cost.
-std::vector<Vec2> hull(std::vector<Vec2> p) {
-  std::sort(p.begin(), p.end());
-  p.erase(std::unique(p.begin(), p.end()), p.end());
+// The vertices of the convex hull of `p`, given in the order of a lattice's rows (by y, then x),
+// with no point twice (Andrew's monotone chain on that order; collinear points dropped): a linear
+// function's least and greatest over the points are at them, so gap() over the hulls is gap() over
+// the points, at a fraction of the cost.
+std::vector<Vec2> hull(const std::vector<Vec2>& p) {
   if (p.size() < 3) return p;
-  const auto cross = [](const Vec2& o, const Vec2& a, const Vec2& b) { return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]); };
+  // The chain's turn test on points ordered by (y, x): the usual one on (x, y) with the axes swapped.
+  const auto turn = [](const Vec2& o, const Vec2& a, const Vec2& b) { return (a[1] - o[1]) * (b[0] - o[0]) - (a[0] - o[0]) * (b[1] - o[1]); };
   std::vector<Vec2> h(2 * p.size());
   std::size_t k = 0;
   for (std::size_t i = 0; i < p.size(); h[k++] = p[i++])
-    while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+    while (k >= 2 && turn(h[k - 2], h[k - 1], p[i]) <= 0) --k;
   for (std::size_t i = p.size() - 1, t = k + 1; i > 0; h[k++] = p[--i])
-    while (k >= t && cross(h[k - 2], h[k - 1], p[i - 1]) <= 0) --k;
+    while (k >= t && turn(h[k - 2], h[k - 1], p[i - 1]) <= 0) --k;
   h.resize(k - 1);
   return h;
 }
 
-EdgePoint on_edge(const Pixel& p, double a) {
-  const double c = std::cos(a), s = std::sin(a);
-  return {-s * p.q[0] + c * p.q[1], c * p.q[0] + s * p.q[1], p.shadowed};
-}
+// The edge's frame at normal angle a: its normal (cos a, sin a), the edge along (−sin a, cos a).
+struct EdgeFrame {
+  explicit EdgeFrame(double a) : c(std::cos(a)), s(std::sin(a)) {}
+  Vec2 along_and_across(const Vec2& q) const { return {-s * q[0] + c * q[1], c * q[0] + s * q[1]}; }
+  Vec2 back(double e, double n) const { return {c * n - s * e, s * n + c * e}; }  // along_and_across's inverse
+  EdgePoint operator()(const Pixel& p) const {
+    const Vec2 es = along_and_across(p.q);
+    return {es[0], es[1], p.shadowed};
+  }
+  double c, s;
+};
 
-// The candidate zigzags among `px` whose middle pixel is px[middle], for the edge normal at angle
-// `a` (into the shadow): index triples into px, the outer pixels nearest the middle along the edge
-// first.
-std::vector<std::array<std::size_t, 3>> zigzags_at(const std::vector<Pixel>& px, double a, std::size_t middle) {
+// The candidate zigzags among `px` whose middle pixel is px[middle], in the frame of an edge whose
+// normal points into the shadow: index triples into px, the outer pixels nearest the middle along
+// the edge first.
+std::vector<std::array<std::size_t, 3>> zigzags_at(const std::vector<Pixel>& px, const EdgeFrame& on_edge, std::size_t middle) {
   std::vector<std::pair<double, std::size_t>> order;  // (e, index), along the edge
   order.reserve(px.size());
-  for (std::size_t i = 0; i < px.size(); ++i) order.emplace_back(on_edge(px[i], a).e, i);
+  for (std::size_t i = 0; i < px.size(); ++i) order.emplace_back(on_edge(px[i]).e, i);
   std::sort(order.begin(), order.end());
   const auto at = std::find_if(order.begin(), order.end(), [&](const auto& o) { return o.second == middle; });
   const std::size_t j = static_cast<std::size_t>(at - order.begin());
-  const EdgePoint m = on_edge(px[middle], a);
+  const EdgePoint m = on_edge(px[middle]);
   // The outer pixels: the other answer, on the side of the middle one that makes a zigzag.
   const auto beyond = [&](std::size_t i) {
-    const EdgePoint o = on_edge(px[i], a);
+    const EdgePoint o = on_edge(px[i]);
     return o.shadowed != m.shadowed && (m.shadowed ? o.s > m.s : o.s < m.s);
   };
   std::vector<std::size_t> left, right;
@@ -113,7 +120,7 @@ std::vector<std::array<std::size_t, 3>> zigzags_at(const std::vector<Pixel>& px,
   std::vector<std::array<std::size_t, 3>> out;
   for (const std::size_t i : left)
     for (const std::size_t k : right)
-      if (no_grid_gives(on_edge(px[i], a), m, on_edge(px[k], a))) out.push_back({i, middle, k});
+      if (no_grid_gives(on_edge(px[i]), m, on_edge(px[k]))) out.push_back({i, middle, k});
   return out;
 }
 
@@ -296,16 +303,22 @@ class StoredSamples {
 
   double step() const { return step_; }
 
-  // The range of the edge normal's angle (into the shadow) over the samples that `keeps` keeps: a
-  // line of such a normal separates their shadowing samples from their lighting ones, as the true
-  // edge's does when they lie on one straight edge (nullopt: they do not, or some sample there may
-  // store either). Looked for within `half` of `around` (radians).
+  // The range of the edge normal's angle (into the shadow) over the samples that `keeps` keeps,
+  // all within the box [lo, hi] of the light's plane: a line of such a normal separates their
+  // shadowing samples from their lighting ones, as the true edge's does when they lie on one
+  // straight edge (nullopt: they do not, or some sample there may store either). Looked for within
+  // `half` of `around` (radians).
   template <class Keeps>
-  std::optional<std::pair<double, double>> separation(const Keeps& keeps, double around, double half) {
+  std::optional<std::pair<double, double>> separation(const Keeps& keeps, const Vec2& lo, const Vec2& hi, double around, double half) {
     sh_.clear();
     li_.clear();
-    for (int j = 0; j < ny_; ++j)
-      for (int i = 0; i < nx_; ++i) {
+    // The lattice's rows and columns that meet the box, a sample more on each side for rounding.
+    const auto first = [&](double v, double origin) { return static_cast<int>(std::floor((v - origin) / step_)) - 1; };
+    const auto last = [&](double v, double origin) { return static_cast<int>(std::ceil((v - origin) / step_)) + 1; };
+    const int i0 = std::max(0, first(lo[0], lo_[0])), i1 = std::min(nx_ - 1, last(hi[0], lo_[0]));
+    const int j0 = std::max(0, first(lo[1], lo_[1])), j1 = std::min(ny_ - 1, last(hi[1], lo_[1]));
+    for (int j = j0; j <= j1; ++j)  // by rows: the order hull() takes
+      for (int i = i0; i <= i1; ++i) {
         const std::uint8_t k = at(i, j);
         if (k == kUnasked || k == kAsked) continue;
         const Vec2 q = point(i, j);
@@ -315,8 +328,8 @@ class StoredSamples {
         if (k == kLighting) li_.push_back(q);
       }
     if (sh_.empty() || li_.empty()) return std::nullopt;
-    sh_ = hull(std::move(sh_));
-    li_ = hull(std::move(li_));
+    sh_ = hull(sh_);
+    li_ = hull(li_);
     const double fine = std::numbers::pi / 3600.0;  // 0.05°
     double best = -INFINITY, best_a = around;
     for (double a = around - half; a <= around + half; a += 10 * fine)
@@ -347,30 +360,43 @@ void certify(const OnePlane& o, StoredSamples& samples, double margin, std::vect
   const std::vector<Pixel>& px = o.px;
   for (std::size_t j = 0; j < px.size(); ++j) {
     if (!px[j].wrong) continue;
-    const auto around_j = samples.separation(
-        [&](const Vec2& q) { return std::hypot(q[0] - px[j].q[0], q[1] - px[j].q[1]) <= 2 * margin; }, std::numbers::pi, std::numbers::pi);
+    const Vec2 at = px[j].q;
+    const auto around_j = samples.separation([&](const Vec2& q) { return std::hypot(q[0] - at[0], q[1] - at[1]) <= 2 * margin; },
+                                             {at[0] - 2 * margin, at[1] - 2 * margin}, {at[0] + 2 * margin, at[1] + 2 * margin},
+                                             std::numbers::pi, std::numbers::pi);
     if (!around_j) continue;
     const double a = 0.5 * (around_j->first + around_j->second);
+    const EdgeFrame edge(a);
     std::size_t tries = 0;
-    for (const auto& t : zigzags_at(px, a, j)) {
+    for (const auto& t : zigzags_at(px, edge, j)) {
       if (++tries > kTriesPerPixel) break;
       // The triple's box along the edge and its normal, and the samples within reach of it: where
       // the boundary between its three pixels runs, and every texel a lookup there reads.
-      const double c = std::cos(a), sn = std::sin(a);
       double e0 = INFINITY, e1 = -INFINITY, s0 = INFINITY, s1 = -INFINITY;
       for (const std::size_t k : t) {
-        const double e = -sn * px[k].q[0] + c * px[k].q[1], sv = c * px[k].q[0] + sn * px[k].q[1];
-        e0 = std::min(e0, e), e1 = std::max(e1, e), s0 = std::min(s0, sv), s1 = std::max(s1, sv);
+        const EdgePoint p = edge(px[k]);
+        e0 = std::min(e0, p.e), e1 = std::max(e1, p.e), s0 = std::min(s0, p.s), s1 = std::max(s1, p.s);
       }
+      const double within = margin + (e1 - e0 + s1 - s0) * std::sin(around_j->second - around_j->first);
       const auto in_box = [&](const Vec2& q) {
-        const double e = -sn * q[0] + c * q[1], sv = c * q[0] + sn * q[1];
-        const double de = std::max({0.0, e0 - e, e - e1}), ds = std::max({0.0, s0 - sv, sv - s1});
-        return std::hypot(de, ds) <= margin + (e1 - e0 + s1 - s0) * std::sin(around_j->second - around_j->first);
+        const Vec2 es = edge.along_and_across(q);
+        const double de = std::max({0.0, e0 - es[0], es[0] - e1}), ds = std::max({0.0, s0 - es[1], es[1] - s1});
+        return std::hypot(de, ds) <= within;
       };
-      const auto range = samples.separation(in_box, a, std::numbers::pi / 36);
+      // The bounds of the box's corners back in the light's plane, widened by `within`.
+      Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+      for (const double e : {e0, e1})
+        for (const double sv : {s0, s1}) {
+          const Vec2 q = edge.back(e, sv);
+          for (int k = 0; k < 2; ++k) lo[k] = std::min(lo[k], q[k] - within), hi[k] = std::max(hi[k], q[k] + within);
+        }
+      const auto range = samples.separation(in_box, lo, hi, a, std::numbers::pi / 36);
       if (!range) continue;
       // Certified only if it holds over the whole range of the edge's normal there.
-      const auto holds_at = [&](double b) { return no_grid_gives(on_edge(px[t[0]], b), on_edge(px[t[1]], b), on_edge(px[t[2]], b)); };
+      const auto holds_at = [&](double b) {
+        const EdgeFrame on_edge(b);
+        return no_grid_gives(on_edge(px[t[0]]), on_edge(px[t[1]]), on_edge(px[t[2]]));
+      };
       bool holds = holds_at(range->second);
       for (double b = range->first; b < range->second && holds; b += std::numbers::pi / 3600.0) holds = holds_at(b);
       if (!holds) continue;
