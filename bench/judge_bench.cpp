@@ -47,14 +47,7 @@ struct Case {
     const std::size_t lights = prepared.lights.size();
     reference = outputs::read_image8(dir / outputs::mask_name(0, lights), 1);
     decided = outputs::read_image8(dir / outputs::decided_name(0, lights), 1);
-    // Every surface pixel takes the answer of the one to its left (the grid test's 1-px shift).
-    shifted = reference;
-    for (int y = 0; y < reference.height; ++y)
-      for (int x = 1; x < reference.width; ++x) {
-        const std::size_t i = static_cast<std::size_t>(y * reference.width + x);
-        if (reference.pixels[i] != outputs::kMaskNoSurface && reference.pixels[i - 1] != outputs::kMaskNoSurface)
-          shifted.pixels[i] = reference.pixels[i - 1];
-      }
+    shifted = conform::shifted(reference, 1, 0);
     tile = conform::swapped_tile(reference, 0);
     shifted_wrong = wrong_of(shifted);
     tile_wrong = wrong_of(tile);

@@ -55,16 +55,10 @@ void for_surface(Image8& m, const std::function<void(std::uint8_t&)>& f) {
     if (v != kMaskNoSurface) f(v);
 }
 
-// Every surface pixel takes the answer of the one `dx` to its left (silhouettes stay put).
+// Every surface pixel takes the answer of the one `dx` to its left (silhouettes stay put): the
+// resolving power's shift probe, conform::shifted.
 Mutation shifted(int dx) {
-  return [dx](Image8& m) {
-    const Image8 was = m;
-    for (int y = 0; y < m.height; ++y)
-      for (int x = dx; x < m.width; ++x) {
-        const std::size_t i = static_cast<std::size_t>(y * m.width + x);
-        if (was.pixels[i] != kMaskNoSurface && was.pixels[i - dx] != kMaskNoSurface) m.pixels[i] = was.pixels[i - dx];
-      }
-  };
+  return [dx](Image8& m) { m = conform::shifted(m, dx, 0); };
 }
 
 // The shadow grown (or, with `grow` false, shrunk) by `n` px: a surface pixel takes the answer

@@ -25,19 +25,6 @@ using outputs::kMaskShadowed;
 std::uint8_t& at(Image8& m, int x, int y) { return m.pixels[static_cast<std::size_t>(y * m.width + x)]; }
 std::uint8_t at(const Image8& m, int x, int y) { return m.pixels[static_cast<std::size_t>(y * m.width + x)]; }
 
-// Every surface pixel takes the answer of the surface pixel (dx, dy) behind it: the shadows move by
-// (dx, dy), silhouettes stay put.
-Image8 shifted(const Image8& was, int dx, int dy) {
-  Image8 m = was;
-  for (int y = 0; y < m.height; ++y)
-    for (int x = 0; x < m.width; ++x) {
-      const int u = x - dx, v = y - dy;
-      if (u < 0 || v < 0 || u >= m.width || v >= m.height) continue;
-      if (at(was, x, y) != kMaskNoSurface && at(was, u, v) != kMaskNoSurface) at(m, x, y) = at(was, u, v);
-    }
-  return m;
-}
-
 // The shadows grown (`grow`) or shrunk by 1 px: a surface pixel takes `grow ? shadowed : lit` when
 // a surface pixel of its 3 × 3 neighbourhood has it.
 Image8 morphed(const Image8& was, bool grow) {
@@ -94,6 +81,17 @@ constexpr std::array<ProbeKind, 5> kKinds{ProbeKind::Shift1, ProbeKind::Shift2, 
                                           ProbeKind::Tile8};
 
 }  // namespace
+
+Image8 shifted(const Image8& was, int dx, int dy) {
+  Image8 m = was;
+  for (int y = 0; y < m.height; ++y)
+    for (int x = 0; x < m.width; ++x) {
+      const int u = x - dx, v = y - dy;
+      if (u < 0 || v < 0 || u >= m.width || v >= m.height) continue;
+      if (at(was, x, y) != kMaskNoSurface && at(was, u, v) != kMaskNoSurface) at(m, x, y) = at(was, u, v);
+    }
+  return m;
+}
 
 Image8 swapped_tile(const Image8& was, int rank) {
   Image8 m = was;

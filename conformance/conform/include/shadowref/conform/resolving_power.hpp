@@ -65,6 +65,11 @@ struct ResolvingPower {
   bool sees_nothing_of(ProbeKind k) const;  // k is in `unseen`
 };
 
+// `mask` with every surface pixel given the answer of the surface pixel (dx, dy) behind it: its
+// shadows moved by (dx, dy), silhouettes kept (the shift probes, and the declaration grid's shift
+// mutants). Cost: one pass over the mask.
+outputs::Image8 shifted(const outputs::Image8& mask, int dx, int dy);
+
 // `mask` with an 8 × 8 tile swapped with the one 8 px to its right (a tiled GPU's or a cache's local
 // glitch), at the `rank`-th place (0: first) where that changes most pixels, each place at least
 // 16 px from the earlier ones on an axis (a 4-px lattice of places, the first best kept on ties):
