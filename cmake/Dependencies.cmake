@@ -25,6 +25,8 @@ find_package(PkgConfig REQUIRED)
 # OSMesa ships no CMake config, only a pkg-config file.
 pkg_check_modules(OSMESA REQUIRED IMPORTED_TARGET osmesa)
 pkg_check_modules(EGL REQUIRED IMPORTED_TARGET egl)
+# RE2 (libre2-dev: pkg-config only) matches the regexes a user writes (expectations files) in linear time.
+pkg_check_modules(RE2 REQUIRED IMPORTED_TARGET re2)
 
 if(SHADOWREF_BUILD_TESTS)
   find_package(GTest REQUIRED)

@@ -62,10 +62,10 @@ CaseAgainstFiles against_files(const conform::Expectations& e, const std::string
                                const CompareArgs& a) {
   CaseAgainstFiles f;
   f.name = conform::case_name(scene, j.technique, a.convention);
-  f.line = e.line_for(scene, j.technique, a.convention);
+  f.line = e.line_for(scene, j.technique, a.convention, j.declaration.environment);
   f.outcome = conform::outcome_of(j.status, j.expectation.warn, f.line, e.flaky(f.name));
   if (!a.out.empty()) {
-    const std::vector<conform::CaseOutcome> cases = {{scene, j.technique, j.status, f.outcome}};
+    const std::vector<conform::CaseOutcome> cases = {{scene, j.technique, j.status, f.outcome, j.declaration.environment}};
     outputs::write_file_atomically(std::filesystem::path(a.out) / "expectations-update.txt",
                                    conform::expectations_update_text(e, cases, {}, a.convention));
   }

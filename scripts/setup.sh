@@ -13,7 +13,7 @@ packages=(
   libbenchmark-dev libbenchmark-tools python3-scipy python3-matplotlib python3-yaml
   libosmesa6-dev libegl-dev libgl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
   nlohmann-json3-dev libcli11-dev libtinyobjloader-dev libtinygltf-dev
-  libmeshoptimizer-dev zlib1g-dev libpng-dev
+  libmeshoptimizer-dev zlib1g-dev libpng-dev libre2-dev
   libirrlicht-dev libopenscenegraph-dev xvfb xauth
   clang libclang-rt-14-dev
   chromium

@@ -66,7 +66,7 @@ using Bad = std::function<InputError(const std::string&)>;
 // The keys a `lights` entry may override: everything that can differ between two lights of one render.
 bool per_light_key(const std::string& key) {
   return key != "producer" && key != "version" && key != "technique" && key != "convention" && key != "settings" &&
-         key != "lights";
+         key != "environment" && key != "lights";
 }
 
 // 16 finite numbers, column-major.
@@ -233,6 +233,20 @@ void read_keys(const Json& j, CandidateDeclaration& d, std::set<std::string>& gi
   number_key("depth_range", d.depth_range, 1e9);
   if (d.depth == StoredDepth::Distance && d.depth_bias > 0 && !(d.depth_range > 0))
     throw bad(where + "depth_range: a \"distance\" map's depth_bias is in units of its range: give depth_range (world units, far - near)");
+  if (j.contains("environment")) {
+    const Json& e = j["environment"];
+    if (!e.is_object()) throw bad(where + "environment: must be a JSON object of strings (api, adapter, browser, engine)");
+    for (const auto& item : e.items())
+      if (std::find(kEnvironmentKeys.begin(), kEnvironmentKeys.end(), item.key()) == kEnvironmentKeys.end())
+        throw bad(where + "environment." + item.key() + ": unknown key (expected api, adapter, browser or engine)");
+    for (const char* key : kEnvironmentKeys) {
+      if (!e.contains(key)) continue;
+      if (!e[key].is_string() || e[key].get<std::string>().empty() || e[key].get<std::string>().size() > 256)
+        throw bad(where + "environment." + key + ": must be a non-empty string of at most 256 bytes");
+      d.environment.emplace_back(key, e[key].get<std::string>());
+    }
+    given.insert("environment");
+  }
   if (j.contains("settings")) {
     if (!j["settings"].is_object()) throw bad(where + "settings: must be a JSON object");
     d.settings_json = j["settings"].dump();
@@ -242,6 +256,12 @@ void read_keys(const Json& j, CandidateDeclaration& d, std::set<std::string>& gi
 }
 
 }  // namespace
+
+std::string environment_text(const Environment& environment) {
+  std::string out;
+  for (const auto& [k, v] : environment) out += (out.empty() ? "" : " · ") + k + " " + v;
+  return out;
+}
 
 const CandidateDeclaration& CandidateDeclaration::for_light(std::size_t light) const {
   return light < lights.size() ? lights[light] : *this;
@@ -321,6 +341,11 @@ std::string declaration_text(const CandidateDeclaration& d) {
   j["depth_faces"] = to_string(d.depth_faces);
   j["depth"] = to_string(d.depth);
   j["depth_range"] = d.depth_range;
+  if (!d.environment.empty()) {
+    nlohmann::json env = nlohmann::json::object();
+    for (const auto& [k, v] : d.environment) env[k] = v;
+    j["environment"] = env;
+  }
   j["settings"] = nlohmann::json::parse(d.settings_json);
   // Each light's entry: only the keys that differ from the top level.
   if (!d.lights.empty()) {

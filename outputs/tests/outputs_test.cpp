@@ -67,6 +67,36 @@ TEST(Declaration, PerLightEntriesOverrideTheTopLevel) {
   fs::remove_all(dir);
 }
 
+// "environment": where the render came from, read in kEnvironmentKeys' order and written back the
+// same; another key, a non-string or an environment per light is refused with its JSON path.
+TEST(Declaration, AnEnvironmentIsRecordedAndMalformedOnesAreRefused) {
+  const fs::path dir = fresh_dir("environment");
+  std::ofstream(dir / kCandidateFile) << R"({"environment": {"engine": "three.js r187", "api": "webgpu",
+    "adapter": "google swiftshader"}})";
+  const CandidateDeclaration d = read_declaration(dir, "shadowmap");
+  const Environment want{{"api", "webgpu"}, {"adapter", "google swiftshader"}, {"engine", "three.js r187"}};
+  EXPECT_EQ(d.environment, want);
+  EXPECT_EQ(environment_text(d.environment), "api webgpu · adapter google swiftshader · engine three.js r187");
+  const std::string text = declaration_text(d);
+  std::ofstream(dir / kCandidateFile) << text;
+  EXPECT_EQ(read_declaration(dir, "shadowmap").environment, want);
+  EXPECT_TRUE(read_declaration(fresh_dir("no-environment"), "shadowmap").environment.empty());
+  const auto refusal = [&](const std::string& json) -> std::string {
+    std::ofstream(dir / kCandidateFile) << json;
+    try {
+      read_declaration(dir, "shadowmap");
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "(accepted)";
+  };
+  EXPECT_NE(refusal(R"({"environment": {"gpu": "x"}})").find("environment.gpu: unknown key"), std::string::npos);
+  EXPECT_NE(refusal(R"({"environment": {"api": 3}})").find("environment.api: must be a non-empty string"), std::string::npos);
+  EXPECT_NE(refusal(R"({"environment": "webgpu"})").find("environment: must be a JSON object"), std::string::npos);
+  EXPECT_NE(refusal(R"({"lights": [{"environment": {"api": "webgpu"}}]})").find("lights[0].environment: not a per-light key"),
+            std::string::npos);
+}
+
 TEST(Declaration, AnAtlasTileIsItsSizeLessItsGuardBands) {
   const fs::path dir = fs::temp_directory_path() / ("shadowref-atlas-" + std::to_string(::getpid()));
   fs::create_directories(dir);

@@ -32,9 +32,22 @@ void alpha_filter(const RTCFilterFunctionNArguments* args) {
 
 }  // namespace
 
-EmbreeScene::EmbreeScene(const scene::Scene& scene) : source_(&scene) {
-  device_ = rtcNewDevice(nullptr);
-  if (!device_) throw EmbreeError("Embree: rtcNewDevice failed (error " + std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")");
+bool cpu_runs_embree_kernel(std::string_view name) {
+  __builtin_cpu_init();
+  if (name == "sse2") return true;  // every x86-64 CPU
+  if (name == "sse4.2") return __builtin_cpu_supports("sse4.2");
+  if (name == "avx2") return __builtin_cpu_supports("avx2");
+  if (name == "avx512")
+    return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
+           __builtin_cpu_supports("avx512vl");
+  return false;
+}
+
+EmbreeScene::EmbreeScene(const scene::Scene& scene, const std::string& device_config) : source_(&scene) {
+  device_ = rtcNewDevice(device_config.empty() ? nullptr : device_config.c_str());
+  if (!device_)
+    throw EmbreeError("Embree: rtcNewDevice(\"" + device_config + "\") failed (error " +
+                      std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")");
   scene_ = rtcNewScene(device_);
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);

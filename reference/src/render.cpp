@@ -306,7 +306,7 @@ Images render(const scene::PreparedScene& prepared, const Options& options, Stat
     std::optional<EmbreeScene> embree;
     {
       FlushDenormalsGuard ftz;  // the build runs on this thread too
-      embree.emplace(scene);
+      embree.emplace(scene, options.embree_config);
     }
     total.seconds_build = seconds_since(t0);
     const auto t1 = Clock::now();

@@ -242,6 +242,7 @@ CaseResult run_case(Run& run, std::size_t si, const std::string& technique) {
                      std::filesystem::absolute(o.out / "models" / s.name / judged_as)};
     run.watch.step("judging " + name);
     c.judgement = run.judge.judge(&run.prepared[si], what);
+    c.environment = c.judgement->declaration.environment;
     phases.judge += since(t);
     c.status = c.judgement->status;
     if (!run.our_renderer) {
@@ -283,7 +284,7 @@ namespace {
 
 // A judged case against the team's expectations files (expectations.hpp).
 void classify(CaseResult& c, const Expectations& e, const std::string& convention) {
-  const ExpectationLine* line = e.line_for(c.scene, c.technique, convention);
+  const ExpectationLine* line = e.line_for(c.scene, c.technique, convention, c.environment);
   c.outcome = outcome_of(c.status, c.expected.warn, line, e.flaky(case_name(c.scene, c.technique, convention)));
   if (line) {
     c.expected_status = to_string(line->status);
@@ -344,7 +345,11 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
   if (!o.references_only) {
     open_renderer(run);
     run_cases(run, progress);
-    result.stale = stale_lines(o.expectations, result.plan.scenes, result.techniques, result.convention);
+    std::vector<outputs::Environment> environments;
+    for (const CaseResult& c : result.cases)
+      if (std::find(environments.begin(), environments.end(), c.environment) == environments.end())
+        environments.push_back(c.environment);
+    result.stale = stale_lines(o.expectations, result.plan.scenes, result.techniques, result.convention, environments);
   }
   result.seconds = since(start);
   if (o.write_report && !o.references_only) {

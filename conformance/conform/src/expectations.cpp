@@ -9,6 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <re2/re2.h>
+
 #include "shadowref/convention.hpp"
 #include "shadowref/scene/identifier.hpp"
 
@@ -33,12 +35,51 @@ Status line_status(const std::string& word, const std::string& where) {
   refuse(where, "unknown status '" + word + "' (expected WARN, FAIL, XPASS or ERROR)");
 }
 
+std::string lower(std::string s) {
+  for (char& c : s)
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  return s;
+}
+
+// "api=webgpu adapter=swiftshader": the conditions of a line (expectations.hpp).
+outputs::Environment parse_conditions(const std::string& text, const std::string& where) {
+  outputs::Environment out;
+  std::stringstream words(text);
+  for (std::string w; words >> w;) {
+    const auto eq = w.find('=');
+    const std::string key = w.substr(0, eq);
+    if (eq == std::string::npos || eq + 1 == w.size())
+      refuse(where, "'" + w + "': expected a condition key=value (e.g. api=webgpu)");
+    if (std::find(outputs::kEnvironmentKeys.begin(), outputs::kEnvironmentKeys.end(), key) == outputs::kEnvironmentKeys.end())
+      refuse(where, "'" + w + "': unknown environment key '" + key + "' (expected api, adapter, browser or engine)");
+    for (const auto& [k, v] : out)
+      if (k == key) refuse(where, "'" + w + "': " + key + " is given twice");
+    out.emplace_back(key, w.substr(eq + 1));
+  }
+  if (out.empty()) refuse(where, "an empty third field: give conditions key=value or remove the comma");
+  return out;
+}
+
+// Whether two lines' conditions can both hold in one environment: unless some key has two values.
+bool conditions_overlap(const outputs::Environment& a, const outputs::Environment& b) {
+  for (const auto& [ka, va] : a)
+    for (const auto& [kb, vb] : b)
+      if (ka == kb && lower(va) != lower(vb)) return false;
+  return true;
+}
+
 ExpectationLine parse_case_line(const std::string& body, const std::string& where) {
-  const auto comma = body.rfind(',');
+  const auto comma = body.find(',');
   if (comma == std::string::npos) refuse(where, "'" + body + "': expected scene@technique[@convention],STATUS");
   ExpectationLine l;
   l.where = where;
-  l.status = line_status(trim(body.substr(comma + 1)), where);
+  const auto second = body.find(',', comma + 1);
+  if (second != std::string::npos) {
+    if (body.find(',', second + 1) != std::string::npos)
+      refuse(where, "'" + body + "': expected scene@technique[@convention],STATUS[,key=value ...]: one comma too many");
+    l.conditions = parse_conditions(body.substr(second + 1), where);
+  }
+  l.status = line_status(trim(body.substr(comma + 1, second == std::string::npos ? std::string::npos : second - comma - 1)), where);
   std::vector<std::string> parts;
   std::stringstream name(trim(body.substr(0, comma)));
   for (std::string p; std::getline(name, p, '@');) parts.push_back(trim(p));
@@ -63,11 +104,16 @@ ExpectationRegex parse_regex(const std::string& body, const std::string& where) 
   ExpectationRegex r;
   r.pattern = body;
   r.where = where;
-  try {
-    r.regex = std::regex(body, std::regex::ECMAScript);
-  } catch (const std::regex_error& e) {
-    refuse(where, "bad regex '" + body + "': " + e.what());
+  RE2::Options options;
+  options.set_log_errors(false);  // the refusal below is the one line said
+  options.set_max_mem(kMaxRegexMemory);
+  auto re = std::make_shared<const RE2>(body, options);
+  if (!re->ok()) {
+    // A pattern of thousands of characters is not repeated whole in the message.
+    const std::string shown = body.size() > 80 ? body.substr(0, 77) + "..." : body;
+    refuse(where, "bad regex '" + shown + "': " + re->error() + " (RE2 syntax)");
   }
+  r.regex = std::move(re);
   return r;
 }
 
@@ -78,6 +124,8 @@ void read_file(const std::filesystem::path& file, Expectations& e) {
   enum class Section { Baseline, Flakes, Skips } section = Section::Baseline;
   std::string raw;
   for (int n = 1; std::getline(in, raw); ++n) {
+    // A UTF-8 byte-order mark (what editors on Windows put first) is not part of the first line.
+    if (n == 1 && raw.rfind("\xEF\xBB\xBF", 0) == 0) raw.erase(0, 3);
     const std::string where = file.string() + ":" + std::to_string(n);
     const std::string body = trim(raw.substr(0, raw.find('#')));
     if (body.empty()) continue;
@@ -107,22 +155,34 @@ std::string case_name(const std::string& scene, const std::string& technique, co
   return scene + "@" + technique + "@" + convention;
 }
 
-bool ExpectationLine::applies_to(const std::string& s, const std::string& t, const std::string& c) const {
-  return s == scene && t == technique && (convention.empty() || convention == c);
+bool ExpectationLine::holds_in(const outputs::Environment& environment) const {
+  for (const auto& [key, want] : conditions) {
+    const auto it = std::find_if(environment.begin(), environment.end(), [&](const auto& e) { return e.first == key; });
+    if (it == environment.end() || lower(it->second).find(lower(want)) == std::string::npos) return false;
+  }
+  return true;
 }
 
-const ExpectationLine* Expectations::line_for(const std::string& s, const std::string& t, const std::string& c) const {
+bool ExpectationLine::applies_to(const std::string& s, const std::string& t, const std::string& c,
+                                 const outputs::Environment& environment) const {
+  return s == scene && t == technique && (convention.empty() || convention == c) && holds_in(environment);
+}
+
+const ExpectationLine* Expectations::line_for(const std::string& s, const std::string& t, const std::string& c,
+                                              const outputs::Environment& environment) const {
   for (const ExpectationLine& l : lines)
-    if (l.applies_to(s, t, c)) return &l;
+    if (l.applies_to(s, t, c, environment)) return &l;
   return nullptr;
 }
 
+bool ExpectationRegex::found_in(const std::string& name) const { return RE2::PartialMatch(name, *regex); }
+
 bool Expectations::flaky(const std::string& name) const {
-  return std::any_of(flakes.begin(), flakes.end(), [&](const ExpectationRegex& r) { return std::regex_search(name, r.regex); });
+  return std::any_of(flakes.begin(), flakes.end(), [&](const ExpectationRegex& r) { return r.found_in(name); });
 }
 
 bool Expectations::skipped(const std::string& name) const {
-  return std::any_of(skips.begin(), skips.end(), [&](const ExpectationRegex& r) { return std::regex_search(name, r.regex); });
+  return std::any_of(skips.begin(), skips.end(), [&](const ExpectationRegex& r) { return r.found_in(name); });
 }
 
 Expectations read_expectations(const std::vector<std::filesystem::path>& files) {
@@ -135,7 +195,8 @@ Expectations read_expectations(const std::vector<std::filesystem::path>& files) 
     for (std::size_t j = 0; j < i; ++j) {
       const ExpectationLine &a = e.lines[j], &b = e.lines[i];
       if (a.scene == b.scene && a.technique == b.technique &&
-          (a.convention.empty() || b.convention.empty() || a.convention == b.convention))
+          (a.convention.empty() || b.convention.empty() || a.convention == b.convention) &&
+          conditions_overlap(a.conditions, b.conditions))
         refuse(b.where, "case " + b.scene + "@" + b.technique + " is listed already at " + a.where);
     }
   return e;
@@ -173,10 +234,14 @@ int exit_code(const std::vector<Outcome>& outcomes) {
 }
 
 std::vector<const ExpectationLine*> stale_lines(const Expectations& e, const std::vector<std::string>& scenes,
-                                                const std::vector<std::string>& techniques, const std::string& convention) {
+                                                const std::vector<std::string>& techniques, const std::string& convention,
+                                                const std::vector<outputs::Environment>& environments) {
   std::vector<const ExpectationLine*> out;
   for (const ExpectationLine& l : e.lines) {
     if (!l.convention.empty() && l.convention != convention) continue;  // another convention's run has it
+    if (!l.conditions.empty() &&
+        std::none_of(environments.begin(), environments.end(), [&](const outputs::Environment& env) { return l.holds_in(env); }))
+      continue;  // another environment's run has it
     const bool planned = std::find(scenes.begin(), scenes.end(), l.scene) != scenes.end() &&
                          std::find(techniques.begin(), techniques.end(), l.technique) != techniques.end();
     if (!planned && !e.skipped(case_name(l.scene, l.technique, convention))) out.push_back(&l);
@@ -192,11 +257,15 @@ std::string expectations_update_text(const Expectations& e, const std::vector<Ca
   std::set<const ExpectationLine*> gone(stale.begin(), stale.end());
   std::vector<std::string> added;
   for (const CaseOutcome& c : cases) {
-    const ExpectationLine* l = e.line_for(c.scene, c.technique, convention);
+    const ExpectationLine* l = e.line_for(c.scene, c.technique, convention, c.environment);
     if (c.outcome == Outcome::Improvement || c.outcome == Outcome::NewFailure || c.outcome == Outcome::NewWarning) {
       if (l) gone.insert(l);
+      // Seen on one API: expected there only, so the same case on another backend stays judged.
+      std::string limit;
+      for (const auto& [k, v] : c.environment)
+        if (k == "api" && v.find_first_of(" ,#") == std::string::npos) limit = ",api=" + v;
       if (c.outcome != Outcome::Improvement)
-        added.push_back(case_name(c.scene, c.technique, convention) + "," + to_string(c.status) + "  # new in this run");
+        added.push_back(case_name(c.scene, c.technique, convention) + "," + to_string(c.status) + limit + "  # new in this run");
     }
   }
   for (const ExpectationLine& l : e.lines)

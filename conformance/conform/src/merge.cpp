@@ -197,7 +197,13 @@ ConformResult merged_result(const json& first, std::vector<json>& cases, const E
     k.technique = text_of(c, "technique");
     k.status = status_from_string(text_of(c, "status")).value_or(Status::Error);
     k.expected.warn = text_of(c, "expected") == "warn";
-    const ExpectationLine* line = e.line_for(k.scene, k.technique, r.convention);
+    // The candidate's declared environment, as the shard wrote it (candidate.json's keys, one list).
+    if (c.contains("candidate") && c["candidate"].is_object() && c["candidate"].contains("environment") &&
+        c["candidate"]["environment"].is_object())
+      for (const char* key : outputs::kEnvironmentKeys)
+        if (const json& env = c["candidate"]["environment"]; env.contains(key) && env[key].is_string())
+          k.environment.emplace_back(key, env[key].get<std::string>());
+    const ExpectationLine* line = e.line_for(k.scene, k.technique, r.convention, k.environment);
     k.outcome = outcome_of(k.status, k.expected.warn, line, e.flaky(case_name(k.scene, k.technique, r.convention)));
     c.erase("expectation");
     if (!e.empty()) {
@@ -269,10 +275,14 @@ ConformResult merge_shards(const MergeOptions& o) {
   j.erase("expectations");
   std::string update;
   if (!o.expectations.empty()) {
-    r.stale = stale_lines(o.expectations, r.scenes, r.techniques, r.convention);
+    std::vector<outputs::Environment> environments;
+    for (const CaseResult& c : r.cases)
+      if (std::find(environments.begin(), environments.end(), c.environment) == environments.end())
+        environments.push_back(c.environment);
+    r.stale = stale_lines(o.expectations, r.scenes, r.techniques, r.convention, environments);
     j["expectations"] = expectations_json(o.expectations, r.stale, j["cases"]);
     std::vector<CaseOutcome> outcomes;
-    for (const CaseResult& c : r.cases) outcomes.push_back({c.scene, c.technique, c.status, c.outcome});
+    for (const CaseResult& c : r.cases) outcomes.push_back({c.scene, c.technique, c.status, c.outcome, c.environment});
     update = expectations_update_text(o.expectations, outcomes, r.stale, r.convention);
   }
   publish_reports(j, staged, r.report_json, update);

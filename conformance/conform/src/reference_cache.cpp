@@ -180,6 +180,7 @@ std::vector<std::string> render_into(const scene::PreparedScene& scene, const st
   reference::Options options;
   options.samples_per_axis = settings.samples_per_axis;
   options.threads = settings.threads;
+  options.embree_config = settings.embree_config;
   const reference::Images images = reference::render(scene, options);
   return reference::write_images(images, dir);
 }
@@ -194,6 +195,10 @@ void render_reference_to(const scene::PreparedScene& scene, const std::filesyste
 
 CachedReference ensure_reference(const scene::PreparedScene& prepared, const std::filesystem::path& cache,
                                  const ReferenceSettings& settings) {
+  // A forced Embree kernel may guess undecided pixels otherwise: such a reference is not the
+  // entry the key names. (A programming error: the commands give such settings no cache.)
+  if (!settings.embree_config.empty())
+    throw std::invalid_argument("ensure_reference: a forced Embree configuration renders fresh, never into a cache");
   const scene::Scene& scene = *prepared.scene;
   const std::string key = reference_key(prepared, settings);
   CachedReference out;

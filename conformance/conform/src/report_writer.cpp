@@ -264,7 +264,7 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
   if (with_expectations) {
     j["expectations"] = expectations_json(o.expectations, r.stale, cases);
     std::vector<CaseOutcome> outcomes;
-    for (const CaseResult& c : r.cases) outcomes.push_back({c.scene, c.technique, c.status, c.outcome});
+    for (const CaseResult& c : r.cases) outcomes.push_back({c.scene, c.technique, c.status, c.outcome, c.environment});
     update = expectations_update_text(o.expectations, outcomes, r.stale, r.convention);
   }
   publish_reports(j, staged, r.report_json, update);

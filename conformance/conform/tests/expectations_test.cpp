@@ -69,6 +69,71 @@ TEST(Expectations, BadInputIsOneLineNamingFileAndLine) {
   for (const std::string& m : {refusal("x"), refusal("[skips]\n(")}) EXPECT_EQ(m.find('\n'), std::string::npos) << m;
 }
 
+// Hostile patterns, as a CI's own files may hold: RE2 matches in linear time and builds no
+// recursion from the pattern's nesting, so none of them crashes or stalls the run.
+TEST(Expectations, HostileRegexesAreMatchedOrRefusedAtOnce) {
+  // Backtracking blow-up for a backtracking engine: here an ordinary search.
+  const Expectations e = read_expectations({write("hostile.txt", "[flakes]\n(.*)*(.*)*(.*)*(.*)*(.*)*(.*)*(.*)*x$\n")});
+  EXPECT_FALSE(e.flaky(std::string(60, 'a') + "@shadowmap@gl"));
+  EXPECT_TRUE(e.flaky(std::string(60, 'a') + "x"));
+  // 30 000 nested groups: std::regex overflowed the stack on them. RE2 compiles them or refuses
+  // the program's size, in one line either way.
+  const std::string nested = std::string(30000, '(') + "a" + std::string(30000, ')');
+  const std::string m = refusal("[skips]\n" + nested + "\n");
+  if (m != "(accepted)") {
+    EXPECT_NE(m.find("bad.txt:2: bad regex '((((("), std::string::npos) << m.substr(0, 200);
+    EXPECT_EQ(m.find('\n'), std::string::npos);
+    EXPECT_LT(m.size(), 400u) << "the message repeats the whole pattern";
+  }
+  // A pattern RE2 does not have (a back-reference) is refused, naming RE2's syntax.
+  EXPECT_NE(refusal("[flakes]\n(a)\\1\n").find("(RE2 syntax)"), std::string::npos);
+}
+
+// A UTF-8 byte-order mark, which editors on Windows write first, is not part of the first line.
+TEST(Expectations, AByteOrderMarkIsSkipped) {
+  const Expectations e = read_expectations({write("bom.txt", "\xEF\xBB\xBFlight_near_caster@shadowmap,FAIL\r\n")});
+  ASSERT_EQ(e.lines.size(), 1u);
+  EXPECT_EQ(e.lines[0].scene, "light_near_caster");
+  // Only at the start of the file: elsewhere it is a byte of a name, refused as one.
+  EXPECT_NE(refusal("# x\n\xEF\xBB\xBFa@planar,FAIL\n").find("bad.txt:2: "), std::string::npos);
+}
+
+// A line limited to an environment (a FAIL known on WebGPU only): it holds for cases rendered
+// there; the same case on WebGL2 is unlisted, and the line is not stale in a run without WebGPU.
+TEST(Expectations, LinesLimitedToAnEnvironment) {
+  const Expectations e = read_expectations({write("env.txt",
+                                                  "light_near_caster@shadowmap,FAIL,api=webgpu  # three.js WebGPU only\n"
+                                                  "light_near_caster@shadowmap,WARN,api=webgl2 adapter=SwiftShader\n")});
+  const outputs::Environment webgpu{{"api", "webgpu"}, {"adapter", "google swiftshader"}};
+  const outputs::Environment webgl2{{"api", "webgl2"}, {"adapter", "ANGLE (Google, Vulkan 1.3.0 (SwiftShader Device))"}};
+  ASSERT_NE(e.line_for("light_near_caster", "shadowmap", "gl", webgpu), nullptr);
+  EXPECT_EQ(e.line_for("light_near_caster", "shadowmap", "gl", webgpu)->status, Status::Fail);
+  ASSERT_NE(e.line_for("light_near_caster", "shadowmap", "gl", webgl2), nullptr) << "a condition matches case aside";
+  EXPECT_EQ(e.line_for("light_near_caster", "shadowmap", "gl", webgl2)->status, Status::Warn);
+  EXPECT_EQ(e.line_for("light_near_caster", "shadowmap", "gl", {}), nullptr) << "no environment declared: no condition holds";
+  EXPECT_EQ(e.line_for("light_near_caster", "shadowmap", "gl", {{"api", "webgl2"}}), nullptr) << "its adapter is not given";
+  // Stale only in a run of its own environment.
+  EXPECT_TRUE(stale_lines(e, {"light_near_caster"}, {"shadowmap"}, "gl", {webgl2}).empty());
+  const auto stale = stale_lines(e, {"ground_sphere"}, {"shadowmap"}, "gl", {{{"api", "webgl2"}}});
+  EXPECT_TRUE(stale.empty()) << "no case of the run meets either line's conditions";
+  const auto stale_webgpu = stale_lines(e, {"ground_sphere"}, {"shadowmap"}, "gl", {webgpu});
+  ASSERT_EQ(stale_webgpu.size(), 1u);
+  EXPECT_EQ(stale_webgpu[0]->status, Status::Fail);
+  // A new failure seen on one API is written limited to it.
+  const std::string next = expectations_update_text(
+      read_expectations({write("none.txt", "")}), {{"cube_seams", "shadowmap", Status::Fail, Outcome::NewFailure, webgpu}}, {}, "gl");
+  EXPECT_NE(next.find("cube_seams@shadowmap@gl,FAIL,api=webgpu  # new in this run"), std::string::npos) << next;
+  // Refusals, each one line naming the line.
+  EXPECT_NE(refusal("a@planar,FAIL,gpu=x\n").find("bad.txt:1: 'gpu=x': unknown environment key 'gpu'"), std::string::npos);
+  EXPECT_NE(refusal("a@planar,FAIL,api\n").find("expected a condition key=value"), std::string::npos);
+  EXPECT_NE(refusal("a@planar,FAIL,api=x,y\n").find("one comma too many"), std::string::npos);
+  EXPECT_NE(refusal("a@planar,FAIL,api=x api=y\n").find("api is given twice"), std::string::npos);
+  EXPECT_NE(refusal("a@planar,FAIL,api=webgpu\na@planar,WARN\n").find("bad.txt:2: case a@planar is listed already"),
+            std::string::npos)
+      << "a line for every environment overlaps one for WebGPU";
+  EXPECT_EQ(refusal("a@planar,FAIL,api=webgpu\na@planar,WARN,api=webgl2\n"), "(accepted)");
+}
+
 TEST(Expectations, OutcomesAndExitCodes) {
   ExpectationLine fail{"s", "t", "", Status::Fail, "f:1", "s@t,FAIL"};
   ExpectationLine warn{"s", "t", "", Status::Warn, "f:1", "s@t,WARN"};

@@ -91,9 +91,14 @@ std::string render_junit(const json& report) {
     const std::string st = text(c, "status");
     x << "  <testcase classname=\"" << escape_html(text(c, "scene")) << "\" name=\"" << escape_html(text(c, "technique"))
       << "\" time=\"" << c.value("seconds", 0.0) << "\">";
-    if (c.contains("resolving_power"))
-      x << "<properties><property name=\"resolving_power\" value=\""
-        << escape_html(c["resolving_power"].value("summary", "")) << "\"/></properties>";
+    const std::string env = case_environment(c);
+    if (c.contains("resolving_power") || !env.empty()) {
+      x << "<properties>";
+      if (c.contains("resolving_power"))
+        x << "<property name=\"resolving_power\" value=\"" << escape_html(c["resolving_power"].value("summary", "")) << "\"/>";
+      if (!env.empty()) x << "<property name=\"environment\" value=\"" << escape_html(env) << "\"/>";
+      x << "</properties>";
+    }
     const std::string o = outcome(c);
     if ((o == "expected" || o == "flake") && st != "PASS" && st != "XFAIL")
       x << "<skipped message=\"" << escape_html((o == "flake" ? "flaky: " + st : "known failure: " + expected_by(c)) + ": " + reasons(c)) << "\"/>";
@@ -128,6 +133,11 @@ std::string render_markdown(const json& report) {
   for (const char* st : {"PASS", "XFAIL", "WARN", "FAIL", "XPASS", "ERROR"}) m << " " << counts[st] << " " << st << ",";
   m.seekp(-1, std::ios_base::cur);
   m << " (convention " << cell(text(report, "convention")) << ")\n";
+  // Where the candidates were rendered: one line per environment the cases declared.
+  std::map<std::string, std::size_t> environments;
+  for (const json& c : cases)
+    if (const std::string env = case_environment(c); !env.empty()) ++environments[env];
+  for (const auto& [env, n] : environments) m << "\nRendered on: " << cell(env) << " (" << n << " case(s))\n";
   if (report.contains("expectations")) {
     const json& e = report["expectations"];
     m << "\nAgainst the expectations files:";

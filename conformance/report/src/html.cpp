@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "shadowref/outputs/atomic_file.hpp"
+#include "shadowref/outputs/candidate.hpp"
 #include "shadowref/report/ci_summary.hpp"
 
 namespace shadowref::report {
@@ -273,6 +274,16 @@ void visibility_table(std::ostringstream& h, const json& v) {
 
 }  // namespace
 
+std::string case_environment(const json& c) {
+  if (!c.contains("candidate") || !c["candidate"].is_object()) return "";
+  const json& env = c["candidate"].value("environment", json::object());
+  if (!env.is_object()) return "";
+  outputs::Environment e;
+  for (const char* key : outputs::kEnvironmentKeys)
+    if (env.contains(key) && env[key].is_string()) e.emplace_back(key, env[key].get<std::string>());
+  return outputs::environment_text(e);
+}
+
 std::string escape_html(const std::string& text) {
   std::string out;
   out.reserve(text.size());
@@ -474,6 +485,8 @@ void case_info(std::ostringstream& h, const json& c) {
       << " · depth faces " << escape_html(str(d, "depth_faces", "back"))
       << (str(d, "depth", "window") == "distance" ? " · distance maps over " + escape_html(str(d, "depth_range")) : std::string());
     h << (defaulted.empty() ? std::string() : " (defaulted: " + escape_html(defaulted) + ")") << "</div>";
+    if (const std::string env = case_environment(c); !env.empty())
+      h << "<div class=\"notes environment\">rendered on: " << escape_html(env) << "</div>";
     if (d.contains("lights") && !d["lights"].empty())
       h << "<div class=\"notes\">per light (overrides of the above, in the pack's light order): <code>"
         << escape_html(d["lights"].dump()) << "</code></div>";

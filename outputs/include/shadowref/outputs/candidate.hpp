@@ -61,6 +61,12 @@
 //                                         units of that range
 //     "depth_range": 0.0,                 number > 0, world units: "distance" maps' range (far - near of
 //                                         the shadow camera); needed with "distance" and a depth_bias
+//     "environment": {                    where the render came from, recorded, shown per case and
+//       "api": "webgpu",                  matched by an expectations line limited to it (docs/ci.md):
+//       "adapter": "google swiftshader",  the graphics API (webgpu, webgl2, opengl, vulkan, d3d12,
+//       "browser": "Chrome/156.0",        metal...), the adapter or driver as the engine reports it,
+//       "engine": "three.js r187"         the browser and the engine; strings, never judged. Any
+//     },                                  other key is refused (one list: kEnvironmentKeys)
 //     "settings": { ... },                any JSON object: the engine's own settings (shadow camera,
 //                                         caster faces, far distance...), recorded in report.json and
 //                                         the HTML and never judged
@@ -84,6 +90,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace shadowref::outputs {
@@ -94,12 +101,21 @@ inline constexpr int kMaxLightTaps = 64;
 inline constexpr const char* kCandidateFile = "candidate.json";
 
 // Every key candidate.json may hold, the one list (the reader, `defaulted`, the pack README's table).
-inline constexpr std::array<const char*, 24> kCandidateKeys{
-    "producer",          "version",       "technique",   "convention", "shadow_map_size",
+inline constexpr std::array<const char*, 25> kCandidateKeys{
+    "producer",          "version",       "technique",   "convention", "environment", "shadow_map_size",
     "atlas_tile",        "filter_radius_texels", "slope_bias_texels", "constant_bias", "light_views",
     "views",             "cascade_splits", "cascade_blend",
     "cascades",          "light_taps",    "sampling",    "normal_offset", "normal_offset_texels",
     "depth_bias",        "depth_faces",   "depth",       "depth_range", "settings",    "lights"};
+
+// The keys of "environment", the one list (the reader, the report, expectations lines).
+inline constexpr std::array<const char*, 4> kEnvironmentKeys{"api", "adapter", "browser", "engine"};
+
+// Where a render came from: {key of kEnvironmentKeys, value} in kEnvironmentKeys' order, the keys given only.
+using Environment = std::vector<std::pair<std::string, std::string>>;
+
+// "api webgpu · adapter google swiftshader · …": an environment in one line of text ("" when empty).
+std::string environment_text(const Environment& environment);
 
 // The most `lights` entries a declaration may give (a scene's lights are far fewer).
 inline constexpr std::size_t kMaxDeclaredLights = 64;
@@ -164,6 +180,7 @@ struct CandidateDeclaration {
   DepthFaces depth_faces = DepthFaces::Back;  // ours: front faces culled (back faces drawn)
   StoredDepth depth = StoredDepth::Window;    // Distance: depth_bias is in units of depth_range
   double depth_range = 0.0;                   // world units, the distance maps' far - near
+  Environment environment;             // "environment": recorded, shown, matched by expectations lines
   std::string settings_json = "{}";    // "settings", as compact JSON text: recorded, never judged
   std::vector<std::string> defaulted;  // keys that were absent
   // "lights": per light (the pack's order), this declaration with that entry's overrides; empty:

@@ -8,8 +8,11 @@
 
 #include <embree3/rtcore.h>
 
+#include <array>
 #include <cstdint>
 #include <stdexcept>
+#include <string>
+#include <string_view>
 
 #include "shadowref/scene/scene.hpp"
 
@@ -26,11 +29,23 @@ class EmbreeError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Embree's names for its CPU kernels (rtcNewDevice's `isa=`), in Debian's build: "sse2", "sse4.2",
+// "avx2", "avx512" (its Skylake kernel: AVX-512 F, BW, DQ and VL).
+inline constexpr std::array<const char*, 4> kEmbreeKernels{"sse2", "sse4.2", "avx2", "avx512"};
+
+// Whether this CPU can run Embree's kernel `name` (one of kEmbreeKernels; false for any other).
+// One process runs one kernel: Embree selects part of its code once per process, so devices of two
+// kernels in one process mix their code (assertions and crashes inside Embree).
+bool cpu_runs_embree_kernel(std::string_view name);
+
 class EmbreeScene {
  public:
   // Uploads every object's mesh and commits the BVH (in the calling TBB arena). Throws
-  // EmbreeError when Embree refuses (the message carries Embree's error code).
-  explicit EmbreeScene(const scene::Scene& scene);
+  // EmbreeError when Embree refuses (the message carries Embree's error code). `device_config` is
+  // Embree's device configuration string (rtcNewDevice): empty lets Embree pick its kernel for the
+  // CPU, the production default; "isa=avx2" and the like force one (`goldens --check --embree-kernel`
+  // renders with each and demands the same truth, reference/truth.hpp).
+  explicit EmbreeScene(const scene::Scene& scene, const std::string& device_config = {});
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;

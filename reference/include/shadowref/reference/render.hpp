@@ -35,6 +35,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "shadowref/scene/prepared_scene.hpp"
@@ -50,6 +51,9 @@ inline constexpr double kGrazingCosine = 1e-4;
 struct Options {
   int samples_per_axis = 4;  // sub-pixel grid: samples_per_axis², in [1, 16]
   int threads = 0;           // 0: all cores
+  // Embree's device configuration (EmbreeScene): empty in production, where Embree picks its
+  // kernel for the CPU; "isa=sse2", "isa=avx2", ... force one. Only undecided pixels may depend on it.
+  std::string embree_config;
 };
 
 struct LightImages {

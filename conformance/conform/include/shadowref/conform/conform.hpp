@@ -98,6 +98,9 @@ struct CaseResult {
   // and `expected_status` its status, when the case has one.
   Outcome outcome = Outcome::Green;
   std::string expected_status, expected_line;
+  // Where the candidate says it was rendered (candidate.json's environment): what an expectations
+  // line limited to an environment is matched with. Empty when none was declared or before a verdict.
+  outputs::Environment environment;
 
   // The judgement's comparison, or null before a verdict.
   const compare::FolderComparison* comparison() const { return judgement ? &judgement->comparison : nullptr; }

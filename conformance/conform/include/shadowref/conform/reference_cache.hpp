@@ -30,6 +30,9 @@ struct ReferenceSettings {
   // same reference library, built with it from the same tree, names the `shadowref` built beside
   // it, and so reads the entries that its CTest fixtures (`shadowref conform --references-only`) computed.
   std::filesystem::path key_executable;
+  // Embree's device configuration (reference::Options::embree_config): empty in production. Not
+  // part of the key, so ensure_reference refuses a non-empty one (a forced kernel renders fresh).
+  std::string embree_config;
 };
 
 // The key of the prepared scene (loaded from scene.file, in its convention) under `settings`, as 16
