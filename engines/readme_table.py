@@ -1,17 +1,21 @@
 #!/usr/bin/python3
-"""engines/readme_table.py — README.md's 'Real engines' tables, made from engines/verdicts.json.
+"""engines/readme_table.py — the engine-verdict tables of engines/VERDICTS.md, made from engines/verdicts.json.
 
-  readme_table.py --check   exit 1 when README.md's block differs from what verdicts.json gives,
-                            or a non-PASS verdict has no why or no known cause
-  readme_table.py --update  rewrite the block in README.md
+  readme_table.py --check   exit 1 when VERDICTS.md's block differs from what verdicts.json gives,
+                            or a non-PASS verdict has no why or no known cause, or (with --readme)
+                            the top-level README carries a copy of the block or no link to the page
+  readme_table.py --update  rewrite the block in VERDICTS.md
 
-The block lies between the two marker comments below; everything in it is generated, so the README
+The block lies between the two marker comments below; everything in it is generated, so the page
 cannot drift from the recorded verdicts, which ctest -L engines holds to the engines' real output.
+The tables were the README's until it became a newcomer's page; the README now links here, and one
+generated copy is all there is, so no stale copy can stay behind in it.
 """
 
 import argparse
 import difflib
 import json
+import os
 import pathlib
 import sys
 
@@ -67,35 +71,55 @@ def block(table):
     return "\n".join(lines)
 
 
+def readme_problems(readme, page):
+    """Why the top-level README does not point at the one generated page."""
+    text = readme.read_text()
+    out = []
+    if BEGIN in text or END in text:
+        out.append(f"{readme}: holds an engines-table marker; the tables live in {page.name} alone")
+    link = pathlib.Path(os.path.relpath(page.resolve(), readme.resolve().parent)).as_posix()
+    if f"]({link})" not in text and f"]({link}#" not in text:
+        out.append(f"{readme}: no Markdown link to {link}")
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     mode = ap.add_mutually_exclusive_group(required=True)
     mode.add_argument("--check", action="store_true")
     mode.add_argument("--update", action="store_true")
     ap.add_argument("--verdicts", type=pathlib.Path, default=HERE / "verdicts.json")
-    ap.add_argument("--readme", type=pathlib.Path, default=HERE.parent / "README.md")
+    ap.add_argument("--page", type=pathlib.Path, default=HERE / "VERDICTS.md",
+                    help="the generated page (default: engines/VERDICTS.md)")
+    ap.add_argument("--readme", type=pathlib.Path, default=None,
+                    help="with --check: also demand that this README links to the page and holds no copy")
     a = ap.parse_args()
 
     table = json.loads(a.verdicts.read_text())
     bad = problems(table)
     if bad:
         sys.exit("engines/verdicts.json is not ready to publish:\n  " + "\n  ".join(bad))
-    readme = a.readme.read_text()
-    if readme.count(BEGIN) != 1 or readme.count(END) != 1:
-        sys.exit(f"{a.readme}: needs exactly one '{BEGIN}' and one '{END}'")
-    head, rest = readme.split(BEGIN)
+    page = a.page.read_text()
+    if page.count(BEGIN) != 1 or page.count(END) != 1:
+        sys.exit(f"{a.page}: needs exactly one '{BEGIN}' and one '{END}'")
+    head, rest = page.split(BEGIN)
     current, tail = rest.split(END)
     current = BEGIN + current + END
     wanted = block(table)
     if a.update:
-        a.readme.write_text(head + wanted + tail)
+        a.page.write_text(head + wanted + tail)
         return 0
+    status = 0
     if current != wanted:
-        diff = difflib.unified_diff(current.splitlines(), wanted.splitlines(), "README.md", "from verdicts.json", lineterm="")
+        diff = difflib.unified_diff(current.splitlines(), wanted.splitlines(), a.page.name, "from verdicts.json", lineterm="")
         print("\n".join(diff))
-        print("README.md's engines table differs from engines/verdicts.json: engines/readme_table.py --update")
-        return 1
-    return 0
+        print(f"{a.page.name}'s engines table differs from engines/verdicts.json: engines/readme_table.py --update")
+        status = 1
+    if a.readme is not None:
+        for p in readme_problems(a.readme, a.page):
+            print(p)
+            status = 1
+    return status
 
 
 if __name__ == "__main__":

@@ -16,6 +16,10 @@ Scenes in verdicts.json's `not_judged` are rendered by the harnesses that render
 judged on the harnesses each entry names: those harnesses cannot yet give their engine what the scenes
 need (the entry's `why` says what).
 
+A run with a `twin` (a WebGPU run beside the WebGL2 run of the same engine and variant) is compared
+with it when both are rendered: per scene, how many mask pixels the two backends' masks differ in,
+beside each one's verdict (printed, and written to <work>/backends.md).
+
 --record rewrites the verdicts of verdicts.json from this run, keeping each *why* and *cause* whose
 verdict did not change and emptying the others (engines/readme_table.py then refuses a non-PASS
 without them until someone has looked at the report and written them).
@@ -30,6 +34,7 @@ import shutil
 import subprocess
 import sys
 import time
+import zlib
 
 HERE = pathlib.Path(__file__).resolve().parent
 # Irrlicht needs an X display with a stencil buffer; Mesa's llvmpipe draws through Xvfb's GLX.
@@ -67,6 +72,8 @@ def render(r, exes, pack, out, work):
         cmd = ["node", WEB / "render.mjs", "--engine", r["harness"], "--pack", pack, "--out", out, "--variant", r["variant"]]
         if r.get("scenes"):  # a run of the scenes its engine can light so (engines/README.md says why)
             cmd += ["--scenes", ",".join(r["scenes"])]
+        if r.get("backend"):  # webgl2 (the default), webgpu, webgpu-webgl2: render.mjs refuses any other it finds
+            cmd += ["--backend", r["backend"]]
     else:
         cmd = under_xvfb([exes[r["harness"]], "--pack", pack, "--out", out, "--variant", r["variant"]], work)
     # The native harnesses draw with Mesa's llvmpipe, in the calling thread as our renderer does: its
@@ -100,6 +107,78 @@ def judge(r, shadowref, pack, candidates, out, cache, scenes):
         sys.exit(f"{r['run']}: shadowref conform failed (exit {p.returncode}):\n{p.stdout}")
     report = json.loads((out / "report.json").read_text())
     return {c["scene"]: c["status"] for c in report["cases"]}
+
+
+def grey_png(path):
+    """An 8-bit greyscale PNG (the masks every harness writes) as (width, height, bytes): zlib and the
+    five row filters of the PNG specification, nothing else (no third-party module)."""
+    data = path.read_bytes()
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        raise ValueError(f"{path}: not a PNG")
+    pos, idat, width = 8, b"", None
+    while pos < len(data):
+        n = int.from_bytes(data[pos:pos + 4], "big")
+        kind, body = data[pos + 4:pos + 8], data[pos + 8:pos + 8 + n]
+        pos += 12 + n
+        if kind == b"IHDR":
+            width, height = int.from_bytes(body[0:4], "big"), int.from_bytes(body[4:8], "big")
+            if body[8] != 8 or body[9] != 0 or body[12] != 0:
+                raise ValueError(f"{path}: not 8-bit greyscale without interlace")
+        elif kind == b"IDAT":
+            idat += body
+    raw, out, prev = zlib.decompress(idat), bytearray(), bytearray(width)
+    for y in range(height):
+        f, row = raw[y * (width + 1)], bytearray(raw[y * (width + 1) + 1:(y + 1) * (width + 1)])
+        for x in range(width if f else 0):
+            a = row[x - 1] if x else 0
+            b, c = prev[x], (prev[x - 1] if x else 0)
+            if f == 1:
+                row[x] = (row[x] + a) & 255
+            elif f == 2:
+                row[x] = (row[x] + b) & 255
+            elif f == 3:
+                row[x] = (row[x] + (a + b) // 2) & 255
+            elif f == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                row[x] = (row[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        out += row
+        prev = row
+    return width, height, bytes(out)
+
+
+def mask_difference(a_dir, b_dir):
+    """(pixels that differ, pixels compared) between two candidate folders' masks of one scene (every
+    light's mask), or None when either has none or their sizes differ."""
+    names = sorted(p.name for p in a_dir.glob("mask*.png")) if a_dir.is_dir() else []
+    if not names or sorted(p.name for p in b_dir.glob("mask*.png")) != names:
+        return None
+    differ = total = 0
+    for name in names:
+        wa, ha, pa = grey_png(a_dir / name)
+        wb, hb, pb = grey_png(b_dir / name)
+        if (wa, ha) != (wb, hb):
+            return None
+        differ += sum(1 for x, y in zip(pa, pb) if x != y)
+        total += wa * ha
+    return differ, total
+
+
+def backend_comparison(pairs, work):
+    """Lines of the backends' comparison: per run with a twin, per scene, each one's verdict and how
+    many mask pixels differ between the two backends' masks."""
+    lines = ["# Backend against backend", "",
+             "Per scene: the WebGL2 twin's verdict, the WebGPU run's, and how many mask pixels differ between the two "
+             "backends' masks (all lights; of the pixels compared).", ""]
+    for r, twin, observed, twin_observed in pairs:
+        lines += [f"## {r['run']} (twin {twin['run']})", "", "| scene | " + twin["run"] + " | " + r["run"] + " | pixels differ |",
+                  "| --- | --- | --- | --- |"]
+        for scene in sorted(set(observed) | set(twin_observed)):
+            d = mask_difference(work / "renders" / twin["run"] / scene, work / "renders" / r["run"] / scene)
+            diff = "—" if d is None else f"{d[0]} of {d[1]}"
+            lines.append(f"| {scene} | {twin_observed.get(scene, '—')} | {observed.get(scene, '—')} | {diff} |")
+        lines.append("")
+    return lines
 
 
 def differences(recorded, observed):
@@ -149,6 +228,7 @@ def main():
         sys.exit(f"the web harnesses need {web_ready()}")
 
     failed = False
+    observed_by_run = {}
     for r in table["runs"]:
         if not any(fnmatch.fnmatchcase(r["run"], p) for p in patterns):
             continue
@@ -157,6 +237,7 @@ def main():
         render(r, exes, pack, candidates, work)
         scenes = judged_scenes(r, pack, not_judged_on(table, r["harness"]))
         observed = judge(r, a.shadowref.resolve(), pack, candidates, verdict_dir, cache, scenes)
+        observed_by_run[r["run"]] = observed
         diff = differences(r["verdicts"], observed)
         counts = {}
         for status in observed.values():
@@ -170,6 +251,17 @@ def main():
             failed = True
             print(f"{r['run']}: verdicts differ from {a.verdicts.name}:\n" + "\n".join(diff) +
                   f"\n  look at {verdict_dir / 'report' / 'index.html'}")
+
+    runs = {r["run"]: r for r in table["runs"]}
+    for r in table["runs"]:
+        if r.get("twin") and r["twin"] not in runs:
+            sys.exit(f"{r['run']}: its twin {r['twin']} is not a run of {a.verdicts.name}")
+    pairs = [(r, runs[r["twin"]], observed_by_run[r["run"]], observed_by_run[r["twin"]]) for r in table["runs"]
+             if r.get("twin") and r["run"] in observed_by_run and r["twin"] in observed_by_run]
+    if pairs:
+        lines = backend_comparison(pairs, work)
+        (work / "backends.md").write_text("\n".join(lines) + "\n")
+        print("\n".join(lines[4:]) + f"written to {work / 'backends.md'}")
 
     # The comparison has teeth: a recorded verdict flipped in memory must be reported.
     probe = table["runs"][0]

@@ -37,6 +37,8 @@ std::string describe(const Faults& f) {
   on(s.cube == CubeFault::ZFacesSwapped, "shadow_map.cube=z_faces_swapped");
   on(s.cube == CubeFault::YFacesUpsideDown, "shadow_map.cube=y_faces_upside_down");
   on(s.half_texel_offset, "shadow_map.half_texel_offset");
+  on(s.lookup_y_flipped, "shadow_map.lookup_y_flipped");
+  on(s.light_direction_mirrored_x, "shadow_map.light_direction_mirrored_x");
   on(s.alpha == AlphaFault::Ignored, "shadow_map.alpha=ignored");
   on(s.alpha == AlphaFault::CutoffHalf, "shadow_map.alpha=cutoff_half");
   on(s.alpha == AlphaFault::VertexAlphaIgnored, "shadow_map.alpha=vertex_alpha_ignored");

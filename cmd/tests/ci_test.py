@@ -13,7 +13,9 @@
   expectations  an expectations file of the candidate's known FAILs: exit 0; one PASSing scene's mask
                 inverted: exit 2 and that case named a new failure; the known FAIL's mask replaced by our
                 correct render: named an improvement (exit 1); expectations-update.txt makes the next
-                run green; a bad line is one line naming file and line, exit 4, nothing written.
+                run green; a line limited to WebGPU (api=webgpu) holds for the case's WebGPU render (exit 0)
+                and not for its right WebGL2 render (green, exit 0, neither stale nor an improvement); a bad
+                line is one line naming file and line, exit 4, nothing written.
                 The candidate is our own renders with three.js r187 BasicShadowMap's recorded FAIL
                 (engines/verdicts.json: light_near_caster, the plate inside the point light's near
                 plane, its shadow lit) put in by hand: the plate's shadow removed from the mask.
@@ -249,6 +251,32 @@ def part_expectations(exe, work, three_pack):
     p = judge(candidates, "stale", 0, "--expectations", work / "stale.txt")
     if "STALE" not in p.stdout or "gone_scene" not in p.stdout:
         fail(f"the stale line is not reported:\n{p.stdout}")
+    # A FAIL known on WebGPU only (a line limited to an environment): the WebGPU run of the case is
+    # known (exit 0); its WebGL2 run, right, is green (exit 0); neither names a stale line or an improvement.
+    known_scene = next(iter(known))
+    (work / "webgpu.txt").write_text(f"{known_scene}@{technique},FAIL,api=webgpu  # seen on WebGPU alone\n")
+
+    def with_environment(folder, name, api):
+        out = work / name
+        shutil.copytree(folder, out, symlinks=False)
+        for scene_dir in (p for p in out.iterdir() if p.is_dir()):
+            declared = scene_dir / "candidate.json"
+            d = json.loads(declared.read_text()) if declared.exists() else {}
+            d["environment"] = {"api": api, "adapter": "google swiftshader", "engine": "this test"}
+            declared.write_text(json.dumps(d))
+        return out
+
+    right = work / "right"
+    shutil.copytree(candidates, right, symlinks=False)
+    shutil.copy(our_render(exe, work, catalogue, known_scene) / "mask.png", right / known_scene / "mask.png")
+    for folder, name, api, line in ((candidates, "on-webgpu", "webgpu", "1 known"), (right, "on-webgl2", "webgl2", "0 known")):
+        p = run([exe, "conform", *catalogue, "--scenes", known_scene, "--candidate-dir", with_environment(folder, name + "-in", api),
+                 "--technique", technique, "--out", work / name, "--cache", work / "cache", "--jobs", "1", "--quiet",
+                 "--expectations", work / "webgpu.txt"], expect=0)
+        if line not in p.stdout or "STALE" in p.stdout or "IMPROVEMENT" in p.stdout:
+            fail(f"{name}: the WebGPU-only line is not read as limited to WebGPU:\n{p.stdout}")
+        if f"Rendered on: api {api}" not in (work / name / "summary.md").read_text():
+            fail(f"{name}: summary.md does not say where the render came from")
     # Bad input: one line naming the file and line, exit 4, nothing written.
     (work / "bad.txt").write_text("# ok\nground_sphere@shadowmap,BROKEN\n")
     p = judge(candidates, "bad", 4, "--expectations", work / "bad.txt")

@@ -190,6 +190,38 @@ constexpr Row kRows[] = {
             "a pixel and no scene tells it from the right technique's own texel quantisation, which the "
             "shadow-map threshold must allow)",
      .shadow_map_size = 128},
+    // The classes new backends (WebGPU) break in their own ways: the texture origin and a light
+    // direction's sign, each in the convention families it applies to. (An inverted cull in the
+    // depth pass is no row: with this renderer's slope-scaled offset a front-face map is a right map,
+    // PASS on every shadow-map scene; the class is acne only under a back-face map's small bias,
+    // which acne-no-offset stands for.)
+    {.name = "lookup-y-flipped", .technique = "shadowmap",
+     .faults = on([](Faults& f) { f.shadow_map.lookup_y_flipped = true; }), .convention = "gl",
+     .scenes = "directional_light two_lights",
+     .field_class = "the shadow coordinate's t read as 1 - t (a top-left texture origin taken for bottom-left)",
+     .why = "every shadow is looked up mirrored in the light's view: the casters' shadows land on the far side "
+            "of the light's view centre and the true shadows are lit"},
+    {.name = "lookup-y-flipped-d3d", .technique = "shadowmap",
+     .faults = on([](Faults& f) { f.shadow_map.lookup_y_flipped = true; }), .convention = "d3d",
+     .scenes = "directional_light two_lights",
+     .field_class = "the shadow coordinate's t read as 1 - t, left-handed 0..1 depth",
+     .why = "as in gl: the mirror is in the map's t, whatever the handedness and depth range of the light's projection"},
+    {.name = "lookup-y-flipped-reversed-z", .technique = "shadowmap",
+     .faults = on([](Faults& f) { f.shadow_map.lookup_y_flipped = true; }), .convention = "reversed-z",
+     .scenes = "directional_light two_lights",
+     .field_class = "the shadow coordinate's t read as 1 - t, reversed-Z",
+     .why = "as in gl: the mirror is in the map's t, whatever the depth compare's direction"},
+    {.name = "light-direction-mirrored-x", .technique = "shadowmap",
+     .faults = on([](Faults& f) { f.shadow_map.light_direction_mirrored_x = true; }), .convention = "gl",
+     .scenes = "directional_light torus_self_shadow",
+     .field_class = "a directional light's shadow view built from its direction mirrored in x",
+     .why = "the map is drawn and looked up from the mirrored sun: shadows fall toward the other side in x, the "
+            "true ones come out lit, while the lighting still faces the true sun"},
+    {.name = "light-direction-mirrored-x-d3d", .technique = "shadowmap",
+     .faults = on([](Faults& f) { f.shadow_map.light_direction_mirrored_x = true; }), .convention = "d3d",
+     .scenes = "directional_light torus_self_shadow",
+     .field_class = "a directional light's shadow view built from its direction mirrored in x, left-handed",
+     .why = "as in gl: the mirror is of the world direction, whatever the view's handedness"},
     // Alpha-masked and single-sided casters (scene/alpha_mask.hpp; the catalogue's alpha_* and
     // single_sided_cards scenes).
     {.name = "alpha-ignored-in-depth-pass", .technique = "shadowmap",

@@ -1,8 +1,13 @@
 // engines/web/babylon_page.js — the Babylon.js harness, in the page (babylon.html): loads a pack
 // scene with Babylon's own glTF loader (@babylonjs/loaders) and renders one mask per light with
-// Babylon's own ShadowGenerator / CascadedShadowGenerator and the variant's settings;
-// engines/README.md says what is adapted and why.
+// Babylon's own ShadowGenerator / CascadedShadowGenerator and the variant's settings, on Babylon's
+// WebGL2 Engine (`webgl2`) or its WebGPUEngine (`webgpu`, every shader WGSL: a GLSL one would make
+// Babylon fetch its GLSL-to-SPIR-V compiler from a CDN); engines/README.md says what is adapted and why.
 import { Engine } from '@babylonjs/core/Engines/engine.js';
+import { WebGPUEngine } from '@babylonjs/core/Engines/webgpuEngine.js';
+import { RenderTargetTexture } from '@babylonjs/core/Materials/Textures/renderTargetTexture.js';
+import { Constants } from '@babylonjs/core/Engines/constants.js';
+import { ShaderLanguage } from '@babylonjs/core/Materials/shaderLanguage.js';
 import { Scene } from '@babylonjs/core/scene.js';
 import { Color4 } from '@babylonjs/core/Maths/math.color.js';
 import { Vector3 } from '@babylonjs/core/Maths/math.vector.js';
@@ -21,7 +26,8 @@ import '@babylonjs/core/Loading/loadingScreen.js';
 import '@babylonjs/loaders/glTF/2.0/glTFLoader.js';
 import '@babylonjs/loaders/glTF/2.0/Extensions/KHR_lights_punctual.js';
 import '@babylonjs/loaders/glTF/glTFFileLoader.js';
-import { turnedAway, combine, fraction, base64, packCamera, packLights } from './common.js';
+import { turnedAway, combine, fraction, base64, packCamera, packLights, withEnvironment, adapterText, webglAdapterText,
+  browserText, halfZToGl } from './common.js';
 
 // Babylon's defaults (src/Lights/Shadows/shadowGenerator.ts, ShadowGenerator's constructor and
 // _initializeShadowGenerator): bias 0.00005, normalBias 0, filter none, darkness 0; the map size
@@ -149,8 +155,10 @@ class ShadowTerm extends MaterialPluginBase {
     super(material, 'ShadowTerm', 1000, {}, true, true);
   }
   getClassName() { return 'ShadowTerm'; }
-  getCustomCode(shaderType) {
-    return shaderType === 'fragment' ? { CUSTOM_FRAGMENT_BEFORE_FRAGCOLOR: 'color = vec4(shadow, shadow, shadow, 1.0);' } : null;
+  isCompatible() { return true; }
+  getCustomCode(shaderType, language) {
+    const vec4 = language === ShaderLanguage.WGSL ? 'vec4f' : 'vec4';
+    return shaderType === 'fragment' ? { CUSTOM_FRAGMENT_BEFORE_FRAGCOLOR: `color = ${vec4}(shadow, shadow, shadow, 1.0);` } : null;
   }
 }
 
@@ -165,8 +173,10 @@ class PbrShadowTerm extends MaterialPluginBase {
     super(material, 'PbrShadowTerm', 1000, {}, true, true);
   }
   getClassName() { return 'PbrShadowTerm'; }
-  getCustomCode(shaderType) {
-    return shaderType === 'fragment' ? { CUSTOM_FRAGMENT_BEFORE_FRAGCOLOR: 'finalColor = vec4(shadow, shadow, shadow, 1.0);' } : null;
+  isCompatible() { return true; }
+  getCustomCode(shaderType, language) {
+    const vec4 = language === ShaderLanguage.WGSL ? 'vec4f' : 'vec4';
+    return shaderType === 'fragment' ? { CUSTOM_FRAGMENT_BEFORE_FRAGCOLOR: `finalColor = ${vec4}(shadow, shadow, shadow, 1.0);` } : null;
   }
 }
 
@@ -180,8 +190,10 @@ class FaceColour extends MaterialPluginBase {
     this.output = output;
   }
   getClassName() { return 'FaceColour'; }
-  getCustomCode(shaderType) {
-    return shaderType === 'fragment' ? { CUSTOM_FRAGMENT_BEFORE_FRAGCOLOR: `${this.output} = vec4(vColor.rgb, 1.0);` } : null;
+  isCompatible() { return true; }
+  getCustomCode(shaderType, language) {
+    const code = language === ShaderLanguage.WGSL ? `${this.output} = vec4f(fragmentInputs.vColor.rgb, 1.0);` : `${this.output} = vec4(vColor.rgb, 1.0);`;
+    return shaderType === 'fragment' ? { CUSTOM_FRAGMENT_BEFORE_FRAGCOLOR: code } : null;
   }
 }
 
@@ -194,15 +206,50 @@ varying vec4 vColor; void main() { gl_FragColor = vec4(vColor.rgb, 1.0); }`;
 
 const canvas = document.createElement('canvas');
 document.body.appendChild(canvas);
-const engine = new Engine(canvas, false, { preserveDrawingBuffer: true, stencil: true, antialias: false, adaptToDeviceRatio: false });
+// The page's one engine and the environment it runs in, made by init(backend) before any scene.
+let engine = null, environment = null;
 
+// Makes the engine the backend asks for and refuses any other: a mask is never recorded as one
+// backend's when another drew it. `adapterWanted`, when given, must occur in the adapter's description.
+async function init(wanted, adapterWanted, browser) {
+  if (wanted === 'webgl2') {
+    engine = new Engine(canvas, false, { preserveDrawingBuffer: true, stencil: true, antialias: false, adaptToDeviceRatio: false });
+    if (engine.webGLVersion !== 2) return { error: `asked for Babylon.js on WebGL2, but its Engine runs WebGL ${engine.webGLVersion}: no mask written` };
+    environment = { api: 'webgl2', adapter: webglAdapterText(engine._gl) };
+  } else if (wanted === 'webgpu') {
+    if (!navigator.gpu) return { error: 'asked for Babylon.js WebGPUEngine, but the page has no WebGPU (navigator.gpu is missing): no mask written' };
+    engine = new WebGPUEngine(canvas, { stencil: true, antialias: false, adaptToDeviceRatio: false });
+    try {
+      await engine.initAsync();
+    } catch (e) {
+      return { error: `asked for Babylon.js WebGPUEngine, but it found no WebGPU adapter (${String(e.message || e).split('\n')[0]}): no mask written` };
+    }
+    if (!engine.isWebGPU || !engine._adapterInfo)
+      return { error: 'asked for Babylon.js WebGPUEngine, but it does not run on a WebGPU adapter: no mask written' };
+    environment = { api: 'webgpu', adapter: adapterText(engine._adapterInfo) };
+  } else {
+    return { error: `no Babylon.js backend "${wanted}" (webgl2, webgpu)` };
+  }
+  if (adapterWanted && !environment.adapter.toLowerCase().includes(adapterWanted.toLowerCase()))
+    return { error: `asked for the adapter "${adapterWanted}", but Babylon.js runs on "${environment.adapter}": no mask written` };
+  Object.assign(environment, { browser: browser || browserText(), engine: `Babylon.js ${Engine.Version}` });
+  return { environment };
+}
+
+// One frame's colour as RGBA bytes, bottom row first. On WebGL2 the canvas (its drawing buffer
+// preserved); on WebGPU the camera draws into a render target instead (a WebGPU canvas reads back
+// blank in headless Chromium), which Babylon reads back in WebGL's row order too.
 async function renderFrame(scene) {
   await scene.whenReadyAsync();
   scene.render();
+  const target = scene.activeCamera.outputRenderTarget;
+  if (target) return await target.readPixels();
   return await engine.readPixels(0, 0, engine.getRenderWidth(), engine.getRenderHeight());
 }
 
 async function render(url, variantName) {
+  if (!engine) return { error: 'harness.init(backend) was not called' };
+  const webgpu = engine.isWebGPU;
   const v = VARIANTS[variantName];
   if (!v) return { error: `no Babylon variant "${variantName}" (${Object.keys(VARIANTS).join(', ')})` };
   const json = await (await fetch(url)).json();
@@ -222,6 +269,13 @@ async function render(url, variantName) {
   const camera = scene.cameras.find((c) => c.name === 'camera');
   camera.maxZ = cam.far;  // the pack's finite far plane: the depth buffer's precision spent on the scene
   scene.activeCamera = camera;
+  if (webgpu) {
+    camera.outputRenderTarget = new RenderTargetTexture('shadowref-frame', { width: cam.width, height: cam.height }, scene,
+      { generateMipMaps: false, type: Constants.TEXTURETYPE_UNSIGNED_BYTE, samplingMode: Constants.TEXTURE_NEAREST_SAMPLINGMODE,
+        generateDepthBuffer: true, generateStencilBuffer: true });
+  }
+  // WebGPU's clip depth runs 0..w (Babylon's isNDCHalfZRange): candidate.json's projections are −w..w.
+  const glProjection = (views) => (engine.isNDCHalfZRange ? views.map((x) => ({ view: x.view, projection: halfZToGl(x.projection) })) : views);
 
   const meshes = scene.meshes.filter((m) => m.getTotalVertices() > 0);
   // One vertex per face corner with the face's normal (glTF asks for flat normals when a mesh has
@@ -252,7 +306,8 @@ async function render(url, variantName) {
       face.backFaceCulling = false;
       return [m, { shadow, face, colours, masked: true }];
     }
-    if (m.skeleton) {
+    // On WebGPU every mesh's face pass is a StandardMaterial (WGSL), the face shader being GLSL.
+    if (m.skeleton || webgpu) {
       const face = new StandardMaterial(`${m.name}-faces`, scene);
       new FaceColour(face, 'color');
       face.backFaceCulling = false;
@@ -318,7 +373,7 @@ async function render(url, variantName) {
     const views = cascaded ? null : recordShadowViews(generator, light);
     const shadowPixels = new Uint8Array(await renderFrame(scene));
     const cascades = cascaded ? cascadeViews(generator) : null;
-    const drawn = cascaded ? cascades.views : views.stop();
+    const drawn = glProjection(cascaded ? cascades.views : views.stop());
     const expected = cascaded ? generator.numCascades : light.needCube() ? 6 : 1;
     if (drawn.length !== expected)
       throw new Error(`Babylon drew ${drawn.length} shadow views for a ${light.getClassName()}, not ${expected}`);
@@ -373,7 +428,7 @@ async function render(url, variantName) {
   // point light's cube Babylon replaces PCF with Poisson sampling (computeShadowWithPoissonSamplingCube:
   // four nearest taps about one texel diagonal away, 1.5 with the texel's own half).
   const reach = { none: 0, pcf: 3, poisson: 1.5, pcss: 0 };
-  const candidate = {
+  const candidate = withEnvironment({
     producer: 'Babylon.js',
     version: Engine.Version,
     technique: v.technique,
@@ -391,6 +446,7 @@ async function render(url, variantName) {
     depth_faces: v.forceBackFacesOnly ? 'back' : loadedCulling ? 'front' : 'both',
     ...(v.cascaded ? { cascades: 4 } : {}),
     settings: {
+      engine: webgpu ? 'WebGPUEngine' : 'Engine',
       'scene.useRightHandedSystem': true,
       'material.backFaceCulling': loadedCulling,
       generators: declared,
@@ -401,11 +457,12 @@ async function render(url, variantName) {
       ...(skinnedMeshes.length ? { 'skinned meshes': skinnedMeshes } : {}),
     },
     lights: lightViews,
-  };
+  }, environment);
   scene.dispose();
   return { width: cam.width, height: cam.height, masks, visibility, candidate };
 }
 
 window.harness = {
+  init: (wanted, adapter, browser) => init(wanted, adapter, browser).catch((e) => ({ error: String(e.message || e) })),
   render: (url, variant) => render(url, variant).catch((e) => ({ error: String(e.stack || e) })),
 };

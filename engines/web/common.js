@@ -32,12 +32,13 @@ export function turnedAway(positions, camera, light) {
 }
 
 // The mask, row 0 at the top, from two W x H RGBA readbacks whose row 0 is the bottom (WebGL's
-// readPixels): `lit(shadow, i)` says from the shadow pass's pixel i whether the engine lit it.
-export function combine(width, height, shadowRgba, faceRgba, lit) {
+// readPixels) or, with `topFirst`, the top (a WebGPU texture copied to a buffer: its origin is the
+// top-left corner): `lit(shadow, i)` says from the shadow pass's pixel i whether the engine lit it.
+export function combine(width, height, shadowRgba, faceRgba, lit, topFirst = false) {
   const mask = new Uint8Array(width * height);
   for (let y = 0; y < height; y++)
     for (let x = 0; x < width; x++) {
-      const i = ((height - 1 - y) * width + x) * 4;
+      const i = ((topFirst ? y : height - 1 - y) * width + x) * 4;
       const covered = faceRgba[i + 1] >= 128;
       const facing = faceRgba[i] >= 128;
       mask[y * width + x] = !covered ? NO_SURFACE : facing && lit(shadowRgba, i) ? LIT : SHADOWED;
@@ -48,13 +49,68 @@ export function combine(width, height, shadowRgba, faceRgba, lit) {
 // The lit fraction (visibility.png), row 0 at the top, from the same two readbacks: the engine's
 // shadow term as it is (8 bits) where a surface faces the light, 0 where it is turned away, the
 // mask's 128 where there is no surface.
-export function fraction(width, height, shadowRgba, faceRgba) {
+export function fraction(width, height, shadowRgba, faceRgba, topFirst = false) {
   const out = new Uint8Array(width * height);
   for (let y = 0; y < height; y++)
     for (let x = 0; x < width; x++) {
-      const i = ((height - 1 - y) * width + x) * 4;
+      const i = ((topFirst ? y : height - 1 - y) * width + x) * 4;
       out[y * width + x] = faceRgba[i + 1] < 128 ? NO_SURFACE : faceRgba[i] >= 128 ? shadowRgba[i] : 0;
     }
+  return out;
+}
+
+// Where candidate.json records the render's environment (the API, the adapter, the browser, the
+// engine): its own top-level "environment" key, or, for a `shadowref conform` that does not know
+// that key yet (it refuses unknown keys), inside "settings", which is recorded and never judged.
+export const ENVIRONMENT_AT_TOP_LEVEL = true;
+
+// The candidate with `environment` put where ENVIRONMENT_AT_TOP_LEVEL says.
+export function withEnvironment(candidate, environment) {
+  if (ENVIRONMENT_AT_TOP_LEVEL) return { ...candidate, environment };
+  return { ...candidate, settings: { ...candidate.settings, environment } };
+}
+
+// A WebGPU adapter as the page reports it: vendor, architecture, device and description
+// (GPUAdapterInfo), the empty ones left out.
+export function adapterText(info) {
+  return [info.vendor, info.architecture, info.device, info.description].filter((x) => x).join(' ');
+}
+
+// The browser as the page sees it: navigator.userAgent's Chrome/x.y.z.w (HeadlessChrome when headless).
+export function browserText() {
+  const m = navigator.userAgent.match(/\b(?:Headless)?Chrome\/[\d.]+/);
+  return m ? m[0] : navigator.userAgent;
+}
+
+// A WebGL2 context's adapter: the unmasked vendor and renderer (WEBGL_debug_renderer_info), else
+// the masked ones.
+export function webglAdapterText(gl) {
+  const ext = gl.getExtension('WEBGL_debug_renderer_info');
+  return ext ? `${gl.getParameter(ext.UNMASKED_VENDOR_WEBGL)} ${gl.getParameter(ext.UNMASKED_RENDERER_WEBGL)}`
+    : `${gl.getParameter(gl.VENDOR)} ${gl.getParameter(gl.RENDERER)}`;
+}
+
+// A projection whose clip depth runs 0..w (WebGPU's, Babylon's half-z range) as the same projection
+// in OpenGL's −w..w, the `gl` convention candidate.json declares: z' = 2 z − w, i.e. the third row
+// becomes twice itself less the fourth. Column-major, element [4 c + r].
+export function halfZToGl(m) {
+  const out = [...m];
+  for (let c = 0; c < 4; c++) out[4 * c + 2] = 2 * m[4 * c + 2] - m[4 * c + 3];
+  return out;
+}
+
+// A point light's six views in the order candidate.json asks (+x, −x, +y, −y, +z, −z of scene
+// space), each found from the direction it looks in: a view's forward axis is −z of its view space,
+// the negated third row of its rotation (column-major view matrix: elements 2, 6, 10).
+export function cubeFacesInOrder(views) {
+  const slot = (v) => {
+    const f = [-v.view[2], -v.view[6], -v.view[10]];
+    const a = f.map(Math.abs), k = a.indexOf(Math.max(...a));
+    return 2 * k + (f[k] > 0 ? 0 : 1);
+  };
+  const out = new Array(6);
+  for (const v of views) out[slot(v)] = v;
+  if (out.some((v) => v === undefined)) throw new Error('the six cube views do not look along the six axes');
   return out;
 }
 

@@ -1,8 +1,15 @@
 // engines/web/render.mjs — renders the exported pack with a web engine (three.js or Babylon.js) in
-// headless Chromium, WebGL2 on SwiftShader, and writes a candidate folder for
+// headless Chromium, WebGL2 or WebGPU on SwiftShader, and writes a candidate folder for
 // `shadowref conform --candidate-dir`, as engines/README.md describes for every harness:
 //
 //   node render.mjs --engine three|babylon --pack DIR --out DIR --variant V [--scenes a,b]
+//                   [--backend webgl2|webgpu|webgpu-webgl2] [--adapter TEXT] [--no-webgpu-flags]
+//
+// --backend: webgl2 (the default: three.js's WebGLRenderer, Babylon's Engine), webgpu (three.js's
+// WebGPURenderer, Babylon's WebGPUEngine, on WebGPU), webgpu-webgl2 (three.js's WebGPURenderer on
+// its own WebGL2 backend). The page refuses to render on any other backend than the one asked for,
+// or on an adapter whose description lacks --adapter's text: one line, exit 1, no mask.
+// --no-webgpu-flags starts Chromium without the flags that give it WebGPU (the refusal's test).
 //
 // It reads the pack alone: manifest.json for the scene names, <scene>/scene.gltf (through the
 // engine's own glTF loader, in the page). The pages and the engines' modules are served from the
@@ -16,14 +23,23 @@ import puppeteer from 'puppeteer-core';
 
 const HERE = path.dirname(fileURLToPath(import.meta.url));
 
+const USAGE = 'usage: render.mjs --engine three|babylon --pack DIR --out DIR --variant V [--scenes a,b] [--chromium EXE]' +
+  ' [--backend webgl2|webgpu|webgpu-webgl2] [--adapter TEXT] [--no-webgpu-flags]';
+
 function parseArgs(argv) {
-  const a = { scenes: '' };
+  const a = { scenes: '', backend: 'webgl2', adapter: '', webgpuFlags: true };
   for (let i = 0; i < argv.length; i += 2) {
     const key = argv[i].replace(/^--/, '');
-    if (!['engine', 'pack', 'out', 'variant', 'scenes', 'chromium'].includes(key) || i + 1 >= argv.length)
-      throw new Error(`usage: render.mjs --engine three|babylon --pack DIR --out DIR --variant V [--scenes a,b] [--chromium EXE] (at ${argv[i]})`);
+    if (key === 'no-webgpu-flags') {
+      a.webgpuFlags = false;
+      i -= 1;
+      continue;
+    }
+    if (!['engine', 'pack', 'out', 'variant', 'scenes', 'chromium', 'backend', 'adapter'].includes(key) || i + 1 >= argv.length)
+      throw new Error(`${USAGE} (at ${argv[i]})`);
     a[key] = argv[i + 1];
   }
+  if (!['webgl2', 'webgpu', 'webgpu-webgl2'].includes(a.backend)) throw new Error(`--backend ${a.backend}: ${USAGE}`);
   for (const k of ['engine', 'pack', 'out', 'variant']) if (!a[k]) throw new Error(`--${k} is required`);
   return a;
 }
@@ -88,10 +104,16 @@ async function main() {
   const scenes = manifest.scenes.map((s) => s.name).filter((n) => !wanted || wanted.includes(n));
   const server = await serve(a.pack);
   const origin = `http://127.0.0.1:${server.address().port}`;
+  // WebGPU on the CPU: Dawn on SwiftShader's Vulkan, which Chromium offers only when asked (the
+  // adapter then reports vendor "google", architecture "swiftshader"). Only for a WebGPU run, so that
+  // the WebGL2 runs' Chromium is started as it always was.
+  const webgpu = a.backend === 'webgpu' && a.webgpuFlags
+    ? ['--enable-unsafe-webgpu', '--use-webgpu-adapter=swiftshader', '--enable-features=Vulkan', '--use-vulkan=swiftshader',
+      '--disable-vulkan-surface'] : [];
   const browser = await puppeteer.launch({
     executablePath: a.chromium || '/usr/bin/chromium',
     headless: true,
-    args: [
+    args: [...webgpu,
       // WebGL2 on the CPU: ANGLE over SwiftShader's Vulkan, which headless Chromium otherwise
       // refuses as a fallback it considers unsafe for web content (ours is the local disk's).
       '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
@@ -105,15 +127,32 @@ async function main() {
   let failed = false;
   try {
     const page = await browser.newPage();
+    // The page's messages are held back until the backend is known to be the one asked for: a
+    // refusal is one line (the engine's own fallback warning would only repeat it).
+    let held = [];
+    const say = (line) => (held ? held.push(line) : process.stderr.write(line));
     // Chromium asks for /favicon.ico, which the server does not have: not worth a line.
     page.on('console', (m) => {
-      if ((m.type() === 'error' || m.type() === 'warn') && !m.text().startsWith('Failed to load resource')) process.stderr.write(`page: ${m.text()}\n`);
+      if ((m.type() === 'error' || m.type() === 'warn') && !m.text().startsWith('Failed to load resource')) say(`page: ${m.text()}\n`);
     });
-    page.on('pageerror', (e) => process.stderr.write(`page error: ${e.message}\n`));
-    page.on('response', (r) => { if (r.status() >= 400 && !r.url().endsWith('/favicon.ico')) process.stderr.write(`page: ${r.status()} ${r.url()}\n`); });
-    await page.goto(`${origin}/web/${a.engine}.html`, { waitUntil: 'load' });
+    page.on('pageerror', (e) => say(`page error: ${e.message}\n`));
+    page.on('response', (r) => { if (r.status() >= 400 && !r.url().endsWith('/favicon.ico')) say(`page: ${r.status()} ${r.url()}\n`); });
+    // three.js's WebGPURenderer is in its WebGPU build, which its page maps 'three' to.
+    const html = a.engine === 'three' && a.backend !== 'webgl2' ? 'three_webgpu' : a.engine;
+    await page.goto(`${origin}/web/${html}.html`, { waitUntil: 'load' });
     await page.waitForFunction('window.harness !== undefined', { timeout: 60000 });
-    for (const scene of scenes) {
+    // The browser's own version (the user agent string's is reduced to Chrome/x.0.0.0).
+    const ready = await page.evaluate((backend, adapter, version) => window.harness.init(backend, adapter, version),
+      a.backend, a.adapter, await browser.version());
+    if (ready.error) {
+      process.stderr.write(`render.mjs: ${ready.error}\n`);
+      failed = true;
+    } else {
+      held.forEach((line) => process.stderr.write(line));
+      held = null;
+      process.stdout.write(`environment: ${JSON.stringify(ready.environment)}\n`);
+    }
+    for (const scene of ready.error ? [] : scenes) {
       const t0 = Date.now();
       const r = await page.evaluate((url, variant) => window.harness.render(url, variant), `${origin}/pack/${scene}/scene.gltf`, a.variant);
       if (r.error) {

@@ -1,9 +1,13 @@
-// engines/web/three_page.js — the three.js harness, in the page (three.html): loads a pack scene
-// with three.js's own GLTFLoader and renders one mask per light with three.js's own shadow maps
-// (WebGLShadowMap), with the variant's settings; engines/README.md says what is adapted and why.
+// engines/web/three_page.js — the three.js harness, in the page: loads a pack scene with three.js's
+// own GLTFLoader and renders one mask per light with three.js's own shadow maps, with the variant's
+// settings, on one of three backends: `webgl2`, WebGLRenderer (WebGLShadowMap; three.html, where
+// 'three' is three.module.js); `webgpu`, WebGPURenderer on WebGPU (ShadowNode); `webgpu-webgl2`,
+// WebGPURenderer's own WebGL2 backend (forceWebGL; both on three_webgpu.html, where 'three' is
+// three.webgpu.js). engines/README.md says what is adapted and why.
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
-import { turnedAway, combine, base64, packCamera, packLights } from './common.js';
+import { turnedAway, combine, base64, packCamera, packLights, withEnvironment, adapterText, webglAdapterText,
+  browserText, halfZToGl, cubeFacesInOrder } from './common.js';
 
 // three.js's defaults (src/lights/LightShadow.js): mapSize 512, bias 0, normalBias 0, radius 1; the
 // renderer's shadowMap.type is PCFShadowMap. "Recommended" is what three.js's own documentation
@@ -30,14 +34,59 @@ const VARIANTS = {
   // pcf-bind-pose: pcf with every skeleton put back in its bind pose (Skeleton.pose, three.js's own),
   // the pack's pose ignored: the skinned scenes' verdicts are the pose's.
   'pcf-bind-pose': { type: THREE.PCFShadowMap, technique: 'shadowmap-pcf', bindPose: true },
+  // WebGPURenderer only: cascaded shadow maps for directional lights, three.js's CSMShadowNode
+  // (examples/jsm/csm) with its defaults (3 cascades, practical splits, no fade) over the camera's
+  // range, PCF in each cascade; other lights as pcf.
+  csm: { type: THREE.PCFShadowMap, technique: 'csm-pcf', csm: true },
 };
 
 const TYPE_NAMES = { [THREE.BasicShadowMap]: 'BasicShadowMap', [THREE.PCFShadowMap]: 'PCFShadowMap', [THREE.VSMShadowMap]: 'VSMShadowMap' };
 const SIDE_NAMES = { [THREE.FrontSide]: 'front', [THREE.BackSide]: 'back', [THREE.DoubleSide]: 'both' };
 
-const renderer = new THREE.WebGLRenderer({ antialias: false });
-renderer.setPixelRatio(1);
-renderer.shadowMap.enabled = true;
+// three.js's CSMShadowNode, from its examples, for WebGPURenderer (it imports three/webgpu and
+// three/tsl, which only three_webgpu.html maps): loaded by init for the WebGPU backends.
+let CSMShadowNode = null;
+
+// The page's one renderer and the environment it runs in, made by init(backend) before any scene.
+let renderer = null, backend = null, environment = null;
+
+// Makes the renderer the backend asks for and refuses any other: WebGPURenderer falls back to its
+// WebGL2 backend when WebGPU is unavailable with one console warning, and a mask drawn so would be
+// recorded as WebGPU's. `adapterWanted`, when given, must occur in the adapter's description.
+async function init(wanted, adapterWanted, browser) {
+  if (wanted === 'webgl2') {
+    if (typeof THREE.WebGLRenderer !== 'function') return { error: 'the WebGL2 backend needs three.html (three.module.js)' };
+    renderer = new THREE.WebGLRenderer({ antialias: false });
+    environment = { api: 'webgl2', adapter: webglAdapterText(renderer.getContext()), engine: `three.js r${THREE.REVISION}` };
+  } else if (wanted === 'webgpu' || wanted === 'webgpu-webgl2') {
+    if (typeof THREE.WebGPURenderer !== 'function') return { error: `the ${wanted} backend needs three_webgpu.html (three.webgpu.js)` };
+    const forceWebGL = wanted === 'webgpu-webgl2';
+    ({ CSMShadowNode } = await import('three/addons/csm/CSMShadowNode.js'));
+    renderer = new THREE.WebGPURenderer({ antialias: false, forceWebGL });
+    await renderer.init();
+    const running = renderer.backend.isWebGPUBackend ? 'WebGPU' : renderer.backend.isWebGLBackend ? 'WebGL2' : 'unknown';
+    if (running !== (forceWebGL ? 'WebGL2' : 'WebGPU'))
+      return { error: `asked for three.js WebGPURenderer on ${forceWebGL ? 'WebGL2' : 'WebGPU'}, but it runs its ${running} backend` +
+        `${'gpu' in navigator ? '' : ' (navigator.gpu is missing)'}: no mask written` };
+    if (forceWebGL) {
+      environment = { api: 'webgl2', adapter: webglAdapterText(renderer.backend.gl), engine: `three.js r${THREE.REVISION} WebGPURenderer` };
+    } else {
+      const info = renderer.backend.device.adapterInfo;
+      if (!info) return { error: 'three.js WebGPURenderer runs on WebGPU, but its device reports no adapter: no mask written' };
+      environment = { api: 'webgpu', adapter: adapterText(info), engine: `three.js r${THREE.REVISION}` };
+    }
+  } else {
+    return { error: `no three.js backend "${wanted}" (webgl2, webgpu, webgpu-webgl2)` };
+  }
+  if (adapterWanted && !environment.adapter.toLowerCase().includes(adapterWanted.toLowerCase()))
+    return { error: `asked for the adapter "${adapterWanted}", but three.js runs on "${environment.adapter}": no mask written` };
+  environment.browser = browser || browserText();
+  backend = wanted;
+  renderer.setPixelRatio(1);
+  renderer.shadowMap.enabled = true;
+  return { environment };
+}
+const onWebGPU = () => backend !== 'webgl2';  // WebGPURenderer, on either of its backends
 
 // The faces three.js's depth pass draws for a loaded glTF material (FrontSide: glTF's doubleSided
 // false): WebGLShadowMap's getDepthMaterial takes material.shadowSide, or else the opposite side
@@ -144,6 +193,41 @@ function maskedFaceMaterial(loaded) {
   return material;
 }
 
+// WebGPURenderer's surfaces (node materials; onBeforeCompile is WebGLRenderer's alone). The shadow
+// pass: three.js's ShadowNodeMaterial, whose lighting model (ShadowMaskModel) multiplies every
+// light's shadow node into alpha, as ShadowMaterial does in GLSL; opaque (not transparent, normal
+// blending), so NodeMaterial sets alpha to 1 after its alpha test and the output is exactly
+// 1 − the shadow term, unblended. A masked mesh's surfaces take its loaded material's map, alpha
+// test, opacity and vertex colours, which NodeMaterial's own diffuse colour multiplies and
+// alpha-tests as the loaded material's converted node material would (setupDiffuseColor); the
+// depth pass takes `map` and `alphaTest` from the drawn material (Renderer._getShadowNodes).
+function nodeShadowMaterial(shadowSide, loaded = null) {
+  const material = new THREE.ShadowNodeMaterial({ color: 0x000000, opacity: 1, transparent: false, side: THREE.DoubleSide });
+  if (loaded) {
+    material.map = loaded.map;
+    material.alphaTest = loaded.alphaTest;
+    material.opacity = loaded.opacity;
+    material.vertexColors = loaded.vertexColors;
+  }
+  material.shadowSide = shadowSide;
+  return material;
+}
+
+// The face pass's surface on WebGPURenderer: the per-corner colour (coverage, facing) as the output
+// itself, after the diffuse colour's alpha test for a masked mesh (the colour attribute keeps
+// COLOR_0's alpha then).
+function nodeFaceMaterial(loaded = null) {
+  const { vec4, vertexColor } = THREE.TSL;
+  const material = new THREE.MeshBasicNodeMaterial({ side: THREE.DoubleSide, vertexColors: true });
+  if (loaded) {
+    material.map = loaded.map;
+    material.alphaTest = loaded.alphaTest;
+    material.opacity = loaded.opacity;
+  }
+  material.outputNode = vec4(vertexColor().rgb, 1);
+  return material;
+}
+
 // A mesh's triangles as the engine draws them, in world space, 9 numbers per face. A SkinnedMesh is
 // posed by three.js's own skinning on the CPU (SkinnedMesh.getVertexPosition: applyBoneTransform with
 // the bones' world matrices, the same linear blend the vertex shader's skinning_vertex computes);
@@ -180,13 +264,22 @@ function recordShadowViews(shadowCamera) {
 }
 
 async function render(url, variantName) {
+  if (!renderer) return { error: 'harness.init(backend) was not called' };
+  const node = onWebGPU();
   const v = VARIANTS[variantName];
   if (!v) return { error: `no three.js variant "${variantName}" (${Object.keys(VARIANTS).join(', ')})` };
   const gltf = await new GLTFLoader().loadAsync(url);
   const json = gltf.parser.json;
   const cam = packCamera(json);
   const lights = packLights(json);
-  const scene = gltf.scene;
+  // WebGPURenderer draws a root that is not a Scene (GLTFLoader's gltf.scene is a Group) through an
+  // empty Scene of its own (Renderer.render: sceneRef), and its shadow maps are drawn from that one:
+  // nothing casts. WebGLRenderer draws any Object3D. The loaded scene goes into a Scene there.
+  let scene = gltf.scene;
+  if (node) {
+    scene = new THREE.Scene();
+    scene.add(gltf.scene);
+  }
   const camera = gltf.cameras[0];
   camera.far = cam.far;  // the pack's finite far plane: the depth buffer's precision spent on the scene
   camera.updateProjectionMatrix();
@@ -220,10 +313,16 @@ async function render(url, variantName) {
   // else. Two-sided, because the contract's surfaces are seen from both sides; its depth pass draws
   // what three.js's would for the loaded material (or the variant's sides).
   const shadowSide = v.shadowSide ?? defaultShadowSide(v.type, loadedSide);
-  const shadowMaterial = new THREE.ShadowMaterial({ color: 0x000000, opacity: 1, transparent: false, side: THREE.DoubleSide });
-  shadowMaterial.blending = THREE.NoBlending;
-  shadowMaterial.shadowSide = shadowSide;
-  const faceMaterial = new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide });
+  let shadowMaterial, faceMaterial;
+  if (node) {
+    shadowMaterial = nodeShadowMaterial(shadowSide);
+    faceMaterial = nodeFaceMaterial();
+  } else {
+    shadowMaterial = new THREE.ShadowMaterial({ color: 0x000000, opacity: 1, transparent: false, side: THREE.DoubleSide });
+    shadowMaterial.blending = THREE.NoBlending;
+    shadowMaterial.shadowSide = shadowSide;
+    faceMaterial = new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide });
+  }
   // Per mesh: the shadow pass's and the face pass's surfaces, and the loaded colour attribute (COLOR_0)
   // the face pass's colours replace. A masked mesh draws clones of its own material (above); every
   // other mesh ShadowMaterial and a plain vertex-colour material, which a SkinnedMesh skins like any
@@ -231,8 +330,9 @@ async function render(url, variantName) {
   const surfaces = new Map(meshes.map((m) => {
     const loaded = m.material, color = m.geometry.attributes.color;
     if (!isMasked(loaded)) return [m, { shadow: shadowMaterial, face: faceMaterial, color }];
-    return [m, { shadow: maskedShadowMaterial(loaded, v.shadowSide ?? defaultShadowSide(v.type, loaded.side)),
-      face: maskedFaceMaterial(loaded), color }];
+    const side = v.shadowSide ?? defaultShadowSide(v.type, loaded.side);
+    if (node) return [m, { shadow: nodeShadowMaterial(side, loaded), face: nodeFaceMaterial(loaded), color }];
+    return [m, { shadow: maskedShadowMaterial(loaded, side), face: maskedFaceMaterial(loaded), color }];
   }));
   // What the candidate records of the masked and skinned meshes (settings, never judged).
   const masked = meshes.filter((m) => surfaces.get(m).shadow !== shadowMaterial).map((m) => ({
@@ -243,9 +343,22 @@ async function render(url, variantName) {
   renderer.shadowMap.type = v.type;
   renderer.setSize(cam.width, cam.height, false);
   renderer.setClearColor(0x000000, 0);
-  const target = new THREE.WebGLRenderTarget(cam.width, cam.height, { type: THREE.UnsignedByteType, format: THREE.RGBAFormat });
-  const shadowPixels = new Uint8Array(cam.width * cam.height * 4);
-  const facePixels = new Uint8Array(cam.width * cam.height * 4);
+  const Target = node ? THREE.RenderTarget : THREE.WebGLRenderTarget;
+  const target = new Target(cam.width, cam.height, { type: THREE.UnsignedByteType, format: THREE.RGBAFormat });
+  let shadowPixels = new Uint8Array(cam.width * cam.height * 4);
+  let facePixels = new Uint8Array(cam.width * cam.height * 4);
+  // WebGPURenderer reads a render target back asynchronously (a texture copied to a buffer), in the
+  // texture's rows: top first on WebGPU, bottom first on its WebGL2 backend (readPixels).
+  const readBack = async (pixels) => {
+    if (!node) {
+      renderer.readRenderTargetPixels(target, 0, 0, cam.width, cam.height, pixels);
+      return pixels;
+    }
+    return new Uint8Array(await renderer.readRenderTargetPixelsAsync(target, 0, 0, cam.width, cam.height));
+  };
+  const topFirst = node && renderer.backend.isWebGPUBackend === true;
+  // WebGPU's clip depth runs 0..w; candidate.json's projections are the gl convention's (−w..w).
+  const glProjection = (p) => (renderer.coordinateSystem === THREE.WebGPUCoordinateSystem ? halfZToGl(p) : p);
 
   const loadedLights = [];
   scene.traverse((o) => { if (o.isLight) loadedLights[o.userData.index] = o; });
@@ -260,6 +373,18 @@ async function render(url, variantName) {
     if (v.normalBias !== undefined) light.shadow.normalBias = v.normalBias;
     if (v.radius !== undefined) light.shadow.radius = v.radius;
     light.castShadow = true;
+    let csm = null;
+    if (v.csm && l.type === 'directional') {
+      if (!node) throw new Error('the csm variant is WebGPURenderer\'s (CSMShadowNode)');
+      // Each cascade's light stands lightMargin behind its slice of the camera's frustum, toward the
+      // light, and draws with a clone of this light's shadow camera: its depth range must reach from
+      // there across the scene (the default margin, 200, and far plane, 500, are a large scene's).
+      const radius = bounds.getBoundingSphere(new THREE.Sphere()).radius;
+      Object.assign(light.shadow.camera, { near: 0.01 * radius, far: 6 * radius });
+      csm = new CSMShadowNode(light, { maxFar: camera.far, lightMargin: 2 * radius });
+      light.shadow.shadowNode = csm;
+      fits[fits.length - 1] = `CSMShadowNode: ${csm.cascades} cascades (${csm.mode}) up to ${camera.far.toPrecision(6)}, lightMargin ${(2 * radius).toPrecision(6)}, depth ${(0.01 * radius).toPrecision(6)}..${(6 * radius).toPrecision(6)}`;
+    }
     light.shadow.camera.updateProjectionMatrix();
     for (const other of loadedLights) if (other !== light) other.visible = false;
     light.visible = true;
@@ -274,12 +399,44 @@ async function render(url, variantName) {
     renderer.clear();
     const views = recordShadowViews(light.shadow.camera);
     renderer.render(scene, camera);
-    const drawn = views.stop();
+    let drawn = views.stop();
+    if (node) {
+      // WebGPURenderer draws each view with renderer.render(scene, shadowCamera), which updates the
+      // camera's world matrix again: the same view twice in a row, kept once (its latest projection).
+      drawn = drawn.filter((d, k) => k + 1 === drawn.length || d.view.some((x, j) => x !== drawn[k + 1].view[j]))
+        .map((d) => ({ view: d.view, projection: glProjection(d.projection) }));
+      // Its cube faces are drawn in WebGPU's cube order (−x first): put them in candidate.json's.
+      if (light.isPointLight && drawn.length === 6) drawn = cubeFacesInOrder(drawn);
+    }
     // None: three.js drew no map for this light (VSM skips point lights), and has no views to declare.
     if (drawn.length !== 0 && drawn.length !== (light.isPointLight ? 6 : 1))
       throw new Error(`three.js drew ${drawn.length} shadow views for a ${light.type}, not ${light.isPointLight ? 6 : 1}`);
-    declared.push(drawn.length ? { light_views: 'declared', shadow_map_size: light.shadow.mapSize.x, views: drawn } : { light_views: 'own' });
-    renderer.readRenderTargetPixels(target, 0, 0, cam.width, cam.height, shadowPixels);
+    let entry = drawn.length ? { light_views: 'declared', shadow_map_size: light.shadow.mapSize.x, views: drawn } : { light_views: 'own' };
+    if (csm) {
+      // The cascades as CSMShadowNode drew them: each cascade light's shadow camera, nearest first,
+      // and where each begins and the last ends in camera depth. Its shader picks a pixel's cascade by
+      // (−viewZ − near) / (shadowFar − near), shadowFar = min(maxFar, camera.far), against each
+      // cascade's [from, to] (_cascades, from breaks); no fade, so no blend.
+      const far = Math.min(csm.maxFar, camera.far), near = camera.near;
+      entry = {
+        light_views: 'declared', shadow_map_size: light.shadow.mapSize.x,
+        views: csm.lights.map((c) => ({ view: [...c.shadow.camera.matrixWorldInverse.elements], projection: glProjection([...c.shadow.camera.projectionMatrix.elements]) })),
+        cascade_splits: [near + csm._cascades[0].x * (far - near), ...csm._cascades.map((c) => near + c.y * (far - near))],
+        cascade_blend: 0,
+        cascades: csm.cascades,
+      };
+    }
+    if (node && v.type !== THREE.BasicShadowMap && (light.isPointLight || v.type === THREE.PCFShadowMap)) {
+      // WebGPURenderer's PCF (ShadowFilterNode's PCFShadowFilter; PointShadowNode's PointShadowFilter,
+      // which VSM maps use for point lights too): five taps on a Vogel disk turned per pixel by
+      // interleaved gradient noise, each a bilinear compare. A 2D map's disk reaches 0.95 `radius`
+      // texels; a cube's offsets the direction by radius / mapSize, half as many texels at a face's
+      // centre (a face spans 2 in direction units), fewer toward its edges.
+      const r = light.shadow.radius;
+      Object.assign(entry, { filter_radius_texels: (light.isPointLight ? r / 2 : r) + 0.5, sampling: 'random' });
+    }
+    declared.push(entry);
+    shadowPixels = await readBack(shadowPixels);
 
     for (const m of meshes) {
       const { face, color } = surfaces.get(m);
@@ -298,17 +455,17 @@ async function render(url, variantName) {
     light.castShadow = false;
     renderer.clear();
     renderer.render(scene, camera);
-    renderer.readRenderTargetPixels(target, 0, 0, cam.width, cam.height, facePixels);
+    facePixels = await readBack(facePixels);
     renderer.setRenderTarget(null);
     light.visible = false;
     // Lit when the engine's shadow term is at least ½ (alpha = 1 − term ≤ ½): one tap gives 0 or 1,
     // a filter lights a pixel when at least half its weight is lit, as the suite's own PCF does.
-    masks.push(base64(combine(cam.width, cam.height, shadowPixels, facePixels, (p, i) => p[i + 3] <= 127)));
+    masks.push(base64(combine(cam.width, cam.height, shadowPixels, facePixels, (p, i) => p[i + 3] <= 127, topFirst)));
   }
   const mapSize = v.mapSize ?? 512;
   const bias = v.bias ?? 0;
   const radius = v.radius ?? 1;  // LightShadow's default
-  const candidate = {
+  const candidate = withEnvironment({
     producer: 'three.js',
     version: `r${THREE.REVISION}`,
     technique: v.technique,
@@ -326,6 +483,7 @@ async function render(url, variantName) {
     depth_bias: Math.abs(bias),
     depth_faces: SIDE_NAMES[shadowSide],
     settings: {
+      renderer: { webgl2: 'WebGLRenderer', webgpu: 'WebGPURenderer', 'webgpu-webgl2': 'WebGPURenderer (forceWebGL)' }[backend],
       'renderer.shadowMap.type': TYPE_NAMES[v.type],
       'shadow.mapSize': mapSize,
       'shadow.bias': bias,
@@ -334,6 +492,7 @@ async function render(url, variantName) {
       'material.shadowSide': SIDE_NAMES[shadowSide],
       ...(v.depthAlphaTest === false ? { 'depth pass alpha test': 'off (control)' } : {}),
       ...(v.bindPose ? { skeletons: 'bind pose (control)' } : {}),
+      ...(v.csm ? { 'directional lights': 'CSMShadowNode' } : {}),
       'shadow cameras': fits,
       'spot lights': 'the point light at the spot position (the mask is occlusion everywhere)',
       'camera.far': cam.far,
@@ -341,16 +500,20 @@ async function render(url, variantName) {
       ...(skinned.length ? { 'skinned meshes': skinned } : {}),
     },
     lights: declared,
-  };
+  }, environment);
   for (const m of meshes) {
     m.geometry.dispose();
     const { shadow, face } = surfaces.get(m);
     if (shadow !== shadowMaterial) [shadow, face].forEach((x) => x.dispose());
   }
+  [shadowMaterial, faceMaterial].forEach((x) => x.dispose());
+  // WebGPURenderer keeps each light's shadow map (its ShadowNode) until the light is disposed.
+  if (node) for (const l of loadedLights) l.dispose?.();
   target.dispose();
   return { width: cam.width, height: cam.height, masks, candidate };
 }
 
 window.harness = {
+  init: (wanted, adapter, browser) => init(wanted, adapter, browser).catch((e) => ({ error: String(e.message || e) })),
   render: (url, variant) => render(url, variant).catch((e) => ({ error: String(e.stack || e) })),
 };

@@ -3,7 +3,7 @@
 # folder of their own and runs each for a bounded time on a copy of its seed corpus.
 #
 #   reliability/fuzz/run_fuzzers.sh [--smoke | --seconds N | --build-only] [--build-dir DIR] [--jobs J] [TARGET...]
-#     --smoke       8 s per target (8 targets: 64 s of fuzzing; what `ctest` runs)
+#     --smoke       6 s per target (10 targets: 60 s of fuzzing; what `ctest` runs)
 #     --build-only  configure and build the targets, fuzz nothing (what the main build runs, so
 #                   that the test command's fuzz_smoke finds them built)
 #     --seconds N   N s per target
@@ -11,14 +11,14 @@
 #                   reliability/README.md: --runs 1000000)
 #     --build-dir   default build/fuzz
 #     TARGET        scene_fuzzer obj_fuzzer gltf_fuzzer gltf_scene_fuzzer mask_compare_fuzzer math_args_fuzzer
-#                   candidate_fuzzer convention_fuzzer (default: all)
+#                   candidate_fuzzer convention_fuzzer expectations_fuzzer merge_fuzzer (default: all)
 # Exit: 0 nothing found, 1 a target crashed, leaked, hung or ran out of memory (the input is kept
 # in DIR/artifacts/, and the log in DIR/logs/), 77 clang or libFuzzer is not installed (skipped).
 # New inputs found go to DIR/corpus/<target>/, never into the seed corpora of the repository.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
-seconds=8
+seconds=6
 build_only=
 runs_limit=
 build="$root/build/fuzz"
@@ -26,7 +26,7 @@ jobs=2
 targets=()
 while [ $# -gt 0 ]; do
   case "$1" in
-    --smoke) seconds=8 ;;
+    --smoke) seconds=6 ;;
     --build-only) build_only=1 ;;
     --seconds) seconds="$2"; shift ;;
     --runs) runs_limit="$2"; shift ;;
@@ -38,7 +38,7 @@ while [ $# -gt 0 ]; do
   shift
 done
 [ ${#targets[@]} -gt 0 ] || targets=(scene_fuzzer obj_fuzzer gltf_fuzzer gltf_scene_fuzzer mask_compare_fuzzer math_args_fuzzer candidate_fuzzer
-                               convention_fuzzer)
+                               convention_fuzzer expectations_fuzzer merge_fuzzer)
 
 cxx="$(command -v clang++ || command -v clang++-14 || true)"
 cc="$(command -v clang || command -v clang-14 || true)"

@@ -165,6 +165,12 @@ std::vector<Mat4<double>> light_matrices(const Frame& frame, const LightFit& lc,
     shift(0, 3) = shift(1, 3) = 0.5 / map.size;
     bias = shift * bias;
   }
+  if (faults.lookup_y_flipped) {  // FAULT: t read as 1 − t (in homogeneous form: w − t)
+    Mat4<double> flip = Mat4<double>::Identity();
+    flip(1, 1) = -1.0;
+    flip(1, 3) = 1.0;
+    bias = flip * bias;
+  }
   std::vector<Mat4<double>> projections;
   for (const LightView& v : lc.views)
     projections.push_back(drawn_projection(frame.options,

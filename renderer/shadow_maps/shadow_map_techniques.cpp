@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "light_map.hpp"
+#include "shadowref/light_fit.hpp"
 #include "shadowref/outputs/techniques.hpp"
 #include "shadowref/scene/scene.hpp"
 
@@ -53,9 +54,21 @@ void render_map_technique(Frame& frame, std::string_view name) {
   for (std::size_t i = 0; i < frame.scene.lights.size(); ++i) {
     LightFit refit;
     lookups.push_back(&lookup_for_light(technique.lookup, frame.scene.lights[i]));
-    const LightFit& fit = technique.cascaded ? cascade_fit(frame, i, refit)
-                                             : technique_fit(frame.prepared, frame.options, false, i, refit);
-    maps.push_back(draw_light_map(frame, i, fit, *lookups[i]));
+    const LightFit* fit = technique.cascaded ? &cascade_fit(frame, i, refit)
+                                             : &technique_fit(frame.prepared, frame.options, false, i, refit);
+    const Vec4<double>& L = frame.prepared.lights[i];
+    if (frame.faults().shadow_map.light_direction_mirrored_x && L.w() == 0 && !technique.cascaded) {
+      // FAULT: the view fitted, at the same size, to the direction mirrored in x.
+      std::vector<const TriangleMesh<float>*> meshes;
+      for (const scene::Object& o : frame.scene.objects) meshes.push_back(&o.mesh);
+      LightFitOptions mirrored_options;
+      mirrored_options.map_size = fit->size;
+      const Vec4<double> mirrored(-L.x(), L.y(), L.z(), 0.0);
+      LightFit mirrored_fit = fit_light(frame.convention(), mirrored, meshes, mirrored_options).value();
+      refit = std::move(mirrored_fit);
+      fit = &refit;
+    }
+    maps.push_back(draw_light_map(frame, i, *fit, *lookups[i]));
   }
   // The picture, the masks and the lit fractions in one camera pass per light: ambient_pass lays
   // down the nearest surfaces' depth and colour, and each light's pass (GL_EQUAL: every visible

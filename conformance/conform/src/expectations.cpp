@@ -156,9 +156,10 @@ std::string case_name(const std::string& scene, const std::string& technique, co
 }
 
 bool ExpectationLine::holds_in(const outputs::Environment& environment) const {
-  for (const auto& [key, want] : conditions) {
+  for (const auto& condition : conditions) {
+    const std::string& key = condition.first;  // a named reference: clang 14 captures no structured binding
     const auto it = std::find_if(environment.begin(), environment.end(), [&](const auto& e) { return e.first == key; });
-    if (it == environment.end() || lower(it->second).find(lower(want)) == std::string::npos) return false;
+    if (it == environment.end() || lower(it->second).find(lower(condition.second)) == std::string::npos) return false;
   }
   return true;
 }

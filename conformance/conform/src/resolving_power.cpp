@@ -148,7 +148,10 @@ std::string ResolvingPower::summary() const {
       if (p.kind == k && p.shows_something()) ++changing, pass += p.verdict != compare::Verdict::Fail;
     blind_words.push_back(std::string(to_string(k)) + (changing > 1 ? " (" + std::to_string(pass) + " of " + std::to_string(changing) + " pass)" : ""));
   }
-  for (const ProbeKind k : resolved) resolved_words.push_back(to_string(k));
+  // A tile probe speaks for the places it was put (the three busiest 8 x 8 windows of the boundary),
+  // not for the whole boundary: a tile swapped elsewhere may pass where these FAIL.
+  for (const ProbeKind k : resolved)
+    resolved_words.push_back(std::string(to_string(k)) + (k == ProbeKind::Tile8 ? " at the three busiest places probed" : ""));
   for (const ProbeKind k : unseen)
     if (k != ProbeKind::Tile8) unseen_words.push_back(to_string(k));
   std::string s = blind.empty() ? "" : "blind to " + list(blind_words) + " under this declaration";

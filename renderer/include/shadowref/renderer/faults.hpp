@@ -120,6 +120,14 @@ struct ShadowMapFaults {
   // Half a texel added to the map coordinates (Direct3D 9's texel-centre correction where none
   // belongs): the whole map sampled half a texel off.
   bool half_texel_offset = false;
+  // The map's t read as 1 − t: a texture drawn with OpenGL's bottom-left origin looked up as if its
+  // origin were the top left (WebGPU, Direct3D, Vulkan), or a WebGPU backend's y flip of the shadow
+  // coordinate applied where the map was not flipped. Every shadow mirrored in the light's view.
+  bool lookup_y_flipped = false;
+  // A directional light's view fitted to its direction mirrored in x (its map drawn and looked up
+  // from there; the camera's lighting keeps the true direction): shadows fall the mirrored way, as
+  // WebGPU backends that take a light direction's x with the other sign draw them. Not cascaded.
+  bool light_direction_mirrored_x = false;
 };
 
 // Cascaded shadow maps (csm, csm-pcf; mathlib/cascades.hpp), directional lights only.
