@@ -38,6 +38,17 @@ fs::path fresh_dir(const std::string& name) {
   return d;
 }
 
+// What read_declaration says of `json` as dir/candidate.json: its refusal, or "(accepted)".
+std::string refusal_of(const fs::path& dir, const std::string& json) {
+  std::ofstream(dir / kCandidateFile) << json;
+  try {
+    read_declaration(dir, "shadowmap");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
 // candidate.json's `lights`: each entry overrides the top-level keys for its light, the rest take
 // the top level, and the writer gives back only what differs.
 TEST(Declaration, PerLightEntriesOverrideTheTopLevel) {
@@ -81,15 +92,7 @@ TEST(Declaration, AnEnvironmentIsRecordedAndMalformedOnesAreRefused) {
   std::ofstream(dir / kCandidateFile) << text;
   EXPECT_EQ(read_declaration(dir, "shadowmap").environment, want);
   EXPECT_TRUE(read_declaration(fresh_dir("no-environment"), "shadowmap").environment.empty());
-  const auto refusal = [&](const std::string& json) -> std::string {
-    std::ofstream(dir / kCandidateFile) << json;
-    try {
-      read_declaration(dir, "shadowmap");
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "(accepted)";
-  };
+  const auto refusal = [&](const std::string& json) { return refusal_of(dir, json); };
   EXPECT_NE(refusal(R"({"environment": {"gpu": "x"}})").find("environment.gpu: unknown key"), std::string::npos);
   EXPECT_NE(refusal(R"({"environment": {"api": 3}})").find("environment.api: must be a non-empty string"), std::string::npos);
   EXPECT_NE(refusal(R"({"environment": "webgpu"})").find("environment: must be a JSON object"), std::string::npos);
@@ -148,15 +151,7 @@ TEST(Declaration, DeclaredLightMatricesRoundTripAndMalformedOnesAreRefused) {
   std::ofstream(dir / kCandidateFile) << text;
   EXPECT_EQ(declaration_text(read_declaration(dir, "csm")), text);
 
-  const auto refused = [&](const std::string& json) -> std::string {
-    std::ofstream(dir / kCandidateFile) << json;
-    try {
-      read_declaration(dir, "shadowmap");
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "(accepted)";
-  };
+  const auto refused = [&](const std::string& json) { return refusal_of(dir, json); };
   const std::string one = R"({"view": )" + identity + R"(, "projection": )" + identity + "}";
   EXPECT_NE(refused(R"({"views": [)" + one + "]}").find("views: given, but light_views is not \"declared\""), std::string::npos);
   EXPECT_NE(refused(R"({"light_views": "declared", "views": [{"view": [1,2,3], "projection": )" + identity + "}]}")
