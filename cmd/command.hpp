@@ -29,10 +29,11 @@ namespace shadowref::cli {
 
 // docs/output-contract.md: 0 pass, 1 warnings, 2 failures, 3 size mismatch, 4 bad input or file
 // error, 5 internal error (a failed GL context, an Embree error, a broken invariant: never the
-// user's input).
+// user's input). `diff` answers a question rather than judging: 0 nothing changed, 1 changes found.
 enum ExitCode : int {
   kExitPass = 0,
   kExitWarnings = 1,
+  kExitChanged = 1,
   kExitFailures = 2,
   kExitSizeMismatch = 3,
   kExitBadInput = 4,
@@ -96,5 +97,6 @@ void register_conform_command(CLI::App& app, int& exit_code);
 void register_export_command(CLI::App& app, int& exit_code);
 void register_goldens_command(CLI::App& app, int& exit_code);
 void register_merge_command(CLI::App& app, int& exit_code);
+void register_diff_command(CLI::App& app, int& exit_code);
 
 }  // namespace shadowref::cli

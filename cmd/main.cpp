@@ -27,6 +27,7 @@ constexpr RegisterCommand kCommands[] = {
     shadowref::cli::register_compare_command,
     shadowref::cli::register_conform_command,
     shadowref::cli::register_merge_command,
+    shadowref::cli::register_diff_command,
     shadowref::cli::register_export_command,
     shadowref::cli::register_goldens_command,
 };
@@ -54,7 +55,8 @@ std::string command_path(const CLI::App& app) {
 int main(int argc, char** argv) {
   CLI::App app{
       "shadowref — reference math, ground truth and conformance suite for real-time shadows.\n"
-      "Exit codes: 0 pass, 1 warnings, 2 failures, 3 size mismatch, 4 bad input or file error, 5 internal error."};
+      "Exit codes: 0 pass, 1 warnings, 2 failures, 3 size mismatch, 4 bad input or file error, 5 internal error\n"
+      "(diff: 0 nothing changed, 1 changes found)."};
   app.name("shadowref");
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("shadowref ") + SHADOWREF_VERSION);

@@ -18,7 +18,9 @@ need (the entry's `why` says what).
 
 A run with a `twin` (a WebGPU run beside the WebGL2 run of the same engine and variant) is compared
 with it when both are rendered: per scene, how many mask pixels the two backends' masks differ in,
-beside each one's verdict (printed, and written to <work>/backends.md).
+beside each one's verdict (printed, and written to <work>/backends.md), and `shadowref diff` of the
+two judged runs writes the side-by-side page <work>/backends/<run>-vs-<twin>/diff.html, which
+backends.md links.
 
 --record rewrites the verdicts of verdicts.json from this run, keeping each *why* and *cause* whose
 verdict did not change and emptying the others (engines/readme_table.py then refuses a non-PASS
@@ -164,15 +166,31 @@ def mask_difference(a_dir, b_dir):
     return differ, total
 
 
-def backend_comparison(pairs, work):
+def diff_page(shadowref, r, twin, work):
+    """`shadowref diff` of a run's verdicts against its twin's (the WebGL2 run is A, the run B): the
+    side-by-side page <work>/backends/<run>-vs-<twin>/diff.html; returns its path relative to work and
+    the diff's summary line."""
+    rel = pathlib.Path("backends") / f"{r['run']}-vs-{twin['run']}"
+    p = run([shadowref, "diff", work / "verdicts" / twin["run"], work / "verdicts" / r["run"], "--out", work / rel],
+            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if p.returncode not in (0, 1):  # 0 nothing changed, 1 changes found; others are errors
+        sys.exit(f"{r['run']}: shadowref diff against {twin['run']} failed (exit {p.returncode}):\n{p.stdout}")
+    summary = next((line for line in p.stdout.splitlines() if " cases compared, " in line), "")
+    return rel / "diff.html", summary
+
+
+def backend_comparison(pairs, work, pages):
     """Lines of the backends' comparison: per run with a twin, per scene, each one's verdict and how
-    many mask pixels differ between the two backends' masks."""
+    many mask pixels differ between the two backends' masks, and the link to the pair's diff page
+    (`pages`: run name -> (page relative to work, summary line))."""
     lines = ["# Backend against backend", "",
              "Per scene: the WebGL2 twin's verdict, the WebGPU run's, and how many mask pixels differ between the two "
              "backends' masks (all lights; of the pixels compared).", ""]
     for r, twin, observed, twin_observed in pairs:
-        lines += [f"## {r['run']} (twin {twin['run']})", "", "| scene | " + twin["run"] + " | " + r["run"] + " | pixels differ |",
-                  "| --- | --- | --- | --- |"]
+        page, summary = pages[r["run"]]
+        lines += [f"## {r['run']} (twin {twin['run']})", "",
+                  f"Side by side, every case that differs: [{page.as_posix()}]({page.as_posix()}) ({summary}).", "",
+                  "| scene | " + twin["run"] + " | " + r["run"] + " | pixels differ |", "| --- | --- | --- | --- |"]
         for scene in sorted(set(observed) | set(twin_observed)):
             d = mask_difference(work / "renders" / twin["run"] / scene, work / "renders" / r["run"] / scene)
             diff = "—" if d is None else f"{d[0]} of {d[1]}"
@@ -259,7 +277,8 @@ def main():
     pairs = [(r, runs[r["twin"]], observed_by_run[r["run"]], observed_by_run[r["twin"]]) for r in table["runs"]
              if r.get("twin") and r["run"] in observed_by_run and r["twin"] in observed_by_run]
     if pairs:
-        lines = backend_comparison(pairs, work)
+        pages = {r["run"]: diff_page(a.shadowref.resolve(), r, twin, work) for r, twin, _, _ in pairs}
+        lines = backend_comparison(pairs, work, pages)
         (work / "backends.md").write_text("\n".join(lines) + "\n")
         print("\n".join(lines[4:]) + f"written to {work / 'backends.md'}")
 

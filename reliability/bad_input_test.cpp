@@ -473,6 +473,18 @@ std::vector<Case> make_cases() {
                    },
                    with(conform, {"--shard", "1/2", "--shard-weights", "@/weights.json"}), 4, "@/weights.json: $.cases[0]"});
   cases.push_back({"missing_shard_merge", nullptr, {"merge", "@/shard-1", "--out", "@/out"}, 4, "@/shard-1/report.json"});
+  // diff: two finished runs' report.json, each field checked before use.
+  cases.push_back({"missing_report_diff", nullptr, {"diff", "@/run-a", "@/run-b", "--out", "@/out"}, 4, "@/run-a/report.json"});
+  cases.push_back({"bad_case_diff",
+                   [](const fs::path& dir) { write_text(dir / "run-a" / "report.json", R"({"plan": {}, "cases": [{"scene": "s"}]})"); },
+                   {"diff", "@/run-a", "@/run-a", "--out", "@/out"}, 4, "@/run-a/report.json: cases[0].technique"});
+  cases.push_back({"escaping_image_diff",
+                   [](const fs::path& dir) {
+                     write_text(dir / "run-a" / "report.json",
+                                R"({"plan": {}, "cases": [{"scene": "s", "technique": "planar", "status": "PASS",
+                                    "lights": [{"mask": "mask.png", "candidate": "../../../etc/passwd"}]}]})");
+                   },
+                   {"diff", "@/run-a", "@/run-a", "--out", "@/out"}, 4, "cases[0].lights[0].candidate: '../../../etc/passwd' leaves"});
 
   // export / goldens: arguments.
   cases.push_back({"unknown_scene_export", good_catalogue, {"export", "--catalogue", "@/cat", "--out", "@/out", "--scenes", "nope"}, 4, "nope"});

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <utility>
 
+#include "cause_memo.hpp"
 #include "shadowref/conform/staircases.hpp"
 #include "shadowref/conform/zigzags.hpp"
 #include "shadowref/outputs/atomic_file.hpp"
@@ -28,16 +29,23 @@ struct Explainers {
   compare::VisibilityTexelShift texel_shift;
 };
 
+// `memo` keeps the model's answers under `declared` (cause_memo.hpp): the case's comparison, its
+// probes and every later case of the same declaration ask it first.
 compare::CompareOptions options_for(const scene::PreparedScene& prepared, const compare::Threshold& threshold,
                                     const outputs::TechniqueName* technique, const outputs::CandidateDeclaration& declared,
-                                    reference::CauseModel* model, Explainers& explainers, std::string& causes) {
+                                    reference::CauseModel* model, CauseMemo::Table* memo, Explainers& explainers,
+                                    std::string& causes) {
   const scene::Scene& s = *prepared.scene;
   compare::CompareOptions o;
   o.no_cast_shadow_invariant = s.invariant_no_cast_shadow;
   causes = "none (an exact technique, or one the suite does not know: every wrong pixel is unexplained)";
   if (threshold.bands) {
-    explainers.mask = [model, &declared](std::size_t light, int x, int y, bool candidate_lit) {
-      return model->explain(light, x, y, declared.for_light(light), candidate_lit);
+    explainers.mask = [model, memo, &declared](std::size_t light, int x, int y, bool candidate_lit) {
+      outputs::Cause cause;
+      if (memo->find(light, x, y, candidate_lit, cause)) return cause;
+      cause = model->explain(light, x, y, declared.for_light(light), candidate_lit);
+      memo->remember(light, x, y, candidate_lit, cause);
+      return cause;
     };
     o.explain = &explainers.mask;
     causes = "texel footprint and depth bias, from the scene and the candidate's declaration";
@@ -146,7 +154,7 @@ std::string declared_views_problem(const scene::PreparedScene& prepared, std::si
 
 }  // namespace
 
-Judge::Judge() = default;
+Judge::Judge() : memo_(std::make_unique<CauseMemo>()) {}
 Judge::~Judge() = default;
 
 reference::CauseModel& Judge::causes_of(const scene::PreparedScene& prepared) {
@@ -209,17 +217,12 @@ CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJud
       model && named && named->family == outputs::TechniqueFamily::ShadowMap
           ? checked_against_staircases(*model, s, c.candidate_dir, j.declaration, staircases)
           : j.declaration;
-  Explainers explainers;
-  const compare::CompareOptions options = options_for(*prepared, threshold, named, judged, model, explainers, j.causes);
-  if (!staircases.empty()) j.causes += "; " + staircases;
-  j.comparison = compare::compare_folders(c.reference_dir, c.candidate_dir, threshold, options);
-
-  // 5. What the verdict could have seen, once per reference, threshold and declaration as judged.
-  // The key is what the probes' verdicts depend on: not the producer or version, nor the technique's
-  // name (the volume techniques and planar share one answer per scene, shadowmap and
-  // shadowmap-rgba8 another) but for what the cause model reads of it: whether it is cascaded, its
-  // "cascades": 0 then meaning the default count (csm-pcf's declaration text is shadowmap-pcf's
-  // otherwise, and a point is looked up in its cascade, not in one map).
+  // What the cause model's answers depend on (the memo's key, and with the reference and threshold
+  // the probes' verdicts'): not the producer or version, nor the technique's name (the volume
+  // techniques and planar share one answer per scene, shadowmap and shadowmap-rgba8 another) but
+  // for what the cause model reads of it: whether it is cascaded, its "cascades": 0 then meaning
+  // the default count (csm-pcf's declaration text is shadowmap-pcf's otherwise, and a point is
+  // looked up in its cascade, not in one map).
   const auto cause_relevant = [](const std::string& technique) {
     const outputs::TechniqueName* t = outputs::find_technique_name(technique);
     return t && t->cascaded ? std::string("cascaded") : std::string();
@@ -228,7 +231,15 @@ CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJud
   keyed.producer = keyed.version = "";
   keyed.technique = cause_relevant(keyed.technique);
   for (outputs::CandidateDeclaration& l : keyed.lights) l.technique = cause_relevant(l.technique);
-  const std::string key = c.reference_dir.string() + '\n' + std::string(threshold.name) + '\n' + outputs::declaration_text(keyed);
+  const std::string cause_key = outputs::declaration_text(keyed);
+  CauseMemo::Table* memo = model ? &memo_->table(*prepared, cause_key) : nullptr;
+  Explainers explainers;
+  const compare::CompareOptions options = options_for(*prepared, threshold, named, judged, model, memo, explainers, j.causes);
+  if (!staircases.empty()) j.causes += "; " + staircases;
+  j.comparison = compare::compare_folders(c.reference_dir, c.candidate_dir, threshold, options);
+
+  // 5. What the verdict could have seen, once per reference, threshold and declaration as judged.
+  const std::string key = c.reference_dir.string() + '\n' + std::string(threshold.name) + '\n' + cause_key;
   auto known = resolving_.find(key);
   if (known == resolving_.end()) known = resolving_.emplace(key, resolving_power(c.reference_dir, s.lights.size(), threshold, options)).first;
   j.resolving_power = known->second;

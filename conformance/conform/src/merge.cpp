@@ -5,13 +5,13 @@
 #include <algorithm>
 #include <chrono>
 #include <ctime>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <system_error>
 
 #include "report_writer.hpp"
+#include "shadowref/conform/run_report.hpp"
 #include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/errors.hpp"
 #include "shadowref/outputs/staged_folder.hpp"
@@ -28,21 +28,17 @@ struct Shard {
   int index = 1, total = 1;  // 1-based; an unsplit run is shard 1/1
 };
 
-std::string text_of(const json& j, const char* key) {
-  if (!j.is_object() || !j.contains(key)) return "(none)";
-  return j[key].is_string() ? j[key].get<std::string>() : j[key].dump();
-}
+// A shard's report is read as every finished run's (run_report.hpp).
+std::string text_of(const json& j, const char* key) { return report_text(j, key); }
 
 Shard read_shard(const fs::path& dir) {
   Shard s;
   s.dir = dir;
-  const fs::path file = dir / "report.json";
-  std::ifstream in(file);
-  if (!in) throw MergeRefused({file.string() + ": cannot read it (a shard that did not finish has no report.json)"});
-  s.report = json::parse(in, nullptr, /*allow_exceptions=*/false);
-  if (s.report.is_discarded() || !s.report.is_object() || !s.report.contains("cases") || !s.report["cases"].is_array() ||
-      !s.report.contains("plan") || !s.report["plan"].is_object())
-    throw MergeRefused({file.string() + ": not a shadowref report.json with \"plan\" and \"cases\""});
+  try {
+    s.report = read_run_report(dir);
+  } catch (const ReportUnreadable& e) {
+    throw MergeRefused({e.what()});
+  }
   if (s.report.contains("shard") && s.report["shard"].is_object()) {
     s.index = s.report["shard"].value("index", 0);
     s.total = s.report["shard"].value("total", 0);
@@ -159,13 +155,6 @@ std::vector<json> gather_cases(const std::vector<Shard>& shards, std::vector<std
   return out;
 }
 
-// A report-relative image path from a shard's report.json, which must stay inside its report/.
-bool safe_relative(const std::string& rel) {
-  const fs::path p(rel);
-  if (rel.empty() || p.is_absolute()) return false;
-  return std::none_of(p.begin(), p.end(), [](const fs::path& part) { return part == ".."; });
-}
-
 // Copies every image a case shows from its shard's report/ into the merged one.
 void copy_images(const json& c, const fs::path& from_report, const outputs::StagedFolder& staged) {
   std::vector<std::string> rels;
@@ -176,7 +165,7 @@ void copy_images(const json& c, const fs::path& from_report, const outputs::Stag
       if (l.contains(key) && l[key].is_string()) rels.push_back(l[key].get<std::string>());
   for (const std::string& rel : rels) {
     if (rel.empty()) continue;
-    if (!safe_relative(rel)) throw MergeRefused({from_report.string() + ": image path '" + rel + "' leaves the report folder"});
+    if (!inside_report_folder(rel)) throw MergeRefused({from_report.string() + ": image path '" + rel + "' leaves the report folder"});
     std::error_code ec;
     if (fs::exists(staged.path() / rel, ec)) continue;  // a scene's reference images, shared by its cases
     fs::create_directories((staged.path() / rel).parent_path(), ec);

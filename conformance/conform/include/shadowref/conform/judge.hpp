@@ -40,6 +40,8 @@ class Renderer;
 
 namespace shadowref::conform {
 
+class CauseMemo;
+
 // One case: which folders, judged as which technique.
 struct CaseToJudge {
   std::filesystem::path reference_dir;  // the reference's masks and decided pixels for the prepared scene
@@ -93,6 +95,8 @@ class Judge {
   std::filesystem::path draw_model(const scene::PreparedScene& prepared, const std::string& technique,
                                    const std::filesystem::path& reference_dir, const std::filesystem::path& dir);
   std::map<const scene::PreparedScene*, std::unique_ptr<reference::CauseModel>> causes_;
+  // The cause model's answers per scene and declaration, asked before the model (cause_memo.hpp).
+  std::unique_ptr<CauseMemo> memo_;
   // Per reference folder, threshold and declaration as judged: the probes do not depend on the candidate.
   std::map<std::string, ResolvingPower> resolving_;
   std::unique_ptr<renderer::Renderer> model_gl_;
