@@ -6,6 +6,14 @@
 // under a 512-texel own map, where the check certifies grazing_light's tile. The reference is
 // computed once, into a cache beside the binary. No peer: nothing else answers these questions, so
 // the figures are times per pixel and per window, tracked but not judged (README.md).
+//
+// BM_JudgeCase times one whole case as `shadowref conform` judges it (conform::Judge: the
+// declaration, the comparison with its causes, the resolving power's probes, the status) at the
+// scene's 256² and at 1920 x 1080, the candidate the reference's own masks shifted by 1 px (the
+// boundary errors of a correct map) declared as a 512-texel map of its own views; a fresh Judge
+// each iteration, so that nothing a previous case asked is remembered. BM_JudgeCase_Floor is the
+// same folders compared with no cause model and no probes (compare_folders under the exact
+// threshold: reading the masks and one pass over them), what judging cannot go below.
 #include <benchmark/benchmark.h>
 
 #include <cstdint>
@@ -16,6 +24,8 @@
 #include <vector>
 
 #include "bench_support.hpp"
+#include "shadowref/compare/thresholds.hpp"
+#include "shadowref/conform/judge.hpp"
 #include "shadowref/conform/reference_cache.hpp"
 #include "shadowref/conform/resolving_power.hpp"
 #include "shadowref/conform/zigzags.hpp"
@@ -107,7 +117,75 @@ void BM_Zigzags(benchmark::State& state, const std::string& name) {
   shadowref::bench::report_peak_rss(state);
 }
 
+// A candidate folder beside the reference of `name` at `width` x `height`: every light's mask
+// shifted by 1 px right, declared as a 512-texel map of the candidate's own views.
+struct JudgedCase {
+  scene::Scene scene;
+  scene::PreparedScene prepared;
+  std::filesystem::path reference_dir, candidate_dir;
+
+  JudgedCase(const std::string& name, int width, int height)
+      : scene(sized(scene::load_scene(std::filesystem::path(SHADOWREF_SCENES_DIR) / (name + ".json")), width, height)),
+        prepared(scene::prepare_scene(scene)) {
+    reference_dir = conform::ensure_reference(prepared, SHADOWREF_BENCH_CACHE, {}).dir;
+    candidate_dir = std::filesystem::path(SHADOWREF_BENCH_CACHE) / ("candidate-" + name + "-" + std::to_string(width) + "x" + std::to_string(height));
+    std::filesystem::create_directories(candidate_dir);
+    const std::size_t lights = prepared.lights.size();
+    for (std::size_t i = 0; i < lights; ++i)
+      outputs::write_png(conform::shifted(outputs::read_image8(reference_dir / outputs::mask_name(i, lights), 1), 1, 0),
+                         candidate_dir / outputs::mask_name(i, lights));
+    outputs::CandidateDeclaration d = outputs::default_declaration("shadowmap");
+    d.shadow_map_size = 512;
+    d.light_views = outputs::LightViews::Own;
+    outputs::write_declaration(d, candidate_dir);
+  }
+  JudgedCase(const JudgedCase&) = delete;  // `prepared` points into `scene`
+
+  static scene::Scene sized(scene::Scene s, int width, int height) {
+    s.width = width;
+    s.height = height;
+    return s;
+  }
+};
+
+JudgedCase& judged_case(const std::string& name, int width, int height) {
+  static std::map<std::string, std::unique_ptr<JudgedCase>> cases;
+  std::unique_ptr<JudgedCase>& c = cases[name + std::to_string(width) + "x" + std::to_string(height)];
+  if (!c) c = std::make_unique<JudgedCase>(name, width, height);
+  return *c;
+}
+
+void BM_JudgeCase(benchmark::State& state, const std::string& name) {
+  JudgedCase& c = judged_case(name, static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  std::size_t unexplained = 0;
+  for (auto _ : state) {
+    conform::Judge judge;  // a new case: nothing remembered
+    const conform::CaseJudgement j = judge.judge(&c.prepared, {c.reference_dir, c.candidate_dir, "shadowmap", false, {}});
+    unexplained = j.comparison.total.unexplained;
+    benchmark::DoNotOptimize(j.status);
+  }
+  state.counters["pixels"] = static_cast<double>(state.range(0) * state.range(1));
+  state.counters["unexplained_px"] = static_cast<double>(unexplained);
+  shadowref::bench::report_peak_rss(state);
+}
+
+void BM_JudgeCase_Floor(benchmark::State& state, const std::string& name) {
+  JudgedCase& c = judged_case(name, static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  for (auto _ : state) {
+    const compare::FolderComparison f = compare::compare_folders(c.reference_dir, c.candidate_dir, compare::threshold_for("planar"));
+    benchmark::DoNotOptimize(f.total.wrong);
+  }
+  state.counters["pixels"] = static_cast<double>(state.range(0) * state.range(1));
+  shadowref::bench::report_peak_rss(state);
+}
+
 }  // namespace
+
+// At the scene's own 256² and at an engine's 1920 x 1080 (its reference computed once, into the cache).
+BENCHMARK_CAPTURE(BM_JudgeCase, directional_light, std::string("directional_light"))->Args({256, 256})->Args({1920, 1080})
+    ->ArgNames({"w", "h"})->UseRealTime()->Unit(benchmark::kMillisecond)->Setup(shadowref::bench::start_peak_rss);
+BENCHMARK_CAPTURE(BM_JudgeCase_Floor, directional_light, std::string("directional_light"))->Args({256, 256})->Args({1920, 1080})
+    ->ArgNames({"w", "h"})->UseRealTime()->Unit(benchmark::kMillisecond)->Setup(shadowref::bench::start_peak_rss);
 
 // grazing_light: the check certifies its tile (81 px); directional_light: a tile it looks at and
 // leaves alone.

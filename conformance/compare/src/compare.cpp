@@ -237,7 +237,7 @@ std::vector<std::size_t> scan_rows(const Image8& reference, const Image8& decide
   const std::uint8_t* ref = reference.pixels.data();
   const std::uint8_t* dec = decided.pixels.data();
   const std::uint8_t* cand = candidate.pixels.data();
-  std::uint8_t* err = out.error.pixels.data();
+  std::uint8_t* err = out.error.pixels.empty() ? nullptr : out.error.pixels.data();  // null: no error image painted
   // The dimmed reference under the error colours, by class (shadowed, no surface, lit), and the
   // undecided colour: each as 4 bytes, so that a pixel's colour is one 4-byte store whose last byte
   // the next pixel overwrites.
@@ -284,9 +284,11 @@ std::vector<std::size_t> scan_rows(const Image8& reference, const Image8& decide
     decided_count += row_decided;
     decided_surface += row_surface;
     invariant_pixels += row_invariant;
-    std::uint8_t* e = err + 3 * first;
-    for (int x = 0; x + 1 < w || (x + 1 == w && y + 1 < h); ++x) std::memcpy(e + 3 * x, kColour[col[x]].data(), 4);
-    if (y + 1 == h) std::memcpy(e + 3 * static_cast<std::size_t>(w - 1), kColour[col[w - 1]].data(), 3);  // the image's last pixel
+    if (err) {
+      std::uint8_t* e = err + 3 * first;
+      for (int x = 0; x + 1 < w || (x + 1 == w && y + 1 < h); ++x) std::memcpy(e + 3 * x, kColour[col[x]].data(), 4);
+      if (y + 1 == h) std::memcpy(e + 3 * static_cast<std::size_t>(w - 1), kColour[col[w - 1]].data(), 3);  // the image's last pixel
+    }
     if (row_wrong)
       for (int x = 0; x < w; ++x)
         if (wr[x]) wrong.push_back(first + static_cast<std::size_t>(x));
@@ -314,7 +316,7 @@ WrongPixels judge_wrong_pixels(const Image8& reference, const Image8& candidate,
   const std::size_t n = reference.pixel_count(), stride = static_cast<std::size_t>(reference.width);
   const std::uint8_t* ref = reference.pixels.data();
   const std::uint8_t* cand = candidate.pixels.data();
-  std::uint8_t* err = out.error.pixels.data();
+  std::uint8_t* err = out.error.pixels.empty() ? nullptr : out.error.pixels.data();  // null: no error image painted
   WrongPixels wp;
   wp.codes = wrong.empty() ? nullptr : zero_bytes(n);
   wp.flagged = wrong.empty() ? nullptr : zero_bytes(n);
@@ -368,7 +370,7 @@ WrongPixels judge_wrong_pixels(const Image8& reference, const Image8& candidate,
       wp.flagged[i] = 1;
       wp.unexplained.push_back(i);
     }
-    std::memcpy(err + 3 * i, paint->data(), 3);
+    if (err) std::memcpy(err + 3 * i, paint->data(), 3);
   }
   return wp;
 }
@@ -386,7 +388,7 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
   m.width = w;
   m.height = h;
   m.pixels = n;
-  out.error = Image8{w, h, 3, std::vector<std::uint8_t>(3 * n)};
+  if (options.error_image) out.error = Image8{w, h, 3, std::vector<std::uint8_t>(3 * n)};
   const std::vector<std::size_t> wrong = scan_rows(reference, decided, candidate, options.no_cast_shadow_invariant, out);
   WrongPixels wp = judge_wrong_pixels(reference, candidate, wrong, light, options, out);
   // The shapes of the unexplained pixels: cores, a displacement that makes them right, regions.

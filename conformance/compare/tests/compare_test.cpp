@@ -486,6 +486,12 @@ TEST(CompareMask, FastPassEqualsThePlainDefinition) {
       SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) + " round " + std::to_string(round));
       expect_same(fast.metrics, plain.metrics);
       EXPECT_EQ(fast.error.pixels, plain.error.pixels);
+      // Without its error image (the probes' comparison): the same counts, no image.
+      CompareOptions counts_only = o;
+      counts_only.error_image = false;
+      const MaskComparison unpainted = compare_mask(ref, dec, cand, "mask", 0, counts_only);
+      expect_same(unpainted.metrics, plain.metrics);
+      EXPECT_TRUE(unpainted.error.pixels.empty());
       if (w == 64 && round == 1) {
         EXPECT_GT(plain.metrics.unexplained_core, 0u) << "the oracle must see cores";
       }

@@ -167,6 +167,7 @@ ResolvingPower resolving_power(const std::filesystem::path& reference_dir, std::
                                const compare::Threshold& threshold, const compare::CompareOptions& options) {
   compare::CompareOptions o = options;
   o.visibility.clear();  // the masks alone (resolving_power.hpp)
+  o.error_image = false;  // a probe's counts are all it gives
   if (!threshold.bands) o.explain = nullptr;
   std::vector<Image8> masks, decided;
   for (std::size_t i = 0; i < lights; ++i) {

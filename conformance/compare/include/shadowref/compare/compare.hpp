@@ -142,6 +142,10 @@ struct CompareOptions {
   // unexplained pixels as edge pixels, since past its own fail bound a light may still sum to a total
   // below it beside a light with more edges (a mask wrong beyond that FAILs anyway).
   double displacement_up_to = 1.0;
+  // Whether MaskComparison::error is painted. False: left empty (0 x 0), the counts the same; for
+  // callers that read only the counts (the resolving power's probes), which then skip an RGB
+  // image's allocation and its every-pixel write, most of a comparison's memory traffic.
+  bool error_image = true;
 };
 
 // Compares one mask. All three images are 1-channel and of the same size; throws
