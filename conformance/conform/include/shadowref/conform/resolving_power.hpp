@@ -21,9 +21,10 @@
 // leave along a boundary, so no verdict promises to see it (a tile placed where the boundary barely
 // changes over 8 px, or where no cast shadow is in view).
 //
-// Cost: 21 mask comparisons per light, each asking the cause model about the probe's wrong pixels
-// (a few thousand at 256²), first without the displaced-shadow search; the judge caches the answer
-// per reference, declaration and threshold. The default catalogue's judging: 2.6 s -> 7.2 s
+// Cost: 21 mask comparisons per light (no error image painted), each asking the cause model about
+// the probe's wrong pixels (a few thousand at 256²), first without the displaced-shadow search; the
+// judge caches the answer per reference, declaration and threshold, and the model's answers per
+// pixel and declaration, so that the probes ask about each boundary pixel once
 // (docs/tolerance-model.md).
 #pragma once
 
