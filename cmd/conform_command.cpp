@@ -5,7 +5,9 @@
 #include <CLI/CLI.hpp>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -156,6 +158,10 @@ int run_conform_command(const ConformArgs& a) {
   for (const std::string& s : a.argv) o.command_line += (o.command_line.empty() ? "" : " ") + s;
   o.expectations = read_expectations_option(a.expectations);
   apply_shard_options(a.shard, o);
+  // A test hook, not an option: the tests of SIGINT / SIGTERM in each stage of a run shorten the
+  // stall watch's interval to see, in its lines, which stage the run has reached.
+  if (const char* ms = std::getenv("SHADOWREF_STALL_REPORT_MS"); ms && std::atoi(ms) > 0)
+    o.stall_report_after = std::chrono::milliseconds(std::atoi(ms));
 
   const bool tty = ::isatty(2);
   const auto progress = [&](std::size_t done, std::size_t total, const conform::CaseResult& c) {

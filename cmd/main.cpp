@@ -2,8 +2,8 @@
 //
 // Every error ends here as one line on stderr: exit 4 (3 for a size mismatch) when the user's input
 // or the environment (a full disk, no permission) caused it, 5 when it is an internal failure
-// (report_error); SIGINT and SIGTERM stop the work at its next commit point and exit 128 + the signal
-// (outputs/interruption.hpp); `--help` works on every level and exits 0.
+// (report_error); SIGINT and SIGTERM stop the work at its next check, within about 2 s, and exit
+// 128 + the signal (outputs/interruption.hpp); `--help` works on every level and exits 0.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>

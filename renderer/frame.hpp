@@ -208,6 +208,10 @@ struct Frame {
   std::vector<Image8> facing_masks(const Mat4<float>& clip) const;
   // The colour buffer as RGB, rows flipped, sRGB-encoded (the target holds linear light).
   Image8 read_rgb() const;
+  // Lets llvmpipe rasterise what is queued (glFinish), then throws outputs::Interrupted after SIGINT
+  // or SIGTERM: the point between two long passes (lights' maps, casters' volumes) where a signalled
+  // run stops, rather than after every pass of the frame is drawn.
+  void finish_then_check_interrupted() const;
   // The light intensity each light contributes: lighting adds up, ambient once.
   float light_intensity() const;
 };

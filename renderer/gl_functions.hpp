@@ -26,6 +26,7 @@ namespace shadowref::renderer {
   X(PFNGLENABLEPROC, Enable)                                              \
   X(PFNGLDISABLEPROC, Disable)                                            \
   X(PFNGLVIEWPORTPROC, Viewport)                                          \
+  X(PFNGLSCISSORPROC, Scissor)                                            \
   X(PFNGLCLEARPROC, Clear)                                                \
   X(PFNGLCLEARCOLORPROC, ClearColor)                                      \
   X(PFNGLCLEARDEPTHPROC, ClearDepth)                                      \

@@ -2,6 +2,7 @@
 // W × H target, the passes techniques share, and the timed frame loop.
 #include "shadowref/renderer/renderer.hpp"
 
+#include "shadowref/outputs/interruption.hpp"
 #include "shadowref/outputs/limits.hpp"
 
 #include <algorithm>
@@ -329,6 +330,48 @@ void Frame::ambient_pass(const Mat4<float>& clip) const {
   }
 }
 
+namespace {
+
+// The bands of a light's camera pass (in_row_bands). The first holds kFirstBandPixels; each next one
+// as many rows as take kBandSeconds at the last band's pace, at most four times its rows (a band of
+// cheap sky says little of the walls below it) and kMaxBandPixels: the heaviest lookup we draw, PCSS
+// on the large level, shades those in about 3 s on a busy 2-core machine's llvmpipe, a shadow map's
+// plain lookup in tens of ms. Each band draws all the geometry again (about 20 ms for the level), so
+// a 256 x 256 scene's pass is one band, the level's at its own 640 x 480 two.
+constexpr long long kFirstBandPixels = 1 << 16;
+constexpr long long kMaxBandPixels = 1 << 18;
+constexpr double kBandSeconds = 0.5;
+
+// Runs `draw` once per band of rows of the W x H target, scissored to it and finished before the
+// next, and stops between bands on SIGINT / SIGTERM: one such pass may otherwise rasterise for a
+// minute inside one read-back. The scissor keeps each pixel's fragments as they were, so the pass
+// writes the same pixels as one draw would.
+template <class Draw>
+void in_row_bands(const GlFunctions& gl, int width, int height, const Draw& draw) {
+  const long long w = std::max(1, width);
+  int rows = static_cast<int>(std::max(1LL, kFirstBandPixels / w));
+  if (rows >= height) {
+    draw();
+    return;
+  }
+  const int max_rows = static_cast<int>(std::max(1LL, kMaxBandPixels / w));
+  gl.Enable(GL_SCISSOR_TEST);
+  for (int y0 = 0; y0 < height && !outputs::interrupt_signal();) {
+    const int n = std::min(rows, height - y0);
+    const auto start = std::chrono::steady_clock::now();
+    gl.Scissor(0, y0, width, n);
+    draw();
+    gl.Finish();
+    y0 += n;
+    const double seconds = std::max(1e-6, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    rows = static_cast<int>(std::clamp(n * kBandSeconds / seconds, 1.0, static_cast<double>(std::min(4 * n, max_rows))));
+  }
+  gl.Disable(GL_SCISSOR_TEST);
+  outputs::throw_if_interrupted();
+}
+
+}  // namespace
+
 void Frame::light_pass(const Mat4<float>& clip, std::size_t light_index, const PassPrograms* lookup_programs,
                        const Mat4<float>* shadow_from_world, bool masks) const {
   gl.BindFramebuffer(GL_FRAMEBUFFER, target_fbo);
@@ -367,11 +410,13 @@ void Frame::light_pass(const Mat4<float>& clip, std::size_t light_index, const P
       gl.Uniform4f(p.spot, 0, 0, 0, -2.0f);
     }
   });
-  for (std::size_t i = 0; i < objects.size(); ++i) {
-    const auto& c = scene.objects[i].color;
-    gl.Uniform3f(surface.use(i).albedo, c.x(), c.y(), c.z());
-    objects[i].draw(skins);
-  }
+  in_row_bands(gl, width(), height(), [&] {
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+      const auto& c = scene.objects[i].color;
+      gl.Uniform3f(surface.use(i).albedo, c.x(), c.y(), c.z());
+      objects[i].draw(skins);
+    }
+  });
   if (masks) gl.DrawBuffer(GL_COLOR_ATTACHMENT0);
   gl.Disable(GL_BLEND);
   gl.DepthMask(GL_TRUE);
@@ -379,6 +424,7 @@ void Frame::light_pass(const Mat4<float>& clip, std::size_t light_index, const P
 }
 
 Image8 Frame::read_stencil_mask(std::uint8_t value, bool value_is_lit) const {
+  outputs::throw_if_interrupted();  // as read_grey
   gl.BindFramebuffer(GL_FRAMEBUFFER, target_fbo);
   gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
   const std::size_t n = static_cast<std::size_t>(width()) * static_cast<std::size_t>(height());
@@ -424,6 +470,9 @@ std::vector<Image8> Frame::facing_masks(const Mat4<float>& clip) const {
 }
 
 Image8 Frame::read_grey(GLenum channel, GLenum attachment) const {
+  // A read-back waits for llvmpipe to rasterise the pass queued before it (one light's): after
+  // SIGINT or SIGTERM the run stops here, one pass at most after the signal, not at the case's end.
+  outputs::throw_if_interrupted();
   gl.BindFramebuffer(GL_FRAMEBUFFER, target_fbo);
   gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
   std::vector<std::uint8_t> grey(static_cast<std::size_t>(width()) * static_cast<std::size_t>(height()));
@@ -433,7 +482,13 @@ Image8 Frame::read_grey(GLenum channel, GLenum attachment) const {
   return Image8{width(), height(), 1, flip_rows(grey, width(), height(), 1)};
 }
 
+void Frame::finish_then_check_interrupted() const {
+  gl.Finish();
+  outputs::throw_if_interrupted();
+}
+
 Image8 Frame::read_rgb() const {
+  outputs::throw_if_interrupted();  // as read_grey
   gl.BindFramebuffer(GL_FRAMEBUFFER, target_fbo);
   gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
   std::vector<std::uint8_t> rgb(static_cast<std::size_t>(width()) * static_cast<std::size_t>(height()) * 3);
@@ -632,6 +687,7 @@ RenderResult Renderer::render(const scene::PreparedScene& prepared, std::string_
   std::vector<GpuMesh> objects;
   objects.reserve(scene.objects.size());
   for (const scene::Object& o : scene.objects) {
+    outputs::throw_if_interrupted();  // a large mesh's vertices take a while
     // Flat triangles: three vertices each (the very floats of the mesh, so that shadow-volume
     // caps built from the indexed mesh get identical depths) and the face normal
     // (v1 − v0) × (v2 − v0), computed in double as the reference does: a normal from screen-space

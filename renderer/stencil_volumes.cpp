@@ -103,6 +103,7 @@ void render_volumes(Frame& frame, Mode mode) {
     std::string robust_choice;
     for (std::size_t c = 0; c < casters.size(); ++c) {
       if (!casters[c].caster) continue;
+      frame.finish_then_check_interrupted();  // between casters: a light's volumes fill for seconds at 4 x
       const ShadowCaster<float>& caster = *casters[c].caster;
       const BoundingSphere<float>& bsphere = casters[c].sphere;
       const std::string& name = frame.scene.objects[c].name;

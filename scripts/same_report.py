@@ -6,6 +6,7 @@ executable that computed it). Prints the first differences and exits 1 when
 there are any, 0 when the two are the same but for those keys, 4 when a file cannot be read.
 
     scripts/same_report.py before/report.json after/report.json
+    scripts/same_report.py --ignore reference_dir --ignore scene_file A B   (two trees, two caches)
 """
 import json
 import re
@@ -50,11 +51,16 @@ def differences(a, b, path="$"):
 
 
 def main():
-    if len(sys.argv) != 3 or sys.argv[1] in ("-h", "--help"):
+    args = sys.argv[1:]
+    # --ignore KEY: a key more to leave out, e.g. the paths of runs made from two source trees.
+    while len(args) >= 2 and args[0] == "--ignore":
+        IGNORED.add(args[1])
+        args = args[2:]
+    if len(args) != 2 or args[0] in ("-h", "--help"):
         print(__doc__.strip())
-        return 0 if len(sys.argv) == 2 else 4
+        return 0 if args[:1] in (["-h"], ["--help"]) else 4
     reports = []
-    for name in sys.argv[1:]:
+    for name in args:
         try:
             with open(name, encoding="utf-8") as f:
                 reports.append(json.load(f))
@@ -62,7 +68,7 @@ def main():
             print(f"{name}: {e}", file=sys.stderr)
             return 4
     # Each run's own output folder (its report's folder) reads as OUT in both.
-    roots = [[(name.rsplit("/report.json", 1)[0], "OUT")] for name in sys.argv[1:]]
+    roots = [[(name.rsplit("/report.json", 1)[0], "OUT")] for name in args]
     a, b = (strip(r, root) for r, root in zip(reports, roots))
     found = list(differences(a, b))
     for line in found[:20]:

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "shadowref/outputs/interruption.hpp"
+
 namespace shadowref::reference {
 namespace {
 
@@ -74,7 +76,11 @@ EmbreeScene::EmbreeScene(const scene::Scene& scene, const std::string& device_co
     rtcReleaseGeometry(geom);
     check(device_, "attaching a geometry");
   }
+  // SIGINT / SIGTERM cancel a long BVH build (a large level's takes seconds): Embree asks this as it
+  // builds, and a false answer ends the build, which is then the stop, not an Embree failure.
+  rtcSetSceneProgressMonitorFunction(scene_, [](void*, double) { return !outputs::interrupt_signal(); }, nullptr);
   rtcCommitScene(scene_);
+  outputs::throw_if_interrupted();
   check(device_, "building the BVH");
   const auto b = scene::bounds(scene);
   const double d = (b[1] - b[0]).norm();

@@ -21,6 +21,7 @@
 #include <stdexcept>
 
 #include "shadowref/outputs/image.hpp"
+#include "shadowref/outputs/interruption.hpp"
 #include "shadowref/outputs/shading.hpp"
 #include "shadowref/reference/flush_denormals.hpp"
 #include "shadowref/reference/camera_rays.hpp"
@@ -316,7 +317,11 @@ Images render(const scene::PreparedScene& prepared, const Options& options, Stat
     tbb::enumerable_thread_specific<TileBuffers> buffers;
     tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y, 1), [&](const tbb::blocked_range<int>& r) {
       TileBuffers& buf = buffers.local();
-      for (int t = r.begin(); t < r.end(); ++t) renderer.tile((t % tiles_x) * kTile, (t / tiles_x) * kTile, buf);
+      for (int t = r.begin(); t < r.end(); ++t) {
+        // SIGINT / SIGTERM: one tile's work at most (TBB cancels the other tiles and rethrows here).
+        outputs::throw_if_interrupted();
+        renderer.tile((t % tiles_x) * kTile, (t / tiles_x) * kTile, buf);
+      }
     });
 #else
     // The ThreadSanitizer build (preset tsan): the same tiles on plain std::threads taking tile
@@ -329,10 +334,12 @@ Images render(const scene::PreparedScene& prepared, const Options& options, Stat
     std::vector<std::thread> pool;
     for (int w = 0; w < workers; ++w)
       pool.emplace_back([&, w] {
-        for (int t; (t = next.fetch_add(1)) < tiles_x * tiles_y;)
+        // An exception may not leave a std::thread: a signalled worker stops, the join rethrows.
+        for (int t; !outputs::interrupt_signal() && (t = next.fetch_add(1)) < tiles_x * tiles_y;)
           renderer.tile((t % tiles_x) * kTile, (t / tiles_x) * kTile, buffers[static_cast<std::size_t>(w)]);
       });
     for (std::thread& t : pool) t.join();
+    outputs::throw_if_interrupted();
 #endif
     total.seconds_render = seconds_since(t1);
     for (const auto& b : buffers) {

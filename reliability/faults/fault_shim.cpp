@@ -14,6 +14,8 @@
 //                                    shadowref's handlers, and the call then goes on)
 //   SHADOWREF_FAULT_DISK_BYTES=B     writes fail with ENOSPC once B bytes were written under DIR (a
 //                                    full disk where no size-limited file system can be mounted)
+//   SHADOWREF_FAULT_SAY=1            says "fault shim: raising signal S" on stderr just before the
+//                                    signal, so that a test can time what follows it
 #include <dlfcn.h>
 #include <fcntl.h>
 #include <unistd.h>
@@ -62,20 +64,26 @@ bool fd_under(int fd) {
   return under(path);
 }
 
+template <class F>
+F next(const char* name) {
+  return reinterpret_cast<F>(::dlsym(RTLD_NEXT, name));
+}
+
 void fault() {
   g_renames_at_fault = g_renames.load();
   g_writes_at_fault = g_writes.load();
-  std::raise(static_cast<int>(env_long("SHADOWREF_FAULT_SIGNAL", SIGKILL)));
+  const int sig = static_cast<int>(env_long("SHADOWREF_FAULT_SIGNAL", SIGKILL));
+  if (env_long("SHADOWREF_FAULT_SAY", 0)) {
+    char line[64];
+    const int n = std::snprintf(line, sizeof line, "fault shim: raising signal %d\n", sig);
+    if (n > 0) next<ssize_t (*)(int, const void*, size_t)>("write")(2, line, static_cast<size_t>(n));
+  }
+  std::raise(sig);
 }
 
 void count_rename(const char* newpath) {
   if (!under(newpath)) return;
   if (++g_renames == env_long("SHADOWREF_FAULT_AT_RENAME", 0)) fault();
-}
-
-template <class F>
-F next(const char* name) {
-  return reinterpret_cast<F>(::dlsym(RTLD_NEXT, name));
 }
 
 struct WriteCounts {

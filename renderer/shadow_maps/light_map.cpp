@@ -380,6 +380,7 @@ void draw_depth_pass(const Frame& frame, const LightFit& lc, const std::vector<M
   const bool cull = faces != outputs::DepthFaces::Both;
   const bool colour = lookup.storage == MapStorage::PackedRgba8 || lookup.storage == MapStorage::RawDepthAndMoments;
   for (GLsizei face = 0; face < layers; ++face) {
+    if (face > 0) frame.finish_then_check_interrupted();  // a cube's faces, the cascades: one by one
     const auto k = static_cast<std::size_t>(face);
     const LightView& view = lc.views[k];
     GLint layer = face;

@@ -69,6 +69,7 @@ void render_map_technique(Frame& frame, std::string_view name) {
       fit = &refit;
     }
     maps.push_back(draw_light_map(frame, i, *fit, *lookups[i]));
+    frame.finish_then_check_interrupted();  // each map now, not all at the first lookup that samples them
   }
   // The picture, the masks and the lit fractions in one camera pass per light: ambient_pass lays
   // down the nearest surfaces' depth and colour, and each light's pass (GL_EQUAL: every visible

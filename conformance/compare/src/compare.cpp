@@ -2,6 +2,7 @@
 #include "shadowref/compare/compare.hpp"
 
 #include "shadowref/outputs/file_names.hpp"
+#include "shadowref/outputs/interruption.hpp"
 
 #include <algorithm>
 #include <array>
@@ -325,6 +326,7 @@ WrongPixels judge_wrong_pixels(const Image8& reference, const Image8& candidate,
   if (options.impossible && !wrong.empty())
     for (const std::size_t i : (*options.impossible)(light, reference, candidate, wrong)) wp.codes[i] = kImpossible;
   for (const std::size_t i : wrong) {
+    if (((&i - wrong.data()) & 1023) == 0) outputs::throw_if_interrupted();  // SIGINT / SIGTERM: per 1024 causes asked
     const Class r = classify(ref[i]), c = classify(cand[i]);
     const int x = static_cast<int>(i % stride), y = static_cast<int>(i / stride);
     std::uint8_t code;

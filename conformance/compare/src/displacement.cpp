@@ -3,6 +3,8 @@
 // counted on the band where a move can change anything.
 #include "shadowref/compare/displacement.hpp"
 
+#include "shadowref/outputs/interruption.hpp"
+
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -115,6 +117,7 @@ Displacement find_displacement(const outputs::Image8& reference, const outputs::
       if (dx != 0 || dy != 0) moves.push_back({dx, dy, 0});
   for (const int g : {1, 2, -1, -2}) moves.push_back({0, 0, g});
   for (const ShadowMove& m : moves) {
+    outputs::throw_if_interrupted();  // SIGINT / SIGTERM: per move tried
     std::size_t fixed = 0;
     for (const std::size_t i : unexplained) fixed += undo(m, i) == outputs::nearest_mask_value(ref[i]);
     if (fixed <= best.fixed_unexplained) continue;

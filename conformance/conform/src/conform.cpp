@@ -128,7 +128,10 @@ void plan_scenes(Run& run) {
   const ConformOptions& o = run.o;
   if (o.scenes.empty()) throw std::invalid_argument("no scenes selected");
   std::vector<scene::Scene> all;
-  for (const auto& f : o.scenes) all.push_back(scene::load_scene(f));
+  for (const auto& f : o.scenes) {
+    outputs::throw_if_interrupted();  // a scene of millions of triangles loads for seconds
+    all.push_back(scene::load_scene(f));
+  }
   RunPlan& plan = run.result.plan;
   for (const scene::Scene& s : all) plan.scenes.push_back(s.name);
   plan.shards = o.shard ? o.shard->total : 1;
@@ -167,7 +170,10 @@ void prepare(Run& run) {
   }
   scene::PrepareOptions prepare;
   prepare.shadow_map_size = o.shadow_map_size;
-  for (const scene::Scene& s : run.scenes) run.prepared.push_back(scene::prepare_scene(s, *o.convention, prepare));
+  for (const scene::Scene& s : run.scenes) {
+    outputs::throw_if_interrupted();
+    run.prepared.push_back(scene::prepare_scene(s, *o.convention, prepare));
+  }
 }
 
 // References: once per scene (the cache makes a second run free).
@@ -178,7 +184,7 @@ void compute_references(Run& run) {
   const auto start = Clock::now();
   for (const scene::PreparedScene& p : run.prepared) {
     outputs::throw_if_interrupted();
-    run.watch.step("on the reference of " + p.scene->name);
+    run.watch.step("computing the reference of " + p.scene->name);
     const CachedReference r = ensure_reference(p, run.cache, settings);
     if (!r.recomputed_because.empty())
       run.say("reference " + p.scene->name + ": the cached entry failed verification (" + r.recomputed_because + "): recomputed");
@@ -229,9 +235,10 @@ CaseResult run_case(Run& run, std::size_t si, const std::string& technique) {
       const renderer::RenderResult r = run.our_renderer->render(run.prepared[si], extra ? extra->renders : technique, render_options);
       phases.render += since(t);
       t = Clock::now();
-      run.watch.step("writing " + name);
+      run.watch.step("writing the render of " + name);
       renderer::write_outputs(r, run.our_renderer->info(), s, c.candidate_dir);
       phases.write += since(t);
+      outputs::throw_if_interrupted();  // the render is published: stop before the judgement, not after it
       c.notes = r.notes;
       c.frame_ms = r.median_frame_ms();
     } else {
@@ -240,7 +247,7 @@ CaseResult run_case(Run& run, std::size_t si, const std::string& technique) {
     auto t = Clock::now();
     CaseToJudge what{c.reference_dir, c.candidate_dir, judged_as, run.our_renderer != nullptr,
                      std::filesystem::absolute(o.out / "models" / s.name / judged_as)};
-    run.watch.step("judging " + name);
+    run.watch.step("judging " + name + " (its comparison and resolving power)");
     c.judgement = run.judge.judge(&run.prepared[si], what);
     c.environment = c.judgement->declaration.environment;
     phases.judge += since(t);
@@ -250,6 +257,7 @@ CaseResult run_case(Run& run, std::size_t si, const std::string& technique) {
       for (const std::string& m : c.comparison()->masks) read.push_back(c.candidate_dir / m);
       for (const LinkedInput& l : inputs_outside(*o.candidate_dir, read)) c.read_through_links.emplace_back(l.file, l.resolves_to);
     }
+    outputs::throw_if_interrupted();
     t = Clock::now();
     run.watch.step("writing the error images of " + name);
     const std::filesystem::path error_dir = run.our_renderer ? c.candidate_dir : std::filesystem::absolute(o.out / "errors" / s.name / technique);
@@ -311,6 +319,7 @@ void run_cases(Run& run, const Progress& progress) {
       const auto case_start = Clock::now();
       result.cases.push_back(run_case(run, si, technique));
       result.cases.back().seconds = since(case_start);
+      run.watch.step("matching " + run.scenes[si].name + " x " + technique + " with the expectations");
       classify(result.cases.back(), o.expectations, result.convention);
       if (progress) progress(result.cases.size(), total, result.cases.back());
     }
@@ -323,6 +332,7 @@ void run_cases(Run& run, const Progress& progress) {
     const auto case_start = Clock::now();
     result.control = run_case(run, *run.control_only, technique);
     result.control->seconds = since(case_start);
+    run.watch.step("matching the control case " + result.plan.control + " x " + technique + " with the expectations");
     classify(*result.control, o.expectations, result.convention);
   }
 }
@@ -335,7 +345,7 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
   result.techniques = plan_techniques(o);
   check_sizes(o);
   result.convention = std::string(o.convention->name);
-  StallWatch watch(stalled, std::chrono::seconds(120));
+  StallWatch watch(stalled, o.stall_report_after);
   watch.step("loading and preparing the scenes");
   Run run(o, log, result, watch);
   run.threads = thread_count(o.jobs);
@@ -345,6 +355,8 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
   if (!o.references_only) {
     open_renderer(run);
     run_cases(run, progress);
+    outputs::throw_if_interrupted();
+    run.watch.step("matching the expectations (stale lines)");
     std::vector<outputs::Environment> environments;
     for (const CaseResult& c : result.cases)
       if (std::find(environments.begin(), environments.end(), c.environment) == environments.end())
@@ -353,6 +365,7 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
   }
   result.seconds = since(start);
   if (o.write_report && !o.references_only) {
+    outputs::throw_if_interrupted();
     watch.step("writing the reports");
     result.report_json = std::filesystem::absolute(o.out / "report.json");
     result.report_html = std::filesystem::absolute(o.out / "report" / "index.html");

@@ -13,6 +13,7 @@
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/outputs/image.hpp"
 #include "shadowref/outputs/image_io.hpp"
+#include "shadowref/outputs/interruption.hpp"
 
 namespace shadowref::conform {
 namespace {
@@ -198,6 +199,7 @@ ResolvingPower resolving_power(const std::filesystem::path& reference_dir, std::
   };
   ResolvingPower r;
   for (const ProbeSpec& spec : probe_specs()) {
+    outputs::throw_if_interrupted();  // SIGINT / SIGTERM: per probe
     std::vector<Image8> probes;
     for (std::size_t i = 0; i < lights; ++i) probes.push_back(probed(masks[i], spec));
     Judged j = judged(spec, probes, quick);

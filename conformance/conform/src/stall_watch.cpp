@@ -5,7 +5,7 @@
 
 namespace shadowref::conform {
 
-StallWatch::StallWatch(Report report, std::chrono::seconds after)
+StallWatch::StallWatch(Report report, std::chrono::milliseconds after)
     : report_(std::move(report)), after_(after), since_(std::chrono::steady_clock::now()) {
   if (report_) thread_ = std::thread([this] { watch(); });
 }

@@ -21,8 +21,8 @@ class StallWatch {
  public:
   using Report = std::function<void(const std::string&)>;
   // `report` is called from the watch's own thread ("still <step> after <n> s"), every `after`
-  // seconds that one step lasts. An empty `report` watches nothing.
-  StallWatch(Report report, std::chrono::seconds after);
+  // that one step lasts. An empty `report` watches nothing.
+  StallWatch(Report report, std::chrono::milliseconds after);
   ~StallWatch();
   StallWatch(const StallWatch&) = delete;
   StallWatch& operator=(const StallWatch&) = delete;
@@ -33,7 +33,7 @@ class StallWatch {
  private:
   void watch();
   Report report_;
-  std::chrono::seconds after_;
+  std::chrono::milliseconds after_;
   std::mutex mutex_;
   std::condition_variable wake_;
   std::string what_;

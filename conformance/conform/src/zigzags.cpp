@@ -8,6 +8,7 @@
 
 #include "shadowref/compare/compare.hpp"
 #include "shadowref/compare/thresholds.hpp"
+#include "shadowref/outputs/interruption.hpp"
 #include "shadowref/reference/causes.hpp"
 
 namespace shadowref::conform {
@@ -419,6 +420,7 @@ ZigzagFinding find_zigzags(const reference::CauseModel& model, const scene::Prep
   f.v = f.dir.cross(f.u);
   std::vector<std::uint8_t> is_wrong, certified(candidate.pixels.size(), 0);
   for (const Window& win : windows_of(reference, candidate, wrong, is_wrong)) {
+    outputs::throw_if_interrupted();  // SIGINT / SIGTERM: per window
     ++found.windows;
     const std::optional<OnePlane> o = pixels_of(model, light, d, f, candidate, is_wrong, win);
     if (!o) continue;

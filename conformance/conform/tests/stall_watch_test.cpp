@@ -36,6 +36,24 @@ TEST(StallWatch, AStepLongerThanTheIntervalIsReportedByName) {
   EXPECT_EQ(heard.lines.front().rfind("still drawing sun_horizon x pcss after ", 0), 0u) << heard.lines.front();
 }
 
+// The interval the tests of a run's stages use (SHADOWREF_STALL_REPORT_MS): each report names the
+// step current when it is made, so a new step's name follows at once.
+TEST(StallWatch, ASubSecondIntervalReportsTheCurrentStep) {
+  Heard heard;
+  StallWatch watch(heard.report(), std::chrono::milliseconds(20));
+  watch.step("drawing level x pcss");
+  std::unique_lock<std::mutex> lock(heard.m);
+  ASSERT_TRUE(heard.cv.wait_for(lock, std::chrono::seconds(120), [&] { return !heard.lines.empty(); }));
+  lock.unlock();
+  watch.step("judging level x pcss");
+  lock.lock();
+  const auto judging = [&] {
+    return !heard.lines.empty() && heard.lines.back().rfind("still judging level x pcss after ", 0) == 0;
+  };
+  ASSERT_TRUE(heard.cv.wait_for(lock, std::chrono::seconds(120), judging)) << heard.lines.back();
+  EXPECT_EQ(heard.lines.front().rfind("still drawing level x pcss after ", 0), 0u) << heard.lines.front();
+}
+
 TEST(StallWatch, AWatchEndedMidStepSaysNothing) {
   Heard heard;
   {

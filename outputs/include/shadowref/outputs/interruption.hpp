@@ -3,8 +3,10 @@
 // The command line installs the handlers once (install_interrupt_handlers); a handler only records
 // the signal in an atomic flag, which is all a handler may safely do. The work polls the flag at its
 // commit points — StagedFolder::commit and write_file_atomically, just before the rename that would
-// publish a result — and between units of work (conform: between references and between cases), and
-// stops by throwing Interrupted: the unwinding removes what was in flight (staging folders, temporary
+// publish a result — between units of work (conform: between references and between cases) and at
+// cheap points inside every long one (a reference's tiles, the renderer's passes and bands of rows,
+// the judge's probes, windows and causes), so that a run ends within about 2 s; it stops by
+// throwing Interrupted: the unwinding removes what was in flight (staging folders, temporary
 // files) and leaves the complete results already in place, so a rerun resumes from the complete
 // reference cache entries. The command exits 128 + the signal (130 SIGINT, 143 SIGTERM) with one line.
 // A second signal while the first is honoured ends the process at once (the default action): a

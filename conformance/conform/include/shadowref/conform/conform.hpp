@@ -6,6 +6,7 @@
 // judge (judge.hpp).
 #pragma once
 
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -63,6 +64,9 @@ struct ConformOptions {
   // <scene>/<technique>/mask.png); `techniques` then names the one technique judged.
   std::optional<std::filesystem::path> candidate_dir;
   bool references_only = false;                 // fill the cache and stop (CTest fixtures)
+  // How long one step may last before `stalled` hears of it, and again every time as long. Tests of
+  // the run's stages shorten it to see which stage the run stands in (cmd: SHADOWREF_STALL_REPORT_MS).
+  std::chrono::milliseconds stall_report_after = std::chrono::minutes(2);
   std::vector<ExtraTechnique> extra_techniques; // selectable by name in `techniques`
   bool write_report = true;                     // report.json and report/index.html
   std::string command_line;                     // recorded in report.json
@@ -148,8 +152,9 @@ using Log = std::function<void(const std::string&)>;
 // Runs everything. Throws std::invalid_argument for bad options (unknown technique, backend),
 // scene::SceneError for a broken scene file, renderer::GlError when no context can be created;
 // a failure inside one case is that case's ERROR, not an exception. `stalled` hears, from a thread of
-// its own, "still <step> after <n> s" every two minutes that one step (a reference, a case's drawing
-// or judging) lasts: far beyond any step of the default run, so a hung run says where it stands.
+// its own, "still <step> after <n> s" every two minutes (options.stall_report_after) that one step
+// (a reference, a case's drawing, judging or error images, the expectations, the reports) lasts: far
+// beyond any step of the default run, so a hung run says where it stands.
 ConformResult run_conform(const ConformOptions& options, const Progress& progress = {}, const Log& log = {},
                           const Log& stalled = {});
 
