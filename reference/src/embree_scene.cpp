@@ -50,6 +50,21 @@ EmbreeScene::EmbreeScene(const scene::Scene& scene, const std::string& device_co
   if (!device_)
     throw EmbreeError("Embree: rtcNewDevice(\"" + device_config + "\") failed (error " +
                       std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")");
+  // A constructor that throws runs no destructor: whatever stops the build (an Embree error, an
+  // interruption) releases the scene and the device here, or their buffers leak.
+  try {
+    build(scene);
+  } catch (...) {
+    if (scene_) rtcReleaseScene(scene_);
+    rtcReleaseDevice(device_);
+    throw;
+  }
+  const auto b = scene::bounds(scene);
+  const double d = (b[1] - b[0]).norm();
+  extent_ = d > 0 ? d : 1;
+}
+
+void EmbreeScene::build(const scene::Scene& scene) {
   scene_ = rtcNewScene(device_);
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
@@ -82,9 +97,6 @@ EmbreeScene::EmbreeScene(const scene::Scene& scene, const std::string& device_co
   rtcCommitScene(scene_);
   outputs::throw_if_interrupted();
   check(device_, "building the BVH");
-  const auto b = scene::bounds(scene);
-  const double d = (b[1] - b[0]).norm();
-  extent_ = d > 0 ? d : 1;
 }
 
 EmbreeScene::~EmbreeScene() {

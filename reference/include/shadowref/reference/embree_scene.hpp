@@ -59,6 +59,8 @@ class EmbreeScene {
 
 
  private:
+  // The scene, its geometries and its BVH, into device_ (the constructor releases both if it throws).
+  void build(const scene::Scene& scene);
   const scene::Scene* source_;
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
