@@ -426,12 +426,14 @@ async function render(url, variantName) {
         cascades: csm.cascades,
       };
     }
-    if (node && v.type !== THREE.BasicShadowMap && (light.isPointLight || v.type === THREE.PCFShadowMap)) {
-      // WebGPURenderer's PCF (ShadowFilterNode's PCFShadowFilter; PointShadowNode's PointShadowFilter,
-      // which VSM maps use for point lights too): five taps on a Vogel disk turned per pixel by
+    if (v.type === THREE.PCFShadowMap || (node && v.type !== THREE.BasicShadowMap && light.isPointLight)) {
+      // r187's PCF, on both renderers (WebGLRenderer's getShadow and getPointShadow in
+      // shadowmap_pars_fragment.glsl.js; WebGPURenderer's PCFShadowFilter and PointShadowFilter, which
+      // its VSM maps use for point lights too): five taps on a Vogel disk turned per pixel by
       // interleaved gradient noise, each a bilinear compare. A 2D map's disk reaches 0.95 `radius`
       // texels; a cube's offsets the direction by radius / mapSize, half as many texels at a face's
-      // centre (a face spans 2 in direction units), fewer toward its edges.
+      // centre (a face spans 2 in direction units), fewer toward its edges. WebGLRenderer draws no map
+      // for a point light under VSM, so only WebGPURenderer's VSM point lights are here.
       const r = light.shadow.radius;
       Object.assign(entry, { filter_radius_texels: (light.isPointLight ? r / 2 : r) + 0.5, sampling: 'random' });
     }
