@@ -179,14 +179,27 @@ std::vector<Window> windows_of(const outputs::Image8& reference, const outputs::
     }
   std::sort(seeds.begin(), seeds.end(), [](const auto& a, const auto& b) { return a.first > b.first || (a.first == b.first && a.second < b.second); });
   std::vector<Window> out;
-  std::vector<std::pair<int, int>> taken;
+  // The centres taken, on a grid of cells one more than half a window wide: two centres of one cell
+  // are within half a window of each other, so a cell holds at most one, and a centre within half a
+  // window of a new one lies in its cell or one of the eight around it. The same answer as asking
+  // every centre taken, which cost a boundary's length per seed.
+  constexpr int kCell = kWindowRadius / 2 + 1;
+  const int cells_x = w / kCell + 1, cells_y = h / kCell + 1;
+  std::vector<int> taken(static_cast<std::size_t>(cells_x) * static_cast<std::size_t>(cells_y), -1);  // the centre's index, or -1
+  const auto near_taken = [&](int cx, int cy) {
+    const int gx = cx / kCell, gy = cy / kCell;
+    for (int v = std::max(0, gy - 1); v <= std::min(cells_y - 1, gy + 1); ++v)
+      for (int u = std::max(0, gx - 1); u <= std::min(cells_x - 1, gx + 1); ++u) {
+        const int t = taken[static_cast<std::size_t>(v) * static_cast<std::size_t>(cells_x) + static_cast<std::size_t>(u)];
+        if (t >= 0 && std::abs(cx - t % w) <= kWindowRadius / 2 && std::abs(cy - t / w) <= kWindowRadius / 2) return true;
+      }
+    return false;
+  };
   for (const auto& [density, centre] : seeds) {
     if (out.size() == kMaxZigzagWindows) break;
     const int cx = static_cast<int>(centre % static_cast<std::size_t>(w)), cy = static_cast<int>(centre / static_cast<std::size_t>(w));
-    bool near = false;
-    for (const auto& [tx, ty] : taken) near = near || (std::abs(cx - tx) <= kWindowRadius / 2 && std::abs(cy - ty) <= kWindowRadius / 2);
-    if (near) continue;
-    taken.emplace_back(cx, cy);
+    if (near_taken(cx, cy)) continue;
+    taken[static_cast<std::size_t>(cy / kCell) * static_cast<std::size_t>(cells_x) + static_cast<std::size_t>(cx / kCell)] = cy * w + cx;
     const Window win{cx, cy, std::max(0, cx - kWindowRadius), std::max(0, cy - kWindowRadius), std::min(w - 1, cx + kWindowRadius),
                      std::min(h - 1, cy + kWindowRadius)};
     if (more_crossings(reference, candidate, win.x0, win.y0, win.x1, win.y1)) out.push_back(win);
