@@ -10,7 +10,9 @@ verdict that changed, a scene added or lost — fails, with the report to look a
   run_engines.py --shadowref EXE --irrlicht EXE --osg EXE --work DIR [--verdicts FILE] [--runs GLOB,..] [--record]
 
 --runs renders and judges only the runs whose names match (for working on one harness); the test
-runs them all.
+runs them all. The web runs of one engine and backend are rendered first, together, in one browser
+(render.mjs --batch): each run's line then gives its judging time, a native run's its rendering and
+judging.
 
 Scenes in verdicts.json's `not_judged` are rendered by the harnesses that render every scene but not
 judged on the harnesses each entry names: those harnesses cannot yet give their engine what the scenes
@@ -69,15 +71,33 @@ def web_ready():
     return None
 
 
+def web_batches(runs):
+    """The web runs in groups of one engine and backend, in the table's order: each group is rendered
+    by one render.mjs --batch, one browser for all its variants (what it shares is the browser's
+    start and the engine's loading; every folder is what its variant alone renders)."""
+    groups = {}
+    for r in runs:
+        if r["harness"] in WEB_HARNESSES:
+            groups.setdefault((r["harness"], r.get("backend", "webgl2")), []).append(r)
+    return list(groups.items())
+
+
+def render_web_batch(engine, backend, runs, pack, work):
+    jobs = [{"variant": r["variant"], "out": str(work / "renders" / r["run"]),
+             # a run of the scenes its engine can light so (engines/README.md says why)
+             **({"scenes": r["scenes"]} if r.get("scenes") else {})} for r in runs]
+    batch = work / f"batch-{engine}-{backend}.json"
+    batch.write_text(json.dumps(jobs, indent=1) + "\n")
+    # webgl2 (the default), webgpu, webgpu-webgl2: render.mjs refuses any other backend it finds
+    cmd = ["node", WEB / "render.mjs", "--engine", engine, "--pack", pack, "--batch", batch, "--backend", backend]
+    p = run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    if p.returncode != 0:
+        sys.exit(f"{', '.join(r['run'] for r in runs)}: the {engine} harness ({backend}) failed (exit {p.returncode}):\n{p.stdout}")
+
+
 def render(r, exes, pack, out, work):
-    if r["harness"] in WEB_HARNESSES:
-        cmd = ["node", WEB / "render.mjs", "--engine", r["harness"], "--pack", pack, "--out", out, "--variant", r["variant"]]
-        if r.get("scenes"):  # a run of the scenes its engine can light so (engines/README.md says why)
-            cmd += ["--scenes", ",".join(r["scenes"])]
-        if r.get("backend"):  # webgl2 (the default), webgpu, webgpu-webgl2: render.mjs refuses any other it finds
-            cmd += ["--backend", r["backend"]]
-    else:
-        cmd = under_xvfb([exes[r["harness"]], "--pack", pack, "--out", out, "--variant", r["variant"]], work)
+    """A native harness's render of one run (the web runs are rendered in batches: render_web_batch)."""
+    cmd = under_xvfb([exes[r["harness"]], "--pack", pack, "--out", out, "--variant", r["variant"]], work)
     # The native harnesses draw with Mesa's llvmpipe, in the calling thread as our renderer does: its
     # rasteriser threads can free a fence under the thread that signals it (docs/architecture.md,
     # "The GL context"). Every recorded engine verdict is the same either way (engines.verdicts).
@@ -247,12 +267,16 @@ def main():
 
     failed = False
     observed_by_run = {}
-    for r in table["runs"]:
-        if not any(fnmatch.fnmatchcase(r["run"], p) for p in patterns):
-            continue
+    selected = [r for r in table["runs"] if any(fnmatch.fnmatchcase(r["run"], p) for p in patterns)]
+    for (engine, backend), runs in web_batches(selected):
+        t0 = time.monotonic()
+        render_web_batch(engine, backend, runs, pack, work)
+        print(f"{engine} on {backend}: {len(runs)} run(s) rendered in one browser  ({time.monotonic() - t0:.1f} s)")
+    for r in selected:
         t0 = time.monotonic()
         candidates, verdict_dir = work / "renders" / r["run"], work / "verdicts" / r["run"]
-        render(r, exes, pack, candidates, work)
+        if r["harness"] not in WEB_HARNESSES:
+            render(r, exes, pack, candidates, work)
         scenes = judged_scenes(r, pack, not_judged_on(table, r["harness"]))
         observed = judge(r, a.shadowref.resolve(), pack, candidates, verdict_dir, cache, scenes)
         observed_by_run[r["run"]] = observed

@@ -4,6 +4,13 @@
 //
 //   node render.mjs --engine three|babylon --pack DIR --out DIR --variant V [--scenes a,b]
 //                   [--backend webgl2|webgpu|webgpu-webgl2] [--adapter TEXT] [--no-webgpu-flags]
+//   node render.mjs --engine three|babylon --pack DIR --batch FILE [--backend ...] [...]
+//
+// --batch: several variants of one engine and backend in one browser and one page, each into its own
+// folder: FILE is a JSON list of {"variant": V, "out": DIR, "scenes": [names] (optional: all)}. The
+// page keeps nothing of one render for the next (each loads its scene afresh and sets every
+// setting its variant names), so each folder is what a run of its variant alone writes; what is
+// shared is Chromium's start and the engine's loading (about 5 s for Babylon.js, 2 s for three.js).
 //
 // --backend: webgl2 (the default: three.js's WebGLRenderer, Babylon's Engine), webgpu (three.js's
 // WebGPURenderer, Babylon's WebGPUEngine, on WebGPU), webgpu-webgl2 (three.js's WebGPURenderer on
@@ -23,8 +30,8 @@ import puppeteer from 'puppeteer-core';
 
 const HERE = path.dirname(fileURLToPath(import.meta.url));
 
-const USAGE = 'usage: render.mjs --engine three|babylon --pack DIR --out DIR --variant V [--scenes a,b] [--chromium EXE]' +
-  ' [--backend webgl2|webgpu|webgpu-webgl2] [--adapter TEXT] [--no-webgpu-flags]';
+const USAGE = 'usage: render.mjs --engine three|babylon --pack DIR (--out DIR --variant V [--scenes a,b] | --batch FILE)' +
+  ' [--chromium EXE] [--backend webgl2|webgpu|webgpu-webgl2] [--adapter TEXT] [--no-webgpu-flags]';
 
 function parseArgs(argv) {
   const a = { scenes: '', backend: 'webgl2', adapter: '', webgpuFlags: true };
@@ -35,12 +42,23 @@ function parseArgs(argv) {
       i -= 1;
       continue;
     }
-    if (!['engine', 'pack', 'out', 'variant', 'scenes', 'chromium', 'backend', 'adapter'].includes(key) || i + 1 >= argv.length)
+    if (!['engine', 'pack', 'out', 'variant', 'scenes', 'chromium', 'backend', 'adapter', 'batch'].includes(key) || i + 1 >= argv.length)
       throw new Error(`${USAGE} (at ${argv[i]})`);
     a[key] = argv[i + 1];
   }
   if (!['webgl2', 'webgpu', 'webgpu-webgl2'].includes(a.backend)) throw new Error(`--backend ${a.backend}: ${USAGE}`);
-  for (const k of ['engine', 'pack', 'out', 'variant']) if (!a[k]) throw new Error(`--${k} is required`);
+  for (const k of ['engine', 'pack']) if (!a[k]) throw new Error(`--${k} is required`);
+  if (a.batch) {
+    if (a.out || a.variant || a.scenes) throw new Error(`--batch gives each variant its folder and scenes: ${USAGE}`);
+    const jobs = JSON.parse(fs.readFileSync(a.batch, 'utf8'));
+    if (!Array.isArray(jobs) || !jobs.length || jobs.some((j) => typeof j.variant !== 'string' || typeof j.out !== 'string' ||
+        (j.scenes !== undefined && !Array.isArray(j.scenes))))
+      throw new Error(`${a.batch}: a batch is a non-empty list of {"variant": V, "out": DIR, "scenes": [names]}`);
+    a.jobs = jobs;
+  } else {
+    for (const k of ['out', 'variant']) if (!a[k]) throw new Error(`--${k} is required`);
+    a.jobs = [{ variant: a.variant, out: a.out, scenes: a.scenes ? a.scenes.split(',') : undefined }];
+  }
   return a;
 }
 
@@ -100,8 +118,7 @@ function serve(pack) {
 async function main() {
   const a = parseArgs(process.argv.slice(2));
   const manifest = JSON.parse(fs.readFileSync(path.join(a.pack, 'manifest.json'), 'utf8'));
-  const wanted = a.scenes ? a.scenes.split(',') : null;
-  const scenes = manifest.scenes.map((s) => s.name).filter((n) => !wanted || wanted.includes(n));
+  const scenesOf = (job) => manifest.scenes.map((s) => s.name).filter((n) => !job.scenes || job.scenes.includes(n));
   const server = await serve(a.pack);
   const origin = `http://127.0.0.1:${server.address().port}`;
   // WebGPU on the CPU: Dawn on SwiftShader's Vulkan, which Chromium offers only when asked (the
@@ -152,15 +169,17 @@ async function main() {
       held = null;
       process.stdout.write(`environment: ${JSON.stringify(ready.environment)}\n`);
     }
-    for (const scene of ready.error ? [] : scenes) {
+    const batched = a.jobs.length > 1;
+    for (const job of ready.error ? [] : a.jobs) for (const scene of scenesOf(job)) {
       const t0 = Date.now();
-      const r = await page.evaluate((url, variant) => window.harness.render(url, variant), `${origin}/pack/${scene}/scene.gltf`, a.variant);
+      const r = await page.evaluate((url, variant) => window.harness.render(url, variant), `${origin}/pack/${scene}/scene.gltf`, job.variant);
+      const named = batched ? `${job.variant}: ${scene}` : scene;
       if (r.error) {
-        process.stderr.write(`${scene}: ${r.error}\n`);
+        process.stderr.write(`${named}: ${r.error}\n`);
         failed = true;
         continue;
       }
-      const dir = path.join(a.out, scene);
+      const dir = path.join(job.out, scene);
       fs.mkdirSync(dir, { recursive: true });
       r.masks.forEach((b64, i) => {
         const name = r.masks.length === 1 ? 'mask.png' : `mask_${i}.png`;
@@ -172,7 +191,7 @@ async function main() {
         fs.writeFileSync(path.join(dir, name), greyPng(r.width, r.height, Buffer.from(png, 'base64')));
       });
       fs.writeFileSync(path.join(dir, 'candidate.json'), JSON.stringify(r.candidate, null, 2) + '\n');
-      process.stdout.write(`${scene}: ${r.masks.length} mask(s), ${Date.now() - t0} ms\n`);
+      process.stdout.write(`${named}: ${r.masks.length} mask(s), ${Date.now() - t0} ms\n`);
     }
   } finally {
     await browser.close();
