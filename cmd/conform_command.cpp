@@ -46,6 +46,7 @@ struct ConformArgs {
   int jobs = 0;
   int spp = 16;
   bool references_only = false;
+  bool no_resolving_power = false;
   bool quiet = false;
   std::vector<std::string> expectations;
   ShardArgs shard;
@@ -100,7 +101,7 @@ void print_case_lines(const conform::ConformResult& r) {
 
 // How many cases could not have seen a blatant error of some kind under their declaration, and how
 // to sharpen them (conform/resolving_power.hpp).
-void print_resolving_power(const conform::ConformResult& r) {
+void print_resolving_power(const conform::ConformResult& r, const conform::ConformOptions& o) {
   std::size_t judged = 0;
   std::size_t blind = 0;
   for (const conform::CaseResult& c : r.cases) {
@@ -108,7 +109,10 @@ void print_resolving_power(const conform::ConformResult& r) {
     ++judged;
     blind += !c.judgement->resolving_power->blind.empty();
   }
-  if (!judged) return;
+  if (!judged) {
+    if (!r.cases.empty() && !o.resolving_power) std::printf("resolving power: not computed (--no-resolving-power)\n");
+    return;
+  }
   if (blind == 0) {
     std::printf("resolving power: none of %zu judged cases lets a probe that changes a decided pixel pass (report.json: resolving_power)\n", judged);
     return;
@@ -147,6 +151,7 @@ int run_conform_command(const ConformArgs& a) {
   o.cache = a.cache;
   o.jobs = a.jobs;
   o.references_only = a.references_only;
+  o.resolving_power = !a.no_resolving_power;
   int n = 1;
   while (n * n < a.spp) ++n;
   if (n * n != a.spp || n > 16) throw BadInput("--spp " + std::to_string(a.spp) + ": must be a square number in [1, 256]");
@@ -216,7 +221,7 @@ int run_conform_command(const ConformArgs& a) {
   if (linked)
     std::printf("note: %zu candidate file(s) were read through symbolic links that leave --candidate-dir "
                 "(report.json: read_through_links)\n", linked);
-  print_resolving_power(r);
+  print_resolving_power(r, o);
   print_expectation_lines(r, o.expectations);
   print_shard(r, o);
   std::printf("report: %s\n        %s\n", r.report_html.string().c_str(), r.report_json.string().c_str());
@@ -259,6 +264,9 @@ void register_conform_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--spp", args->spp, "reference samples per pixel (a square number)")->capture_default_str();
   cmd->add_flag("--references-only", args->references_only, "compute the references into the cache and stop");
+  cmd->add_flag("--no-resolving-power", args->no_resolving_power,
+                "judge without the resolving power's probes: the same verdicts, metrics and statuses, in a fraction of "
+                "the judging time; report.json then has no resolving_power");
   cmd->add_flag("--quiet", args->quiet, "no progress lines (a step still running after two minutes is reported all the same)");
   add_expectations_option(*cmd, args->expectations);
   add_shard_options(*cmd, args->shard);

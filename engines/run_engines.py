@@ -121,9 +121,14 @@ def judged_scenes(r, pack, not_judged):
     return [f.stem for f in sorted((pack / "scenes").glob("*.json")) if f.stem not in not_judged]
 
 
-def judge(r, shadowref, pack, candidates, out, cache, scenes):
+def judge(r, shadowref, pack, candidates, out, cache, scenes, probe):
+    """Each scene's status. `probe`: with each case's resolving power, which only a person reads (a
+    recording, whose non-PASS verdicts get their why from the reports); the verdicts are the same
+    without it (conformance.no_resolving_power), and a check of them needs none."""
     cmd = [shadowref, "conform", "--catalogue", pack / "scenes", "--candidate-dir", candidates,
            "--technique", r["technique"], "--out", out, "--cache", cache, "--quiet", "--scenes", ",".join(scenes)]
+    if not probe:
+        cmd.append("--no-resolving-power")
     p = run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if p.returncode not in (0, 1, 2):  # 0 pass, 1 warnings, 2 failures: all verdicts; others are errors
         sys.exit(f"{r['run']}: shadowref conform failed (exit {p.returncode}):\n{p.stdout}")
@@ -248,6 +253,8 @@ def main():
     ap.add_argument("--verdicts", type=pathlib.Path, default=HERE / "verdicts.json")
     ap.add_argument("--record", action="store_true", help="rewrite the recorded verdicts from this run")
     ap.add_argument("--runs", default="*", help="comma-separated globs over the run names (default: every run)")
+    ap.add_argument("--resolving-power", action="store_true",
+                    help="give each verdict its resolving power in the reports (always with --record)")
     a = ap.parse_args()
     patterns = a.runs.split(",")
 
@@ -278,7 +285,7 @@ def main():
         if r["harness"] not in WEB_HARNESSES:
             render(r, exes, pack, candidates, work)
         scenes = judged_scenes(r, pack, not_judged_on(table, r["harness"]))
-        observed = judge(r, a.shadowref.resolve(), pack, candidates, verdict_dir, cache, scenes)
+        observed = judge(r, a.shadowref.resolve(), pack, candidates, verdict_dir, cache, scenes, a.record or a.resolving_power)
         observed_by_run[r["run"]] = observed
         diff = differences(r["verdicts"], observed)
         counts = {}

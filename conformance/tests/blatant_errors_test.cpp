@@ -64,6 +64,7 @@ conform::CaseResult judge_render(const std::string& name, const std::function<vo
   o.candidate_dir = dir;
   o.out = f.root / name / "verdict";
   o.cache = SHADOWREF_TEST_CACHE;
+  o.resolving_power = false;  // the verdict is what this test reads
   const conform::ConformResult res = conform::run_conform(o);
   EXPECT_EQ(res.cases.size(), 1u);
   return res.cases.at(0);

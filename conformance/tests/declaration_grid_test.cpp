@@ -544,7 +544,7 @@ TEST(DeclaredCascades, ASwitchWithinTheDeclaredBlendIsExplainedByEitherCascade) 
   // before its declared end. The first and the last split stay.
   std::vector<double> later = drawn;
   for (std::size_t i = 1; i + 1 < drawn.size(); ++i) later[i] = std::min((drawn[i] - 0.2 * later[i - 1]) / 0.8, 0.5 * (drawn[i] + drawn[i + 1]));
-  conform::Judge judge;
+  conform::Judge judge{false};  // verdicts only: no resolving power
   const auto judged = [&](const std::string& name, const std::vector<double>& splits, double blend) {
     outputs::CandidateDeclaration d = r.declaration;
     for (outputs::CandidateDeclaration* l : {&d, d.lights.empty() ? &d : &d.lights.at(0)})
@@ -654,7 +654,7 @@ TEST(PeterPanning, AConstantBiasDeclaredHonestlyStillFailsOnItsLeak) {
   const scene::Scene& scene = contact.scene;
   const scene::PreparedScene& prepared = contact.prepared;
   const fs::path& reference = contact.reference;
-  conform::Judge judge;
+  conform::Judge judge{false};  // verdicts only: no resolving power
   for (const double metres : {0.0, 0.064, 0.26}) {
     renderer::RenderOptions options;
     options.faults.shadow_map.constant_offset_world = metres;
@@ -684,7 +684,7 @@ TEST(ContactLeak, ACorrectMapsLeakBehindABoxOnAGrazingGroundIsExplained) {
   scene::Scene scene = scene::load_scene(conform::default_catalogue() / "grazing_light.json");
   scene.width *= 4;
   scene.height *= 4;
-  conform::Judge judge;
+  conform::Judge judge{false};  // verdicts only: no resolving power
   for (const int size : {512, 1024}) {
     scene::PrepareOptions prepare;
     prepare.shadow_map_size = size;
@@ -818,7 +818,7 @@ TEST(PerLightDeclarations, AnEntryReachesItsLightAndBuysNothing) {
   const fs::path& reference = two_lights.reference;
   const renderer::RenderResult ours = test::llvmpipe_renderer().render(prepared, "shadowmap");
   ASSERT_EQ(ours.masks.size(), 2u);
-  conform::Judge judge;
+  conform::Judge judge{false};  // verdicts only: no resolving power
   const auto judged = [&](const std::string& name, const Image8& mask_0, const Image8& mask_1, const std::string& keys) {
     const fs::path dir = fs::path(SHADOWREF_TEST_OUT) / "per-light" / name;
     fs::create_directories(dir);

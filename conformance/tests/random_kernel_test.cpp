@@ -47,7 +47,7 @@ conform::CaseJudgement render_and_judge(const std::string& scene_name, const std
   EXPECT_EQ(r.declaration.light_taps * r.declaration.light_taps, taps) << "light_taps is the root of the taps";
   const fs::path dir = fs::path(SHADOWREF_TEST_OUT) / scene_name / technique / (std::to_string(taps) + "-" + variant.name);
   renderer::write_outputs(r, test::llvmpipe_renderer().info(), scene, dir);
-  conform::Judge judge;
+  conform::Judge judge{false};  // verdicts only: no resolving power
   conform::CaseJudgement j = judge.judge(&prepared, {reference, dir, technique, true, {}});
   const compare::Decision& v = j.comparison.decision;
   std::printf("%s x %s, %d random taps, %s: %s", scene_name.c_str(), technique.c_str(), taps, variant.name,

@@ -26,7 +26,7 @@ conform::CaseJudgement render_and_judge(const test::CatalogueScene& c, const std
   const renderer::RenderResult r = test::llvmpipe_renderer().render(c.prepared, technique, options);
   const fs::path dir = fs::path(SHADOWREF_TEST_OUT) / technique / (textbook ? "textbook-search" : "control");
   renderer::write_outputs(r, test::llvmpipe_renderer().info(), c.scene, dir);
-  conform::Judge judge;
+  conform::Judge judge{false};  // verdicts only: no resolving power
   conform::CaseJudgement j = judge.judge(&c.prepared, {c.reference, dir, technique, true, {}});
   std::printf("level x %s, %s: %s", technique.c_str(), textbook ? "textbook search" : "control",
               compare::to_string(j.comparison.decision.verdict));

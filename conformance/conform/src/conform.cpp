@@ -52,7 +52,8 @@ std::filesystem::path candidate_folder(const std::filesystem::path& dir, const s
 // Everything a run holds between its phases. The scenes do not move once prepared (the prepared
 // scenes point at them).
 struct Run {
-  Run(const ConformOptions& options, const Log& l, ConformResult& r, StallWatch& w) : o(options), log(l), result(r), watch(w) {}
+  Run(const ConformOptions& options, const Log& l, ConformResult& r, StallWatch& w)
+      : o(options), log(l), result(r), watch(w), judge(options.resolving_power) {}
   const ConformOptions& o;
   const Log& log;
   ConformResult& result;

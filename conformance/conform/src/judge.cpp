@@ -154,7 +154,7 @@ std::string declared_views_problem(const scene::PreparedScene& prepared, std::si
 
 }  // namespace
 
-Judge::Judge() : memo_(std::make_unique<CauseMemo>()) {}
+Judge::Judge(bool probe) : memo_(std::make_unique<CauseMemo>()), probe_(probe) {}
 Judge::~Judge() = default;
 
 reference::CauseModel& Judge::causes_of(const scene::PreparedScene& prepared) {
@@ -239,10 +239,12 @@ CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJud
   j.comparison = compare::compare_folders(c.reference_dir, c.candidate_dir, threshold, options);
 
   // 5. What the verdict could have seen, once per reference, threshold and declaration as judged.
-  const std::string key = c.reference_dir.string() + '\n' + std::string(threshold.name) + '\n' + cause_key;
-  auto known = resolving_.find(key);
-  if (known == resolving_.end()) known = resolving_.emplace(key, resolving_power(c.reference_dir, s.lights.size(), threshold, options)).first;
-  j.resolving_power = known->second;
+  if (probe_) {
+    const std::string key = c.reference_dir.string() + '\n' + std::string(threshold.name) + '\n' + cause_key;
+    auto known = resolving_.find(key);
+    if (known == resolving_.end()) known = resolving_.emplace(key, resolving_power(c.reference_dir, s.lights.size(), threshold, options)).first;
+    j.resolving_power = known->second;
+  }
 
   // 6. Status and signature.
   j.status = status_of(j.comparison.decision.verdict, j.expectation.pass);

@@ -69,6 +69,9 @@ struct ConformOptions {
   std::chrono::milliseconds stall_report_after = std::chrono::minutes(2);
   std::vector<ExtraTechnique> extra_techniques; // selectable by name in `techniques`
   bool write_report = true;                     // report.json and report/index.html
+  // Each case's resolving power (resolving_power.hpp); off, report.json has none and every verdict,
+  // metric and status is the same (a sweep that checks verdicts only).
+  bool resolving_power = true;
   std::string command_line;                     // recorded in report.json
   // One shard of a split run (shard_plan.hpp): only the scenes the plan gives it, plus the control
   // case; none: the whole selection. `shard_weights` (scene -> seconds) balances the plan.

@@ -69,7 +69,7 @@ struct CaseJudgement {
   std::string causes;                          // which causes may explain wrong pixels, in words
   double model_seconds = 0;                    // spent drawing the technique's model (inside the judging)
   // What the verdict could have seen under this declaration (resolving_power.hpp); absent when the
-  // scene is not known.
+  // scene is not known or the judge was asked not to probe (Judge's `probe`).
   std::optional<ResolvingPower> resolving_power;
 };
 
@@ -77,7 +77,9 @@ struct CaseJudgement {
 // the techniques' models of their failures, each built when a case first needs it.
 class Judge {
  public:
-  Judge();
+  // `probe`: compute each case's resolving power (the probes cost most of the judging; a run that
+  // reads only the verdicts, such as a sweep, may leave them out: the verdicts are the same).
+  explicit Judge(bool probe = true);
   ~Judge();
   Judge(const Judge&) = delete;
   Judge& operator=(const Judge&) = delete;
@@ -100,6 +102,7 @@ class Judge {
   // Per reference folder, threshold and declaration as judged: the probes do not depend on the candidate.
   std::map<std::string, ResolvingPower> resolving_;
   std::unique_ptr<renderer::Renderer> model_gl_;
+  bool probe_ = true;
 };
 
 }  // namespace shadowref::conform
