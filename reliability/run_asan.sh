@@ -6,7 +6,9 @@
 # non-zero when either pass below has a failure.
 #
 #   reliability/run_asan.sh [BUILD] [extra ctest arguments, e.g. -R BadInput]
-# (with extra arguments only the first pass runs, filtered by them)
+#   TARGETS="shadowref scene_test" reliability/run_asan.sh [BUILD] -R ...
+# (with extra arguments only the first pass runs, filtered by them; TARGETS builds only those
+# targets, for a filter whose tests they are, instead of the whole tree)
 #
 # Options, and why:
 #   ASAN_OPTIONS detect_leaks=1 (the default, stated), abort_on_error=1 (a report is a failure,
@@ -30,7 +32,8 @@ build="${1:-$root/build/asan}"
 shift || true
 cd "$root"
 cmake --preset asan -B "$build" >/dev/null
-cmake --build "$build" -j "${JOBS:-2}"
+# shellcheck disable=SC2086 # TARGETS is a list of names
+cmake --build "$build" -j "${JOBS:-2}" ${TARGETS:+--target $TARGETS}
 asan="detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1"
 # The suppressions are read from outside the source tree: install.standalone hides that tree (and the
 # build folder inside it) from the installed binary it runs, which would then fail to read them.

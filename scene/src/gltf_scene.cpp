@@ -14,6 +14,7 @@
 #include <numbers>
 #include <optional>
 #include <set>
+#include <stdexcept>
 
 #include "gltf_model.hpp"
 #include "json_node.hpp"
@@ -373,9 +374,14 @@ class Reader {
     } catch (const outputs::InputError& e) {
       throw SceneError(e.what());
     }
-    if (png.width > kMaxAlphaTextureSize || png.height > kMaxAlphaTextureSize)
-      refuse(file_, what + ": the mask, " + image_name + ", is larger than " + std::to_string(kMaxAlphaTextureSize) + " texels on a side");
-    if (png.channels == 1 || png.channels == 3) {
+    std::shared_ptr<const AlphaTexture> texture;
+    try {
+      // embedded: the glTF file stands for it (non-empty: a texture, not vertex alpha only)
+      texture = alpha_texture_of(png, file_, WithoutAlpha::Opaque);
+    } catch (const std::invalid_argument& e) {
+      refuse(file_, what + ": the mask, " + image_name + ", is " + e.what());
+    }
+    if (!texture) {
       notes_.insert("a MASK material's baseColorTexture without an alpha channel has alpha 1 (glTF): only its vertex alpha and "
                     "baseColorFactor's alpha mask it");
       return false;
@@ -406,13 +412,6 @@ class Reader {
         refuse(file_, what + ": the mask's sampler clamps or mirrors and its " + coord + " leaves [0, 1]: the suite's rule wraps "
                              "(REPEAT), so the mask would differ");
     }
-    auto texture = std::make_shared<AlphaTexture>();
-    texture->width = png.width;
-    texture->height = png.height;
-    texture->file = file_;  // embedded: the glTF file stands for it (non-empty: a texture, not vertex alpha only)
-    texture->alpha.resize(png.pixel_count());
-    const std::size_t c = static_cast<std::size_t>(png.channels);
-    for (std::size_t i = 0; i < texture->alpha.size(); ++i) texture->alpha[i] = png.pixels[i * c + c - 1];
     mask.texture = std::move(texture);
     return true;
   }

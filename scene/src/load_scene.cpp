@@ -15,6 +15,7 @@
 #include <limits>
 #include <numbers>
 #include <sstream>
+#include <stdexcept>
 #include <system_error>
 
 #include "json_node.hpp"
@@ -232,17 +233,11 @@ std::shared_ptr<const AlphaTexture> read_alpha_texture(const JsonNode& f, const 
   } catch (const outputs::InputError& e) {
     f.fail(e.what());
   }
-  if (image.channels == 3) f.fail(path.string() + ": an RGB image without alpha (expected grey, grey + alpha or RGBA)");
-  if (image.width > kMaxAlphaTextureSize || image.height > kMaxAlphaTextureSize)
-    f.fail(path.string() + ": larger than " + std::to_string(kMaxAlphaTextureSize) + " texels on a side");
-  auto texture = std::make_shared<AlphaTexture>();
-  texture->file = path;
-  texture->width = image.width;
-  texture->height = image.height;
-  texture->alpha.resize(image.pixel_count());
-  const std::size_t c = static_cast<std::size_t>(image.channels);
-  for (std::size_t i = 0; i < texture->alpha.size(); ++i) texture->alpha[i] = image.pixels[i * c + c - 1];
-  return texture;
+  try {
+    return alpha_texture_of(image, path, WithoutAlpha::Grey);
+  } catch (const std::invalid_argument& e) {
+    f.fail(path.string() + ": " + e.what());
+  }
 }
 
 // An object's mask (alpha_mask.hpp) from its uvs, alpha_texture, alpha_cutoff and vertex_alpha keys;

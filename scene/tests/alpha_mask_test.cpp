@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <stdexcept>
+#include <vector>
 
+#include "shadowref/outputs/image.hpp"
 #include "shadowref/scene/alpha_mask.hpp"
 #include "shadowref/scene/load_scene.hpp"
 #include "test_scene_json.hpp"
@@ -67,6 +70,42 @@ Scene with_card(const nlohmann::json& card) {
   nlohmann::json doc = test::minimal_scene();
   doc["objects"][1] = card;
   return parse_scene(doc.dump(), data("test.json"));
+}
+
+// The one reader of a mask texture, under each format's rule for an image without alpha: the
+// alpha channel whatever the rule; a grey image's grey (a JSON scene) or none, alpha 1 (glTF).
+TEST(AlphaTextureOf, TheAlphaChannelUnderBothRulesAndTheGreyOnlyUnderTheScenesRule) {
+  const auto image = [](int channels, std::vector<std::uint8_t> pixels) {
+    outputs::Image8 m;
+    m.width = 2;
+    m.height = 1;
+    m.channels = channels;
+    m.pixels = std::move(pixels);
+    return m;
+  };
+  const outputs::Image8 grey = image(1, {10, 200}), grey_alpha = image(2, {10, 20, 200, 30}),
+                        rgb = image(3, {1, 2, 3, 4, 5, 6}), rgba = image(4, {1, 2, 3, 40, 4, 5, 6, 50});
+  for (const WithoutAlpha rule : {WithoutAlpha::Grey, WithoutAlpha::Opaque}) {
+    const auto ga = alpha_texture_of(grey_alpha, "ga.png", rule);
+    ASSERT_TRUE(ga);
+    EXPECT_EQ(ga->alpha, (std::vector<std::uint8_t>{20, 30}));
+    EXPECT_EQ(ga->file, "ga.png");
+    EXPECT_EQ(ga->width, 2);
+    EXPECT_EQ(ga->height, 1);
+    const auto c = alpha_texture_of(rgba, "c.png", rule);
+    ASSERT_TRUE(c);
+    EXPECT_EQ(c->alpha, (std::vector<std::uint8_t>{40, 50}));
+  }
+  const auto g = alpha_texture_of(grey, "g.png", WithoutAlpha::Grey);
+  ASSERT_TRUE(g);
+  EXPECT_EQ(g->alpha, (std::vector<std::uint8_t>{10, 200}));
+  EXPECT_EQ(alpha_texture_of(grey, "g.png", WithoutAlpha::Opaque), nullptr);
+  EXPECT_EQ(alpha_texture_of(rgb, "rgb.png", WithoutAlpha::Opaque), nullptr);
+  EXPECT_THROW(alpha_texture_of(rgb, "rgb.png", WithoutAlpha::Grey), std::invalid_argument);
+  outputs::Image8 wide = image(2, {});
+  wide.width = kMaxAlphaTextureSize + 1;
+  wide.pixels.assign(static_cast<std::size_t>(wide.width) * 2, 255);
+  EXPECT_THROW(alpha_texture_of(wide, "wide.png", WithoutAlpha::Opaque), std::invalid_argument);
 }
 
 TEST(AlphaLoad, ReadsTheAlphaChannelNotTheGrey) {

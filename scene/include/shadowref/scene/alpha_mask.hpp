@@ -28,6 +28,10 @@
 
 #include "shadowref/conventions.hpp"
 
+namespace shadowref::outputs {
+struct Image8;  // outputs/image.hpp
+}
+
 namespace shadowref::scene {
 
 // An object's 8-bit alpha texture, row 0 at the top (the PNG's own order).
@@ -80,6 +84,20 @@ inline bool alpha_opaque_at(const AlphaMask& mask, const std::array<std::uint32_
   const AlphaTexture& tex = *mask.texture;
   return alpha_opaque(tex.at(alpha_texel(u, tex.width), alpha_texel(v, tex.height)), a, alpha_threshold(mask.cutoff));
 }
+
+// How an image without an alpha channel reads as a mask: the one point where the two formats that
+// give masks differ. A JSON scene's `alpha_texture` reads a grey image's grey (docs/scene-format.md,
+// "Alpha masks"); glTF gives a texture without alpha the alpha 1 (its base colour's alpha is 1.0
+// when absent), so only vertex alpha and the factor's alpha mask it.
+enum class WithoutAlpha { Grey, Opaque };
+
+// The mask texture of an 8-bit image (grey, grey + alpha, RGB or RGBA, row 0 at the top) that
+// `file` names: the alpha channel's texels, or without one, per `rule`, the grey image's grey
+// (Grey) or null (Opaque: alpha 1 everywhere). Throws std::invalid_argument, its message what is
+// wrong for the caller to prefix with the file or key, for an RGB image under Grey (neither grey
+// nor alpha) and for a side beyond kMaxAlphaTextureSize. Cost: one pass over the texels.
+std::shared_ptr<const AlphaTexture> alpha_texture_of(const outputs::Image8& image, std::filesystem::path file,
+                                                     WithoutAlpha rule);
 
 // The same operations in GLSL 3.30: `int alpha_texel(float t, int size)` and
 // `bool alpha_opaque(uint a8, float vertex_alpha, float threshold)`, for a shader that reads the
