@@ -250,8 +250,16 @@ std::vector<const ExpectationLine*> stale_lines(const Expectations& e, const std
   return out;
 }
 
+std::string known_line(const CaseOutcome& c, const std::string& convention) {
+  std::string limit;
+  for (const auto& [k, v] : c.environment)
+    if (k == "api" && v.find_first_of(" ,#") == std::string::npos) limit = ",api=" + v;
+  return case_name(c.scene, c.technique, convention) + "," + to_string(c.status) + limit;
+}
+
 std::string expectations_update_text(const Expectations& e, const std::vector<CaseOutcome>& cases,
-                                     const std::vector<const ExpectationLine*>& stale, const std::string& convention) {
+                                     const std::vector<const ExpectationLine*>& stale, const std::string& convention,
+                                     bool new_lines) {
   std::ostringstream t;
   t << "# The expectations that make the next run of these cases green (shadowref, docs/ci.md): the lines\n"
        "# still met, one line per new failure or warning, no line for an improvement or a stale case.\n";
@@ -261,12 +269,7 @@ std::string expectations_update_text(const Expectations& e, const std::vector<Ca
     const ExpectationLine* l = e.line_for(c.scene, c.technique, convention, c.environment);
     if (c.outcome == Outcome::Improvement || c.outcome == Outcome::NewFailure || c.outcome == Outcome::NewWarning) {
       if (l) gone.insert(l);
-      // Seen on one API: expected there only, so the same case on another backend stays judged.
-      std::string limit;
-      for (const auto& [k, v] : c.environment)
-        if (k == "api" && v.find_first_of(" ,#") == std::string::npos) limit = ",api=" + v;
-      if (c.outcome != Outcome::Improvement)
-        added.push_back(case_name(c.scene, c.technique, convention) + "," + to_string(c.status) + limit + "  # new in this run");
+      if (c.outcome != Outcome::Improvement && new_lines) added.push_back(known_line(c, convention) + "  # new in this run");
     }
   }
   for (const ExpectationLine& l : e.lines)

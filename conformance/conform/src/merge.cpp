@@ -262,6 +262,8 @@ ConformResult merge_shards(const MergeOptions& o) {
   j["summary"] = summary_json(r.cases.size(), r.count(Status::Pass), r.count(Status::Warn), r.count(Status::Fail),
                               r.count(Status::XFail), r.count(Status::XPass), r.count(Status::Error), r.exit_code());
   j.erase("expectations");
+  std::vector<CaseOutcome> outcomes;
+  for (const CaseResult& c : r.cases) outcomes.push_back({c.scene, c.technique, c.status, c.outcome, c.environment});
   std::string update;
   if (!o.expectations.empty()) {
     std::vector<outputs::Environment> environments;
@@ -270,10 +272,9 @@ ConformResult merge_shards(const MergeOptions& o) {
         environments.push_back(c.environment);
     r.stale = stale_lines(o.expectations, r.scenes, r.techniques, r.convention, environments);
     j["expectations"] = expectations_json(o.expectations, r.stale, j["cases"]);
-    std::vector<CaseOutcome> outcomes;
-    for (const CaseResult& c : r.cases) outcomes.push_back({c.scene, c.technique, c.status, c.outcome, c.environment});
     update = expectations_update_text(o.expectations, outcomes, r.stale, r.convention);
   }
+  j["triage"] = triage_json(o.expectations, outcomes, r.stale, r.convention);
   publish_reports(j, staged, r.report_json, update);
   return r;
 }

@@ -187,6 +187,15 @@ json expectations_json(const Expectations& e, const std::vector<const Expectatio
   return {{"files", files}, {"counts", counts}, {"stale", st}, {"update", "expectations-update.txt"}};
 }
 
+json triage_json(const Expectations& e, const std::vector<CaseOutcome>& cases, const std::vector<const ExpectationLine*>& stale,
+                 const std::string& convention) {
+  json lines = json::array();
+  for (const CaseOutcome& c : cases)
+    if (c.outcome == Outcome::NewFailure || c.outcome == Outcome::NewWarning)
+      lines.push_back({{"scene", c.scene}, {"technique", c.technique}, {"line", known_line(c, convention)}});
+  return {{"base", expectations_update_text(e, cases, stale, convention, false)}, {"cases", lines}};
+}
+
 void publish_reports(const json& j, outputs::StagedFolder& staged, const fs::path& report_json, const std::string& update) {
   report::write_html(j, staged.path() / "index.html");
   staged.commit();
@@ -260,13 +269,14 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
     j["shard"] = {{"index", o.shard->index + 1}, {"total", o.shard->total}, {"source", o.shard->source},
                   {"scenes", r.scenes}, {"control", control}};
   }
+  std::vector<CaseOutcome> outcomes;
+  for (const CaseResult& c : r.cases) outcomes.push_back({c.scene, c.technique, c.status, c.outcome, c.environment});
   std::string update;
   if (with_expectations) {
     j["expectations"] = expectations_json(o.expectations, r.stale, cases);
-    std::vector<CaseOutcome> outcomes;
-    for (const CaseResult& c : r.cases) outcomes.push_back({c.scene, c.technique, c.status, c.outcome, c.environment});
     update = expectations_update_text(o.expectations, outcomes, r.stale, r.convention);
   }
+  j["triage"] = triage_json(o.expectations, outcomes, r.stale, r.convention);
   publish_reports(j, staged, r.report_json, update);
 }
 

@@ -29,6 +29,13 @@ nlohmann::json summary_json(std::size_t cases, std::size_t pass, std::size_t war
 nlohmann::json expectations_json(const Expectations& e, const std::vector<const ExpectationLine*>& stale,
                                  const nlohmann::json& cases);
 
+// report.json's "triage", from which the page lets a person accept today's failures: "base", the
+// expectations file without the new lines (expectations_update_text's, new_lines false: `e`'s lines
+// still met, its [flakes] and [skips]), and "cases", each new failure and warning as
+// {"scene", "technique", "line"} (known_line, the line the page adds when the case is marked).
+nlohmann::json triage_json(const Expectations& e, const std::vector<CaseOutcome>& cases,
+                           const std::vector<const ExpectationLine*>& stale, const std::string& convention);
+
 // Writes the page for `report` into `staged` (whose img/ is filled) and commits it, then
 // report.junit.xml, summary.md, `update` as expectations-update.txt (when not empty) and report.json
 // last, beside `report_json` (docs/output-contract.md: a report.json means the run finished).

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdlib>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -64,16 +65,20 @@ std::vector<ProbeSpec> probe_specs() {
   out.push_back({ProbeKind::Shrunk1, "shrunk 1 px"});
   for (const auto& [rank, where] : {std::pair{0, "busiest"}, {1, "second busiest"}, {2, "third busiest"}})
     out.push_back({ProbeKind::Tile8, std::string("an 8x8 tile swapped at the ") + where + " place", 0, 0, rank});
+  for (int rank = static_cast<int>(kBusiestTilePlaces); rank < static_cast<int>(kTilePlacesProbed); ++rank)
+    out.push_back({ProbeKind::Tile8, "an 8x8 tile swapped at boundary place " + std::to_string(rank + 1) + " (spread)", 0, 0, rank});
   return out;
 }
 
-Image8 probed(const Image8& mask, const ProbeSpec& p) {
+// `mask` (whose tile places are `places`) with the error of probe `p`.
+Image8 probed(const Image8& mask, const std::vector<TilePlace>& places, const ProbeSpec& p) {
   switch (p.kind) {
     case ProbeKind::Shift1:
     case ProbeKind::Shift2: return shifted(mask, p.dx, p.dy);
     case ProbeKind::Grown1: return morphed(mask, true);
     case ProbeKind::Shrunk1: return morphed(mask, false);
-    case ProbeKind::Tile8: return swapped_tile(mask, p.rank);
+    case ProbeKind::Tile8:
+      return static_cast<std::size_t>(p.rank) < places.size() ? swapped_tile_at(mask, places[static_cast<std::size_t>(p.rank)]) : mask;
   }
   return mask;
 }
@@ -94,28 +99,66 @@ Image8 shifted(const Image8& was, int dx, int dy) {
   return m;
 }
 
-Image8 swapped_tile(const Image8& was, int rank) {
-  Image8 m = was;
-  std::vector<std::pair<int, int>> taken;
-  int bx = 0, by = 0, best = -1;
-  for (int r = 0; r <= rank; ++r) {
-    best = -1;
-    for (int y = 0; y + 8 <= m.height; y += 4)
-      for (int x = 0; x + 16 <= m.width; x += 4) {
-        bool near = false;
-        for (const auto& [tx, ty] : taken) near = near || (std::abs(x - tx) < 16 && std::abs(y - ty) < 16);
-        if (near) continue;
-        int differ = 0;
-        for (int v = 0; v < 8; ++v)
-          for (int u = 0; u < 8; ++u) differ += at(was, x + u, y + v) != at(was, x + u + 8, y + v);
-        if (differ > best) best = differ, bx = x, by = y;
-      }
-    if (best < 0) return m;  // no place left
-    taken.emplace_back(bx, by);
+std::vector<TilePlace> tile_places(const Image8& mask, std::size_t count) {
+  // Each window of the 4-px lattice: its top-left corner and the pixels its swap changes (twice the
+  // pairs that differ).
+  struct Window {
+    int x, y, changes;
+    long nearest = std::numeric_limits<long>::max();  // squared distance to the nearest place taken
+  };
+  std::vector<Window> windows;
+  for (int y = 0; y + 8 <= mask.height; y += 4)
+    for (int x = 0; x + 16 <= mask.width; x += 4) {
+      int differ = 0;
+      for (int v = 0; v < 8; ++v)
+        for (int u = 0; u < 8; ++u) differ += at(mask, x + u, y + v) != at(mask, x + u + 8, y + v);
+      windows.push_back({x, y, 2 * differ});
+    }
+  std::vector<TilePlace> places;
+  const auto near_taken = [&](const Window& w) {
+    for (const TilePlace& p : places)
+      if (std::abs(w.x - p.x) < 16 && std::abs(w.y - p.y) < 16) return true;
+    return false;
+  };
+  const auto take = [&](const Window& w) {
+    places.push_back({w.x, w.y});
+    for (Window& o : windows) {
+      const long dx = o.x - w.x, dy = o.y - w.y;
+      o.nearest = std::min(o.nearest, dx * dx + dy * dy);
+    }
+  };
+  // The busiest places first: where a swap changes most pixels (the first best kept on ties).
+  while (places.size() < std::min<std::size_t>(count, kBusiestTilePlaces)) {
+    const Window* best = nullptr;
+    for (const Window& w : windows)
+      if (!near_taken(w) && (!best || w.changes > best->changes)) best = &w;
+    if (!best) return places;  // no place left
+    take(*best);
   }
+  // Then along the rest of the boundary: the window that shows something (more changes than the
+  // local-glitch bound) farthest from every place taken, the busier kept on ties.
+  while (places.size() < count) {
+    const Window* best = nullptr;
+    for (const Window& w : windows)
+      if (w.changes > static_cast<int>(compare::kLocalGlitch.densest_fail) && !near_taken(w) &&
+          (!best || w.nearest > best->nearest || (w.nearest == best->nearest && w.changes > best->changes)))
+        best = &w;
+    if (!best) break;
+    take(*best);
+  }
+  return places;
+}
+
+Image8 swapped_tile_at(const Image8& was, TilePlace p) {
+  Image8 m = was;
   for (int v = 0; v < 8; ++v)
-    for (int u = 0; u < 8; ++u) std::swap(at(m, bx + u, by + v), at(m, bx + u + 8, by + v));
+    for (int u = 0; u < 8; ++u) std::swap(at(m, p.x + u, p.y + v), at(m, p.x + u + 8, p.y + v));
   return m;
+}
+
+Image8 swapped_tile(const Image8& was, int rank) {
+  const std::vector<TilePlace> places = tile_places(was, static_cast<std::size_t>(rank) + 1);
+  return places.size() > static_cast<std::size_t>(rank) ? swapped_tile_at(was, places[static_cast<std::size_t>(rank)]) : was;
 }
 
 const char* to_string(ProbeKind k) {
@@ -129,8 +172,27 @@ const char* to_string(ProbeKind k) {
   return "?";
 }
 
+std::size_t densest_change(const Image8& before, const Image8& after, const Image8& decided) {
+  // The changed decided pixels' bounding box, grown by the window: no other window holds one.
+  int x0 = before.width, y0 = before.height, x1 = -1, y1 = -1;
+  const auto changed = [&](int x, int y) { return at(decided, x, y) == 255 && at(before, x, y) != at(after, x, y); };
+  for (int y = 0; y < before.height; ++y)
+    for (int x = 0; x < before.width; ++x)
+      if (changed(x, y)) x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+  if (x1 < 0) return 0;
+  std::size_t densest = 0;
+  for (int y = std::max(0, y0 - 8); y <= y1; ++y)
+    for (int x = std::max(0, x0 - 8); x <= x1; ++x) {
+      std::size_t n = 0;
+      for (int v = y; v < std::min(before.height, y + 9); ++v)
+        for (int u = x; u < std::min(before.width, x + 9); ++u) n += changed(u, v);
+      densest = std::max(densest, n);
+    }
+  return densest;
+}
+
 bool Probe::shows_something() const {
-  return kind == ProbeKind::Tile8 ? wrong > compare::kLocalGlitch.densest_fail : wrong > 0;
+  return kind == ProbeKind::Tile8 ? densest_changed > compare::kLocalGlitch.densest_fail : wrong > 0;
 }
 
 bool ResolvingPower::blind_to(ProbeKind k) const { return std::find(blind.begin(), blind.end(), k) != blind.end(); }
@@ -149,10 +211,11 @@ std::string ResolvingPower::summary() const {
       if (p.kind == k && p.shows_something()) ++changing, pass += p.verdict != compare::Verdict::Fail;
     blind_words.push_back(std::string(to_string(k)) + (changing > 1 ? " (" + std::to_string(pass) + " of " + std::to_string(changing) + " pass)" : ""));
   }
-  // A tile probe speaks for the places it was put (the three busiest 8 x 8 windows of the boundary),
-  // not for the whole boundary: a tile swapped elsewhere may pass where these FAIL.
+  // A tile probe speaks for the places it was put (tile_places: the three busiest 8 x 8 windows of
+  // the boundary and five spread along the rest), not for every window: a tile swapped elsewhere may
+  // pass where these FAIL.
   for (const ProbeKind k : resolved)
-    resolved_words.push_back(std::string(to_string(k)) + (k == ProbeKind::Tile8 ? " at the three busiest places probed" : ""));
+    resolved_words.push_back(std::string(to_string(k)) + (k == ProbeKind::Tile8 ? " at the 8 places probed along the boundary" : ""));
   for (const ProbeKind k : unseen)
     if (k != ProbeKind::Tile8) unseen_words.push_back(to_string(k));
   std::string s = blind.empty() ? "" : "blind to " + list(blind_words) + " under this declaration";
@@ -160,7 +223,7 @@ std::string ResolvingPower::summary() const {
   if (!unseen_words.empty()) s += (s.empty() ? "" : "; ") + std::string("no decided pixel changes under ") + list(unseen_words);
   if (sees_nothing_of(ProbeKind::Tile8))
     s += (s.empty() ? "" : "; ") + std::string("no 8x8 tile changes more than ") + std::to_string(compare::kLocalGlitch.densest_fail) +
-         " decided pixels";
+         " decided pixels in one 9x9 window";
   return s;
 }
 
@@ -197,14 +260,19 @@ ResolvingPower resolving_power(const std::filesystem::path& reference_dir, std::
     j.verdict = compare::decide_lights(each, threshold, names, {}).verdict;
     return j;
   };
+  std::vector<std::vector<TilePlace>> places;  // each light's tile places, found once
+  for (const Image8& m : masks) places.push_back(tile_places(m, kTilePlacesProbed));
   ResolvingPower r;
   for (const ProbeSpec& spec : probe_specs()) {
     outputs::throw_if_interrupted();  // SIGINT / SIGTERM: per probe
     std::vector<Image8> probes;
-    for (std::size_t i = 0; i < lights; ++i) probes.push_back(probed(masks[i], spec));
+    for (std::size_t i = 0; i < lights; ++i) probes.push_back(probed(masks[i], places[i], spec));
     Judged j = judged(spec, probes, quick);
     if (j.verdict != compare::Verdict::Fail && j.total.unexplained > 0) j = judged(spec, probes, o);
-    r.probes.push_back({spec.kind, spec.name, j.verdict, j.total.wrong, j.total.unexplained});
+    std::size_t densest = 0;  // a tile's: the local-glitch bound sees a 9 x 9 window (shows_something)
+    if (spec.kind == ProbeKind::Tile8)
+      for (std::size_t i = 0; i < lights; ++i) densest = std::max(densest, densest_change(masks[i], probes[i], decided[i]));
+    r.probes.push_back({spec.kind, spec.name, j.verdict, j.total.wrong, j.total.unexplained, densest});
   }
   for (const ProbeKind k : kKinds) {
     bool changes = false, all_fail = true;

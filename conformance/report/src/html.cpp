@@ -14,6 +14,7 @@
 #include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/candidate.hpp"
 #include "shadowref/report/ci_summary.hpp"
+#include "triage_html.hpp"
 
 namespace shadowref::report {
 namespace {
@@ -562,6 +563,7 @@ std::string render_html(const json& r) {
 
   header_section(h, r);
   summary_section(h, r, cases);
+  triage_section(h, r);
   legend_section(h);
   // Cases, one row each.
   h << "<section><h2>Cases</h2><div class=\"filters\" style=\"margin-bottom:10px\">"
@@ -571,13 +573,14 @@ std::string render_html(const json& r) {
     << "<table id=\"cases\"><thead><tr><th>case</th><th>reference · candidate · error · shaded</th></tr></thead><tbody>\n";
   for (const json& c : cases) {
     case_info(h, c);
+    triage_marks(h, r, c);
     h << "</td><td>";
     case_images(h, c);
     h << "</td></tr>\n";
   }
   h << "</tbody></table></section>\n";
   thresholds_section(h, r);
-  h << "<pre id=\"broken-images\" class=\"notes\"></pre>\n</main>\n<script>" << kScript << "</script>\n</body></html>\n";
+  h << "<pre id=\"broken-images\" class=\"notes\"></pre>\n</main>\n<script>" << kScript << kTriageScript << "</script>\n</body></html>\n";
   return h.str();
 }
 

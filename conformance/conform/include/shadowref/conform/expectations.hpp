@@ -130,11 +130,19 @@ std::vector<const ExpectationLine*> stale_lines(const Expectations& e, const std
                                                 const std::vector<std::string>& techniques, const std::string& convention,
                                                 const std::vector<outputs::Environment>& environments = {});
 
+// The line that makes case `c` known as it is now: `scene@technique@convention,STATUS`, limited to
+// the case's `api=` when it declared one (seen on one API: expected there only, so the same case on
+// another backend stays judged). What the next file says of a new failure or warning, and what the
+// report page's triage writes for a case a person marks known.
+std::string known_line(const CaseOutcome& c, const std::string& convention);
+
 // The text of the expectations file that makes the next run of the same cases green: every line of
-// `e` still met (as written, with its comment), a line for every new failure and warning
-// (`scene@technique@convention,STATUS`, limited to the case's `api=` when it declared one), no line for an improvement or a stale line, lines for
-// cases the run did not have (another convention) kept, and the [flakes] and [skips] sections.
+// `e` still met (as written, with its comment), a known_line for every new failure and warning
+// (with `new_lines`; without, the file a person adds the lines they accept to), no line for an
+// improvement or a stale line, lines for cases the run did not have (another convention) kept, and
+// the [flakes] and [skips] sections.
 std::string expectations_update_text(const Expectations& e, const std::vector<CaseOutcome>& cases,
-                                     const std::vector<const ExpectationLine*>& stale, const std::string& convention);
+                                     const std::vector<const ExpectationLine*>& stale, const std::string& convention,
+                                     bool new_lines = true);
 
 }  // namespace shadowref::conform

@@ -9,9 +9,10 @@
 // masks (the probes follow the declaration grid's blatant mutants, conformance/tests/):
 //   shifted 1 and 2 px in the eight directions (shadows move, surfaces stay),
 //   the shadows grown and shrunk by 1 px,
-//   an 8 × 8 tile swapped with the one to its right at the three places where that changes most
-//   pixels (16 px apart: swapped_tile below), since a declaration may explain a tile at one place of
-//   a boundary and not at another.
+//   an 8 × 8 tile swapped with the one to its right at eight places of the boundary (tile_places
+//   below): the three where that changes most pixels, and five spread along the rest of it, since a
+//   declaration may explain a tile at one place of a boundary and not at another (a 512-texel map
+//   explains more where its texels are long on the ground).
 // A probe that changes decided pixels and does not FAIL is one the case is blind to. Soft techniques are probed on their masks
 // alone (a probe of the lit fraction would need a fraction to move; the mask's is what it shows).
 //
@@ -19,15 +20,18 @@
 // for neither side. Nor does a tile that changes no more decided pixels than the local-glitch bound
 // (compare/thresholds.hpp, kLocalGlitch: 18): a glitch that small is within the runs correct renders
 // leave along a boundary, so no verdict promises to see it (a tile placed where the boundary barely
-// changes over 8 px, or where no cast shadow is in view).
+// changes over 8 px, or where no cast shadow is in view). The bound counts one 9 × 9 window, so a
+// tile counts by its densest window (densest_change): 27 pixels spread over a tile's 16 × 8 may hold
+// no more than 18 in any window, and pass unexplained.
 //
-// Cost: 21 mask comparisons per light (no error image painted), each asking the cause model about
+// Cost: 26 mask comparisons per light (no error image painted), each asking the cause model about
 // the probe's wrong pixels (a few thousand at 256²), first without the displaced-shadow search; the
 // judge caches the answer per reference, declaration and threshold, and the model's answers per
 // pixel and declaration, so that the probes ask about each boundary pixel once
 // (docs/tolerance-model.md).
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -48,7 +52,9 @@ struct Probe {
   std::string name;  // "shifted 1 px right and down", "grown 1 px", ...
   compare::Verdict verdict = compare::Verdict::Pass;
   std::size_t wrong = 0, unexplained = 0;  // on the decided pixels, summed over the lights
-  // Whether the probe counts (above): it changes a decided pixel, a tile more than kLocalGlitch's.
+  std::size_t densest_changed = 0;         // a tile's: densest_change, the most over the lights
+  // Whether the probe counts (above): it changes a decided pixel; a tile, more than kLocalGlitch's
+  // bound in one 9 x 9 window.
   bool shows_something() const;
 };
 
@@ -60,7 +66,7 @@ struct ResolvingPower {
   std::vector<ProbeKind> resolved, blind, unseen;
   // "resolves 1-px shifts, 2-px shifts, 1-px growth, 1-px shrinkage and 8x8 tiles", or "blind to
   // 1-px shifts (3 of 7 pass) under this declaration; resolves ...; no decided pixel changes under
-  // 2-px shifts; no 8x8 tile changes more than 18 decided pixels".
+  // 2-px shifts; no 8x8 tile changes more than 18 decided pixels in one 9x9 window".
   std::string summary() const;
   bool blind_to(ProbeKind k) const;
   bool sees_nothing_of(ProbeKind k) const;  // k is in `unseen`
@@ -71,12 +77,35 @@ struct ResolvingPower {
 // mutants). Cost: one pass over the mask.
 outputs::Image8 shifted(const outputs::Image8& mask, int dx, int dy);
 
-// `mask` with an 8 × 8 tile swapped with the one 8 px to its right (a tiled GPU's or a cache's local
-// glitch), at the `rank`-th place (0: first) where that changes most pixels, each place at least
-// 16 px from the earlier ones on an axis (a 4-px lattice of places, the first best kept on ties):
-// the busiest places of a mask's boundaries, wherever they lie. The mask unchanged when the image is
-// narrower than 16 px or shorter than 8. The declaration grid's tile mutants are these, on our
-// render's masks. Cost: one pass over the lattice per rank.
+// A place of an 8 × 8 tile swap: the tile's top-left pixel; the tile swaps with the one 8 px to its
+// right.
+struct TilePlace {
+  int x = 0, y = 0;
+};
+inline constexpr std::size_t kBusiestTilePlaces = 3;  // the first places, by pixels changed
+inline constexpr std::size_t kTilePlacesProbed = 8;   // the tile probes' places: tile_places(mask, 8)
+
+// The first `count` places of a tile swap on `mask`'s 4-px lattice, each at least 16 px from the
+// earlier ones on an axis: the kBusiestTilePlaces where a swap changes most pixels (the first best
+// kept on ties; the busiest places of the boundaries, wherever they lie), then, among the windows
+// whose swap changes more pixels than the local-glitch bound, the one farthest (Euclidean) from every
+// place taken, the busier on ties (farthest-point sampling: spread along every boundary in view).
+// Fewer when no window is left; none when the image is narrower than 16 px or shorter than 8. A
+// prefix of a longer list: the places after kTilePlacesProbed are the ones farthest from every probe
+// (the held-out tiles of conformance/tests/). Cost: one pass over the lattice, then one per place.
+std::vector<TilePlace> tile_places(const outputs::Image8& mask, std::size_t count);
+
+// The most decided pixels (255 in `decided`) that differ between `before` and `after` in one 9 × 9
+// window (the local-glitch bound's window, compare/thresholds.hpp). Cost: one pass over the masks,
+// then one 9 × 9 count per pixel of the changed pixels' bounding box grown by 8.
+std::size_t densest_change(const outputs::Image8& before, const outputs::Image8& after, const outputs::Image8& decided);
+
+// `mask` with the 8 × 8 tile at `place` swapped with the one 8 px to its right (a tiled GPU's or a
+// cache's local glitch); the place must lie within the image (tile_places' do).
+outputs::Image8 swapped_tile_at(const outputs::Image8& mask, TilePlace place);
+
+// `mask` with the tile at the `rank`-th of its tile_places (0: first) swapped; the mask unchanged
+// when it has no such place. The declaration grid's tile mutants are these, on our render's masks.
 outputs::Image8 swapped_tile(const outputs::Image8& mask, int rank);
 
 // The probes of the reference folder's masks (mask.png or mask_<i>.png, decided.png or

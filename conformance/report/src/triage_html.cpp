@@ -1,0 +1,86 @@
+// triage_html.cpp — the report page's triage (triage_html.hpp): marks in the page, the
+// expectations file made in the browser from report.json's "triage".
+#include "triage_html.hpp"
+
+#include <string>
+
+#include "shadowref/report/html.hpp"
+
+namespace shadowref::report {
+namespace {
+
+using nlohmann::json;
+
+const json& triage_cases(const json& r) {
+  static const json none = json::array();
+  if (!r.contains("triage") || !r["triage"].is_object()) return none;
+  const json& t = r["triage"];
+  return t.contains("cases") && t["cases"].is_array() ? t["cases"] : none;
+}
+
+// A case's name as the marks and the data know it: "scene@technique".
+std::string case_key(const json& c) { return c.value("scene", "") + "@" + c.value("technique", ""); }
+
+}  // namespace
+
+void triage_section(std::ostringstream& h, const json& r) {
+  const json& cases = triage_cases(r);
+  if (cases.empty()) return;
+  // The data rides in a JSON script element; "</" is written "<\/" so no text can end it early.
+  std::string data = json{{"base", r["triage"].value("base", "")}, {"cases", cases}}.dump();
+  for (std::size_t at = data.find("</"); at != std::string::npos; at = data.find("</", at + 3)) data.replace(at, 2, "<\\/");
+  h << "<section id=\"triage\"><h2>Triage</h2><p class=\"notes\">Mark each new failure or warning you accept as known, "
+       "with its bug link, in its row below; then download the expectations file the marks make: the file this run was "
+       "given (its lines still met, its [flakes] and [skips]) and a line per mark. Checked in and passed to the next run "
+       "with <code>--expectations</code>, the marked cases are known failures there; the unmarked stay new.</p>"
+    << "<div class=\"counts\"><span id=\"triage-count\" style=\"background:#eef1f6\">0 of " << cases.size()
+    << " marked</span> <button id=\"triage-download\" onclick=\"shadowrefTriageDownload()\">download expectations.txt</button>"
+    << "</div><textarea id=\"triage-text\" readonly rows=\"8\" style=\"width:100%;margin-top:8px;font:12px monospace\">"
+    << "</textarea><script type=\"application/json\" id=\"triage-data\">" << data << "</script></section>\n";
+}
+
+void triage_marks(std::ostringstream& h, const json& r, const json& c) {
+  for (const json& t : triage_cases(r))
+    if (t.is_object() && case_key(t) == case_key(c)) {
+      h << "<div class=\"triage\" data-case=\"" << escape_html(case_key(c)) << "\"><label><input type=\"checkbox\" "
+           "class=\"triage-known\" onchange=\"shadowrefTriage()\"> known failure</label> <input type=\"url\" "
+           "class=\"triage-bug\" placeholder=\"bug link\" size=\"28\" oninput=\"shadowrefTriage()\"></div>";
+      return;
+    }
+}
+
+// The file: the base's lines up to its first section header ([flakes], [skips], [baseline]), a line
+// per marked case with its bug link as the comment, then the base's sections; a line for a case
+// stays one line (newlines in a link are spaces). Recomputed at every change, shown in the text area.
+const char* const kTriageScript = R"js(
+function shadowrefTriage() {
+  var el = document.getElementById('triage-data');
+  if (!el) return '';
+  var data = JSON.parse(el.textContent), lines = {}, marked = [];
+  data.cases.forEach(function (c) { lines[c.scene + '@' + c.technique] = c.line; });
+  document.querySelectorAll('.triage').forEach(function (t) {
+    if (!t.querySelector('.triage-known').checked) return;
+    var bug = t.querySelector('.triage-bug').value.replace(/[\r\n]+/g, ' ').trim();
+    marked.push(lines[t.getAttribute('data-case')] + '  # ' + (bug || 'known failure') + ' (marked in the report)');
+  });
+  var base = data.base.split('\n');
+  if (base.length && base[base.length - 1] === '') base.pop();
+  var at = base.findIndex(function (l) { return /^\s*\[(flakes|skips|baseline)\]/.test(l); });
+  if (at < 0) at = base.length;
+  var text = base.slice(0, at).concat(marked, base.slice(at)).join('\n') + '\n';
+  document.getElementById('triage-text').value = text;
+  document.getElementById('triage-count').textContent = marked.length + ' of ' + data.cases.length + ' marked';
+  return text;
+}
+function shadowrefTriageDownload() {
+  var a = document.createElement('a');
+  a.href = URL.createObjectURL(new Blob([shadowrefTriage()], {type: 'text/plain'}));
+  a.download = 'expectations.txt';
+  document.body.appendChild(a);
+  a.click();
+  a.remove();
+}
+window.addEventListener('load', shadowrefTriage);
+)js";
+
+}  // namespace shadowref::report
