@@ -23,7 +23,7 @@ from png8 import read_png, write_png  # noqa: E402 (the project's scripts folder
 
 SCENES = ["directional_light", "ground_sphere", "shadow_on_object"]
 BROKEN = {"directional_light": "https://bugs.example/101", "ground_sphere": "https://bugs.example/102#c3"}
-GIVEN = ("# the team's file\nshadow_on_object@shadowmap@d3d,FAIL  # another convention's line, kept\n"
+GIVEN = ("# the team's file\nshadow_on_object@shadowmap@d3d,FAIL  # another convention's line, kept (a </script><!-- in it)\n"
          "[skips]\n^no_such_scene@\n")
 
 

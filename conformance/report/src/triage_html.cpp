@@ -26,9 +26,10 @@ std::string case_key(const json& c) { return c.value("scene", "") + "@" + c.valu
 void triage_section(std::ostringstream& h, const json& r) {
   const json& cases = triage_cases(r);
   if (cases.empty()) return;
-  // The data rides in a JSON script element; "</" is written "<\/" so no text can end it early.
-  std::string data = json{{"base", r["triage"].value("base", "")}, {"cases", cases}}.dump();
-  for (std::size_t at = data.find("</"); at != std::string::npos; at = data.find("</", at + 3)) data.replace(at, 2, "<\\/");
+  // The data rides in a JSON script element; every "<" (only ever inside a JSON string) is written
+  // "\u003c", so no text of a file (a "</script>", a "<!--") can end or change the element.
+  std::string data;
+  for (const char ch : json{{"base", r["triage"].value("base", "")}, {"cases", cases}}.dump()) data += ch == '<' ? "\\u003c" : std::string(1, ch);
   h << "<section id=\"triage\"><h2>Triage</h2><p class=\"notes\">Mark each new failure or warning you accept as known, "
        "with its bug link, in its row below; then download the expectations file the marks make: the file this run was "
        "given (its lines still met, its [flakes] and [skips]) and a line per mark. Checked in and passed to the next run "
