@@ -147,6 +147,14 @@ std::size_t densest_listed(const std::uint8_t* flagged, const std::vector<std::s
   return densest;
 }
 
+}  // namespace
+
+std::size_t densest_window(const std::vector<std::uint8_t>& flagged, const std::vector<std::size_t>& listed, int w, int h) {
+  return densest_listed(flagged.data(), listed, w, h);
+}
+
+namespace {
+
 // 8-connected regions of the listed wrong pixels (`codes` non-zero exactly there; cleared as the
 // fill goes): count and largest, seeds taken in pixel order as regions() does.
 void regions_listed(std::uint8_t* codes, const std::vector<std::size_t>& list, int w, int h, MaskMetrics& m) {
@@ -393,6 +401,7 @@ MaskComparison compare_mask(const Image8& reference, const Image8& decided, cons
   if (options.error_image) out.error = Image8{w, h, 3, std::vector<std::uint8_t>(3 * n)};
   const std::vector<std::size_t> wrong = scan_rows(reference, decided, candidate, options.no_cast_shadow_invariant, out);
   WrongPixels wp = judge_wrong_pixels(reference, candidate, wrong, light, options, out);
+  if (options.list_unexplained) out.unexplained = wp.unexplained;
   // The shapes of the unexplained pixels: cores, a displacement that makes them right, regions.
   if (!wrong.empty()) {
     m.unexplained_core = count_cores_listed(wp.flagged.get(), wp.unexplained, w, h);

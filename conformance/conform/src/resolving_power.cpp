@@ -15,6 +15,7 @@
 #include "shadowref/outputs/image.hpp"
 #include "shadowref/outputs/image_io.hpp"
 #include "shadowref/outputs/interruption.hpp"
+#include "tile_sweep.hpp"
 
 namespace shadowref::conform {
 namespace {
@@ -63,10 +64,9 @@ std::vector<ProbeSpec> probe_specs() {
                      "shifted " + std::to_string(n) + " px " + words(dx, dy), n * dx, n * dy});
   out.push_back({ProbeKind::Grown1, "grown 1 px"});
   out.push_back({ProbeKind::Shrunk1, "shrunk 1 px"});
+  static_assert(kBusiestTilePlaces == 3);
   for (const auto& [rank, where] : {std::pair{0, "busiest"}, {1, "second busiest"}, {2, "third busiest"}})
     out.push_back({ProbeKind::Tile8, std::string("an 8x8 tile swapped at the ") + where + " place", 0, 0, rank});
-  for (int rank = static_cast<int>(kBusiestTilePlaces); rank < static_cast<int>(kTilePlacesProbed); ++rank)
-    out.push_back({ProbeKind::Tile8, "an 8x8 tile swapped at boundary place " + std::to_string(rank + 1) + " (spread)", 0, 0, rank});
   return out;
 }
 
@@ -173,22 +173,11 @@ const char* to_string(ProbeKind k) {
 }
 
 std::size_t densest_change(const Image8& before, const Image8& after, const Image8& decided) {
-  // The changed decided pixels' bounding box, grown by the window: no other window holds one.
-  int x0 = before.width, y0 = before.height, x1 = -1, y1 = -1;
-  const auto changed = [&](int x, int y) { return at(decided, x, y) == 255 && at(before, x, y) != at(after, x, y); };
-  for (int y = 0; y < before.height; ++y)
-    for (int x = 0; x < before.width; ++x)
-      if (changed(x, y)) x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
-  if (x1 < 0) return 0;
-  std::size_t densest = 0;
-  for (int y = std::max(0, y0 - 8); y <= y1; ++y)
-    for (int x = std::max(0, x0 - 8); x <= x1; ++x) {
-      std::size_t n = 0;
-      for (int v = y; v < std::min(before.height, y + 9); ++v)
-        for (int u = x; u < std::min(before.width, x + 9); ++u) n += changed(u, v);
-      densest = std::max(densest, n);
-    }
-  return densest;
+  std::vector<std::size_t> changed;
+  std::vector<std::uint8_t> flagged(before.pixels.size());
+  for (std::size_t i = 0; i < before.pixels.size(); ++i)
+    if (outputs::is_flag_set(decided.pixels[i]) && before.pixels[i] != after.pixels[i]) changed.push_back(i), flagged[i] = 1;
+  return compare::densest_window(flagged, changed, before.width, before.height);
 }
 
 bool Probe::shows_something() const {
@@ -211,11 +200,9 @@ std::string ResolvingPower::summary() const {
       if (p.kind == k && p.shows_something()) ++changing, pass += p.verdict != compare::Verdict::Fail;
     blind_words.push_back(std::string(to_string(k)) + (changing > 1 ? " (" + std::to_string(pass) + " of " + std::to_string(changing) + " pass)" : ""));
   }
-  // A tile probe speaks for the places it was put (tile_places: the three busiest 8 x 8 windows of
-  // the boundary and five spread along the rest), not for every window: a tile swapped elsewhere may
-  // pass where these FAIL.
+  // Tiles are resolved only where none passes at any place (the sweep in resolving_power()).
   for (const ProbeKind k : resolved)
-    resolved_words.push_back(std::string(to_string(k)) + (k == ProbeKind::Tile8 ? " at the 8 places probed along the boundary" : ""));
+    resolved_words.push_back(std::string(to_string(k)) + (k == ProbeKind::Tile8 ? " at every place along the boundary" : ""));
   for (const ProbeKind k : unseen)
     if (k != ProbeKind::Tile8) unseen_words.push_back(to_string(k));
   std::string s = blind.empty() ? "" : "blind to " + list(blind_words) + " under this declaration";
@@ -261,7 +248,7 @@ ResolvingPower resolving_power(const std::filesystem::path& reference_dir, std::
     return j;
   };
   std::vector<std::vector<TilePlace>> places;  // each light's tile places, found once
-  for (const Image8& m : masks) places.push_back(tile_places(m, kTilePlacesProbed));
+  for (const Image8& m : masks) places.push_back(tile_places(m, kBusiestTilePlaces));
   ResolvingPower r;
   for (const ProbeSpec& spec : probe_specs()) {
     outputs::throw_if_interrupted();  // SIGINT / SIGTERM: per probe
@@ -274,6 +261,26 @@ ResolvingPower resolving_power(const std::filesystem::path& reference_dir, std::
       for (std::size_t i = 0; i < lights; ++i) densest = std::max(densest, densest_change(masks[i], probes[i], decided[i]));
     r.probes.push_back({spec.kind, spec.name, j.verdict, j.total.wrong, j.total.unexplained, densest});
   }
+  // Tiles everywhere else: where the busiest places FAIL, a tile at any other place of the 1-px
+  // lattice that shows something and passes makes the case blind to tiles all the same. The sweep
+  // (tile_sweep.hpp) screens every place of a light at once; each place it leaves is judged alone,
+  // in full, until one passes: that one is listed among the probes, by its place.
+  const auto tile_passes = [](const Probe& p) {
+    return p.kind == ProbeKind::Tile8 && p.shows_something() && p.verdict != compare::Verdict::Fail;
+  };
+  for (std::size_t i = 0; i < lights && std::none_of(r.probes.begin(), r.probes.end(), tile_passes); ++i)
+    for (const TilePlace& place : tiles_not_failing(masks[i], decided[i], i, threshold, quick)) {
+      outputs::throw_if_interrupted();
+      std::vector<Image8> probes = masks;
+      probes[i] = swapped_tile_at(masks[i], place);
+      const ProbeSpec spec{ProbeKind::Tile8, "an 8x8 tile swapped at (" + std::to_string(place.x) + ", " + std::to_string(place.y) + ")" +
+                                                 (lights > 1 ? " of light " + std::to_string(i) : "")};
+      Judged j = judged(spec, probes, quick);
+      if (j.verdict != compare::Verdict::Fail && j.total.unexplained > 0) j = judged(spec, probes, o);
+      if (j.verdict == compare::Verdict::Fail) continue;  // the zigzag check or the displaced shadows saw it
+      r.probes.push_back({spec.kind, spec.name, j.verdict, j.total.wrong, j.total.unexplained, densest_change(masks[i], probes[i], decided[i])});
+      break;
+    }
   for (const ProbeKind k : kKinds) {
     bool changes = false, all_fail = true;
     for (const Probe& p : r.probes)

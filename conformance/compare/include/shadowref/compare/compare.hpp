@@ -102,10 +102,16 @@ inline constexpr int kClusterRadius = 4;
 // the flagged pixels whose whole (2 kCoreRadius + 1)² neighbourhood, inside the image, is flagged.
 std::size_t count_cores(const std::vector<std::uint8_t>& flagged, int w, int h, std::size_t flagged_count);
 
+// The most flagged pixels of a w × h image of flags in one (2 kClusterRadius + 1)² window centred on
+// one of `listed` (the flagged pixels' indices, row-major), clipped to the image:
+// MaskMetrics::densest_unexplained's count. Cost: one window per listed pixel.
+std::size_t densest_window(const std::vector<std::uint8_t>& flagged, const std::vector<std::size_t>& listed, int w, int h);
+
 struct MaskComparison {
   MaskMetrics metrics;
   Displacement displacement;  // looked for where options.displacement_up_to allows (metrics.displaced: its count)
   Image8 error;  // RGB: wrong pixels by kind or cause over the dimmed reference (outputs::kErrorClasses)
+  std::vector<std::size_t> unexplained;  // the unexplained pixels' indices (row-major), where CompareOptions::list_unexplained
 };
 
 // The error image's colours and their meaning: outputs::kErrorClasses (outputs/cause.hpp), the one
@@ -146,6 +152,9 @@ struct CompareOptions {
   // callers that read only the counts (the resolving power's probes), which then skip an RGB
   // image's allocation and its every-pixel write, most of a comparison's memory traffic.
   bool error_image = true;
+  // Whether MaskComparison::unexplained lists the unexplained pixels: for a caller that judges parts
+  // of one candidate apart (the resolving power's tile sweep), the counts alone being the whole's.
+  bool list_unexplained = false;
 };
 
 // Compares one mask. All three images are 1-channel and of the same size; throws

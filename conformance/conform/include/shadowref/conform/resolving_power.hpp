@@ -9,11 +9,14 @@
 // masks (the probes follow the declaration grid's blatant mutants, conformance/tests/):
 //   shifted 1 and 2 px in the eight directions (shadows move, surfaces stay),
 //   the shadows grown and shrunk by 1 px,
-//   an 8 × 8 tile swapped with the one to its right at eight places of the boundary (tile_places
-//   below): the three where that changes most pixels, and five spread along the rest of it, since a
-//   declaration may explain a tile at one place of a boundary and not at another (a 512-texel map
-//   explains more where its texels are long on the ground).
-// A probe that changes decided pixels and does not FAIL is one the case is blind to. Soft techniques are probed on their masks
+//   an 8 × 8 tile swapped with the one to its right at the three places of the boundary where
+//   that changes most pixels (tile_places below), and then at every other place (the tile sweep,
+//   conform/src/tile_sweep.hpp), since a declaration may explain a tile at one place of a boundary
+//   and not at another (a 512-texel map explains more where its texels are long on the ground, and
+//   a tile across a gentle stretch of boundary changes few pixels in any window).
+// A probe that changes decided pixels and does not FAIL is one the case is blind to; where the three
+// tile probes FAIL, the first tile the sweep finds passing is listed as a probe of its own ("an 8x8
+// tile swapped at (x, y)"), so that "resolves … 8x8 tiles" holds at every place. Soft techniques are probed on their masks
 // alone (a probe of the lit fraction would need a fraction to move; the mask's is what it shows).
 //
 // A probe that changes no decided pixel (a shift along a straight boundary) proves nothing: it counts
@@ -24,11 +27,12 @@
 // tile counts by its densest window (densest_change): 27 pixels spread over a tile's 16 × 8 may hold
 // no more than 18 in any window, and pass unexplained.
 //
-// Cost: 26 mask comparisons per light (no error image painted), each asking the cause model about
-// the probe's wrong pixels (a few thousand at 256²), first without the displaced-shadow search; the
-// judge caches the answer per reference, declaration and threshold, and the model's answers per
-// pixel and declaration, so that the probes ask about each boundary pixel once
-// (docs/tolerance-model.md).
+// Cost: 21 mask comparisons per light (no error image painted), each asking the cause model about
+// the probe's wrong pixels (a few thousand at 256²), first without the displaced-shadow search; then,
+// where the tile probes FAIL, the sweep's two comparisons (every pixel within 8 px across of a
+// boundary) and a full comparison per place it leaves, until one passes. The judge caches the answer
+// per reference, declaration and threshold, and the model's answers per pixel and declaration, so
+// that the probes ask about each boundary pixel once (docs/tolerance-model.md).
 #pragma once
 
 #include <cstddef>
@@ -64,7 +68,8 @@ struct ResolvingPower {
   // `resolved`, every probe that shows something FAILs; `blind`, one of them does not; `unseen`,
   // none shows anything.
   std::vector<ProbeKind> resolved, blind, unseen;
-  // "resolves 1-px shifts, 2-px shifts, 1-px growth, 1-px shrinkage and 8x8 tiles", or "blind to
+  // "resolves 1-px shifts, 2-px shifts, 1-px growth, 1-px shrinkage and 8x8 tiles at every place
+  // along the boundary", or "blind to
   // 1-px shifts (3 of 7 pass) under this declaration; resolves ...; no decided pixel changes under
   // 2-px shifts; no 8x8 tile changes more than 18 decided pixels in one 9x9 window".
   std::string summary() const;
@@ -82,8 +87,7 @@ outputs::Image8 shifted(const outputs::Image8& mask, int dx, int dy);
 struct TilePlace {
   int x = 0, y = 0;
 };
-inline constexpr std::size_t kBusiestTilePlaces = 3;  // the first places, by pixels changed
-inline constexpr std::size_t kTilePlacesProbed = 8;   // the tile probes' places: tile_places(mask, 8)
+inline constexpr std::size_t kBusiestTilePlaces = 3;  // the first places, by pixels changed: the tile probes'
 
 // The first `count` places of a tile swap on `mask`'s 4-px lattice, each at least 16 px from the
 // earlier ones on an axis: the kBusiestTilePlaces where a swap changes most pixels (the first best
@@ -91,13 +95,14 @@ inline constexpr std::size_t kTilePlacesProbed = 8;   // the tile probes' places
 // whose swap changes more pixels than the local-glitch bound, the one farthest (Euclidean) from every
 // place taken, the busier on ties (farthest-point sampling: spread along every boundary in view).
 // Fewer when no window is left; none when the image is narrower than 16 px or shorter than 8. A
-// prefix of a longer list: the places after kTilePlacesProbed are the ones farthest from every probe
-// (the held-out tiles of conformance/tests/). Cost: one pass over the lattice, then one per place.
+// prefix of a longer list: the places after kBusiestTilePlaces are the ones farthest from every
+// probe (the held-out tiles of conformance/tests/). Cost: one pass over the lattice, then one per place.
 std::vector<TilePlace> tile_places(const outputs::Image8& mask, std::size_t count);
 
-// The most decided pixels (255 in `decided`) that differ between `before` and `after` in one 9 × 9
-// window (the local-glitch bound's window, compare/thresholds.hpp). Cost: one pass over the masks,
-// then one 9 × 9 count per pixel of the changed pixels' bounding box grown by 8.
+// The most decided pixels that differ between `before` and `after` in one 9 × 9 window centred on
+// one of them (the local-glitch bound's window, compare::densest_window: a tile that changes more
+// unexplained pixels than the bound there FAILs). Cost: one pass over the masks, then one 9 × 9
+// count per changed pixel.
 std::size_t densest_change(const outputs::Image8& before, const outputs::Image8& after, const outputs::Image8& decided);
 
 // `mask` with the 8 × 8 tile at `place` swapped with the one 8 px to its right (a tiled GPU's or a
