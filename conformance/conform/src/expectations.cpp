@@ -203,18 +203,6 @@ Expectations read_expectations(const std::vector<std::filesystem::path>& files) 
   return e;
 }
 
-const char* to_string(Outcome o) {
-  switch (o) {
-    case Outcome::Green: return "green";
-    case Outcome::Expected: return "expected";
-    case Outcome::NewFailure: return "new-failure";
-    case Outcome::NewWarning: return "new-warning";
-    case Outcome::Improvement: return "improvement";
-    case Outcome::Flake: return "flake";
-  }
-  return "?";
-}
-
 Outcome outcome_of(Status s, bool expected_warning, const ExpectationLine* line, bool flaky) {
   // 0 green, 1 a warning of the run, 2 a failure: what "better" and "worse" compare.
   const auto rank = [&](Status st, bool catalogue_warn) { return is_failure(st) ? 2 : st == Status::Warn && !catalogue_warn ? 1 : 0; };

@@ -12,6 +12,7 @@
 
 #include "report_writer.hpp"
 #include "shadowref/conform/run_report.hpp"
+#include "shadowref/record/case_record.hpp"
 #include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/errors.hpp"
 #include "shadowref/outputs/staged_folder.hpp"
@@ -38,6 +39,13 @@ Shard read_shard(const fs::path& dir) {
     s.report = read_run_report(dir);
   } catch (const ReportUnreadable& e) {
     throw MergeRefused({e.what()});
+  }
+  // Every case through its record once here, so that a case of the wrong shape is refused with its
+  // JSON path before anything is merged (and every later reading of a case holds).
+  try {
+    record::read_cases(s.report);
+  } catch (const record::RecordError& e) {
+    throw MergeRefused({(dir / "report.json").string() + ": " + e.what()});
   }
   if (s.report.contains("shard") && s.report["shard"].is_object()) {
     s.index = s.report["shard"].value("index", 0);
@@ -181,23 +189,19 @@ ConformResult merged_result(const json& first, std::vector<json>& cases, const E
   for (const json& p : first["plan"].value("scenes", json::array())) r.scenes.push_back(p.value("scene", ""));
   r.techniques = first["plan"].value("techniques", std::vector<std::string>{});
   for (json& c : cases) {
+    record::CaseRecord rec = record::read_case(c, r.cases.size());  // its shape was checked by read_shard
     CaseResult k;
-    k.scene = text_of(c, "scene");
-    k.technique = text_of(c, "technique");
-    k.status = status_from_string(text_of(c, "status")).value_or(Status::Error);
-    k.expected.warn = text_of(c, "expected") == "warn";
-    // The candidate's declared environment, as the shard wrote it (candidate.json's keys, one list).
-    if (c.contains("candidate") && c["candidate"].is_object() && c["candidate"].contains("environment") &&
-        c["candidate"]["environment"].is_object())
-      for (const char* key : outputs::kEnvironmentKeys)
-        if (const json& env = c["candidate"]["environment"]; env.contains(key) && env[key].is_string())
-          k.environment.emplace_back(key, env[key].get<std::string>());
+    k.scene = rec.scene;
+    k.technique = rec.technique;
+    k.status = rec.status;
+    k.expected.warn = rec.expected == "warn";
+    k.environment = rec.environment;  // as the shard wrote it
     const ExpectationLine* line = e.line_for(k.scene, k.technique, r.convention, k.environment);
     k.outcome = outcome_of(k.status, k.expected.warn, line, e.flaky(case_name(k.scene, k.technique, r.convention)));
-    c.erase("expectation");
+    c.erase(record::key::kExpectation);
     if (!e.empty()) {
-      c["expectation"] = {{"outcome", to_string(k.outcome)}};
-      if (line) c["expectation"].update({{"status", to_string(line->status)}, {"line", line->where}});
+      rec.expectation = record::ExpectationRecord{k.outcome, line ? to_string(line->status) : "", line ? line->where : ""};
+      record::write_case(rec, c);
     }
     r.cases.push_back(std::move(k));
   }

@@ -24,6 +24,7 @@
 #include "shadowref/report/html.hpp"
 #include "shadowref/renderer/render_variants.hpp"
 #include "shadowref/outputs/json_text.hpp"
+#include "shadowref/record/case_record.hpp"
 
 namespace shadowref::conform {
 namespace {
@@ -50,50 +51,53 @@ std::string host_name() {
   return buf;
 }
 
-json expectation_json(const CaseResult& c) {
-  json e = {{"outcome", to_string(c.outcome)}};
-  if (!c.expected_status.empty()) e["status"] = c.expected_status;
-  if (!c.expected_line.empty()) e["line"] = c.expected_line;
-  return e;
+// The case's record (record/case_record.hpp): the keys every reader of report.json acts on.
+record::CaseRecord case_record(const CaseResult& c, const ConformResult& r, bool with_expectations) {
+  record::CaseRecord k;
+  k.scene = c.scene;
+  k.technique = c.technique;
+  k.status = c.status;
+  k.expected = !c.expected.pass ? "fail" : c.expected.warn ? "warn" : "pass";
+  k.why = c.expected.why;
+  k.expected_from_height = c.expected.from_height;
+  if (c.judgement) {
+    k.signature = c.judgement->signature;
+    k.causes = c.judgement->causes;
+    k.unmet_expectation = c.judgement->unmet_expectation;
+  }
+  k.seconds = c.seconds;
+  k.host = host_name();
+  if (r.plan.shards > 1) k.shard = static_cast<int>(r.plan.shard_of.at(c.scene) + 1);
+  if (with_expectations) k.expectation = record::ExpectationRecord{c.outcome, c.expected_status, c.expected_line};
+  k.error = c.error;
+  return k;
 }
 
 // One case as report.json holds it, its images copied into the staged report folder.
 json case_json(const CaseResult& c, const outputs::StagedFolder& staged, std::set<std::string>& scenes_copied,
                const ConformResult& r, bool with_expectations) {
   std::error_code ec;
+  namespace key = record::key;
   json k;
-  k["scene"] = c.scene;
-  k["scene_file"] = fs::absolute(c.scene_file).string();
-  k["technique"] = c.technique;
-  k["status"] = to_string(c.status);
-  k["expected"] = !c.expected.pass ? "fail" : c.expected.warn ? "warn" : "pass";
-  k["why"] = c.expected.why;
-  if (c.expected.from_height) k["expected_from_height"] = c.expected.from_height;
-  if (c.judgement && !c.judgement->signature.empty()) k["signature"] = c.judgement->signature;
-  k["reference_dir"] = c.reference_dir.string();
-  k["candidate_dir"] = c.candidate_dir.string();
-  k["frame_ms"] = c.frame_ms;
-  k["seconds"] = c.seconds;
-  k["notes"] = c.notes;
-  k["causes"] = c.judgement ? c.judgement->causes : "";
-  if (c.judgement && c.judgement->resolving_power) k["resolving_power"] = resolving_power_json(*c.judgement->resolving_power);
-  k["host"] = host_name();
-  if (r.plan.shards > 1) k["shard"] = r.plan.shard_of.at(c.scene) + 1;
-  if (with_expectations) k["expectation"] = expectation_json(c);
-  if (c.judgement && !c.judgement->unmet_expectation.empty()) k["unmet_expectation"] = c.judgement->unmet_expectation;
-  if (!c.error.empty()) k["error"] = c.error;
+  record::write_case(case_record(c, r, with_expectations), k);
+  k[key::kSceneFile] = fs::absolute(c.scene_file).string();
+  k[key::kReferenceDir] = c.reference_dir.string();
+  k[key::kCandidateDir] = c.candidate_dir.string();
+  k[key::kFrameMs] = c.frame_ms;
+  k[key::kNotes] = c.notes;
+  if (c.judgement && c.judgement->resolving_power) k[key::kResolvingPower] = resolving_power_json(*c.judgement->resolving_power);
   if (!c.read_through_links.empty()) {
     json links = json::array();
     for (const auto& [file, target] : c.read_through_links) links.push_back({{"file", file}, {"resolves_to", target}});
-    k["read_through_links"] = links;
+    k[key::kReadThroughLinks] = links;
   }
   // An ERROR case before a verdict records the declaration's defaults, as every case has one.
   const outputs::CandidateDeclaration declared = c.judgement ? c.judgement->declaration : outputs::CandidateDeclaration{};
-  k["candidate"] = json::parse(outputs::declaration_text(declared));
-  k["candidate"]["defaulted"] = declared.defaulted;
+  k[key::kCandidate] = json::parse(outputs::declaration_text(declared));
+  k[key::kCandidate]["defaulted"] = declared.defaulted;
   if (!c.judgement) return k;
   const compare::FolderComparison& comparison = c.judgement->comparison;
-  k["comparison"] = report::to_json(comparison);
+  k[key::kComparison] = report::to_json(comparison);
   // The images the page shows, per light: reference mask, candidate mask, error, candidate shaded.
   const std::string base = "img/" + c.scene + "/" + c.technique + "/";
   json lights = json::array();
@@ -120,13 +124,13 @@ json case_json(const CaseResult& c, const outputs::StagedFolder& staged, std::se
     }
     lights.push_back(l);
   }
-  k["lights"] = lights;
-  k["shaded"] = copy_in(c.candidate_dir / "shaded.png", staged, base + "shaded.png");
+  k[key::kLights] = lights;
+  k[key::kShaded] = copy_in(c.candidate_dir / "shaded.png", staged, base + "shaded.png");
   if (!scenes_copied.count(c.scene)) {
     copy_in(c.reference_dir / "shaded.png", staged, "img/" + c.scene + "/reference_shaded.png");
     scenes_copied.insert(c.scene);
   }
-  k["reference_shaded"] = fs::is_regular_file(staged.path() / ("img/" + c.scene + "/reference_shaded.png"), ec)
+  k[key::kReferenceShaded] = fs::is_regular_file(staged.path() / ("img/" + c.scene + "/reference_shaded.png"), ec)
                               ? json("img/" + c.scene + "/reference_shaded.png")
                               : json("");
   return k;

@@ -2,6 +2,8 @@
 // blatant error each, judged as the candidate was.
 #include "shadowref/conform/resolving_power.hpp"
 
+#include "shadowref/record/case_record.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -296,7 +298,8 @@ nlohmann::json resolving_power_json(const ResolvingPower& r) {
   for (const ProbeKind k : r.unseen) unseen.push_back(to_string(k));
   for (const Probe& p : r.probes)
     probes.push_back({{"probe", p.name}, {"verdict", compare::to_string(p.verdict)}, {"wrong", p.wrong}, {"unexplained", p.unexplained}});
-  return {{"summary", r.summary()}, {"blind_to", blind}, {"unseen", unseen}, {"probes", probes}};
+  namespace key = record::key;
+  return {{key::kSummary, r.summary()}, {key::kBlindTo, blind}, {key::kUnseen, unseen}, {key::kProbes, probes}};
 }
 
 }  // namespace shadowref::conform

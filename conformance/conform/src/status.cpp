@@ -8,26 +8,6 @@
 
 namespace shadowref::conform {
 
-const char* to_string(Status s) {
-  switch (s) {
-    case Status::Pass: return "PASS";
-    case Status::Warn: return "WARN";
-    case Status::Fail: return "FAIL";
-    case Status::XFail: return "XFAIL";
-    case Status::XPass: return "XPASS";
-    case Status::Error: return "ERROR";
-  }
-  return "?";
-}
-
-std::optional<Status> status_from_string(std::string_view name) {
-  for (Status s : {Status::Pass, Status::Warn, Status::Fail, Status::XFail, Status::XPass, Status::Error})
-    if (name == to_string(s)) return s;
-  return std::nullopt;
-}
-
-bool is_failure(Status s) { return s == Status::Fail || s == Status::XPass || s == Status::Error; }
-
 Status status_of(compare::Verdict verdict, bool expected_pass) {
   if (expected_pass) {
     switch (verdict) {

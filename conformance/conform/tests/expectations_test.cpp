@@ -95,7 +95,7 @@ TEST(Expectations, AByteOrderMarkIsSkipped) {
   ASSERT_EQ(e.lines.size(), 1u);
   EXPECT_EQ(e.lines[0].scene, "light_near_caster");
   // Only at the start of the file: elsewhere it is a byte of a name, refused as one.
-  EXPECT_NE(refusal("# x\n\xEF\xBB\xBFa@planar,FAIL\n").find("bad.txt:2: "), std::string::npos);
+  EXPECT_NE(refusal("# x\n\xEF\xBB\xBF" "a@planar,FAIL\n").find("bad.txt:2: "), std::string::npos);
 }
 
 // A line limited to an environment (a FAIL known on WebGPU only): it holds for cases rendered
@@ -135,8 +135,8 @@ TEST(Expectations, LinesLimitedToAnEnvironment) {
 }
 
 TEST(Expectations, OutcomesAndExitCodes) {
-  ExpectationLine fail{"s", "t", "", Status::Fail, "f:1", "s@t,FAIL"};
-  ExpectationLine warn{"s", "t", "", Status::Warn, "f:1", "s@t,WARN"};
+  ExpectationLine fail{"s", "t", "", Status::Fail, "f:1", "s@t,FAIL", {}};
+  ExpectationLine warn{"s", "t", "", Status::Warn, "f:1", "s@t,WARN", {}};
   EXPECT_EQ(outcome_of(Status::Fail, false, &fail, false), Outcome::Expected);
   EXPECT_EQ(outcome_of(Status::Pass, false, &fail, false), Outcome::Improvement);
   EXPECT_EQ(outcome_of(Status::XFail, false, &fail, false), Outcome::Improvement);
@@ -173,9 +173,9 @@ TEST(Expectations, StaleLinesAndTheNextFile) {
   ASSERT_EQ(stale.size(), 1u);
   EXPECT_EQ(stale[0]->scene, "gone");
   EXPECT_TRUE(stale_lines(e, {"a", "b", "c", "d", "gone"}, {"shadowmap"}, "gl").empty());  // another shard's scene
-  const std::vector<CaseOutcome> cases = {{"a", "shadowmap", Status::Fail, Outcome::Expected},
-                                          {"b", "shadowmap", Status::Pass, Outcome::Improvement},
-                                          {"d", "shadowmap", Status::Fail, Outcome::NewFailure}};
+  const std::vector<CaseOutcome> cases = {{"a", "shadowmap", Status::Fail, Outcome::Expected, {}},
+                                          {"b", "shadowmap", Status::Pass, Outcome::Improvement, {}},
+                                          {"d", "shadowmap", Status::Fail, Outcome::NewFailure, {}}};
   const std::string next = expectations_update_text(e, cases, stale, "gl");
   EXPECT_NE(next.find("a@shadowmap,FAIL  # bug 1\n"), std::string::npos);  // kept with its bug link
   EXPECT_EQ(next.find("b@shadowmap"), std::string::npos);                  // the improvement's line is gone

@@ -3,11 +3,13 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
 
 #include "shadowref/outputs/atomic_file.hpp"
+#include "shadowref/record/case_record.hpp"
 #include "shadowref/report/html.hpp"
 
 namespace shadowref::report {
@@ -15,18 +17,18 @@ namespace {
 
 using nlohmann::json;
 
+// A report-level key as text (the report's own keys, e.g. "convention").
 std::string text(const json& j, const char* key) {
   if (!j.contains(key)) return "";
   if (j[key].is_string()) return j[key].get<std::string>();
   return j[key].dump();
 }
 
-std::string reasons(const json& c) {
+std::string reasons(const record::CaseRecord& c) {
   std::string out;
-  if (c.contains("comparison") && c["comparison"].contains("reasons"))
-    for (const auto& r : c["comparison"]["reasons"]) out += (out.empty() ? "" : "; ") + r.get<std::string>();
-  if (!text(c, "signature").empty()) out += (out.empty() ? "" : "; ") + text(c, "signature");
-  if (!text(c, "error").empty()) out += (out.empty() ? "" : "; ") + text(c, "error");
+  for (const std::string& r : c.reasons) out += (out.empty() ? "" : "; ") + r;
+  if (!c.signature.empty()) out += (out.empty() ? "" : "; ") + c.signature;
+  if (!c.error.empty()) out += (out.empty() ? "" : "; ") + c.error;
   return out;
 }
 
@@ -37,18 +39,17 @@ std::string cell(std::string s) {
   return s;
 }
 
-// The case's outcome against an engine team's expectations files ("expected", "new-failure",
-// "improvement", "flake", ...), or "" when the run had none.
-std::string outcome(const json& c) {
-  if (!c.contains("expectation") || !c["expectation"].is_object()) return "";
-  return c["expectation"].value("outcome", "");
+// The case's outcome against an engine team's expectations files, nullopt when the run had none.
+std::optional<record::Outcome> outcome(const record::CaseRecord& c) {
+  return c.expectation ? std::optional<record::Outcome>(c.expectation->outcome) : std::nullopt;
 }
+bool is(const record::CaseRecord& c, record::Outcome o) { return outcome(c) == o; }
+bool excused(const record::CaseRecord& c) { return c.expectation && record::is_excused(c.expectation->outcome); }
+// Its name, "" when the run had no files.
+std::string outcome_name(const record::CaseRecord& c) { return c.expectation ? to_string(c.expectation->outcome) : ""; }
 
 // "FAIL at fails.txt:3": what the expectations files said of the case ("green": no line).
-std::string expected_by(const json& c) {
-  const json& e = c["expectation"];
-  return e.value("status", "green") + (e.contains("line") ? " at " + e.value("line", "") : "");
-}
+std::string expected_by(const record::CaseRecord& c) { return c.expectation ? c.expectation->expected_by() : "green"; }
 
 void write_file(const std::string& content, const std::filesystem::path& file) {
   std::filesystem::create_directories(file.parent_path());
@@ -60,56 +61,54 @@ void write_file(const std::string& content, const std::filesystem::path& file) {
 BlindCases blind_cases(const json& report) {
   BlindCases b;
   std::map<std::string, std::size_t> kinds;
-  for (const json& c : report.value("cases", json::array())) {
-    if (!c.contains("resolving_power")) continue;
+  for (const record::CaseRecord& c : record::read_cases(report)) {
+    if (!c.resolving_power) continue;
     ++b.judged;
-    const json& blind = c["resolving_power"].value("blind_to", json::array());
-    b.blind += !blind.empty();
-    for (const json& k : blind) ++kinds[k.get<std::string>()];
+    b.blind += !c.resolving_power->blind_to.empty();
+    for (const std::string& k : c.resolving_power->blind_to) ++kinds[k];
   }
   for (const auto& [k, n] : kinds) b.kinds += (b.kinds.empty() ? "" : ", ") + k + ": " + std::to_string(n);
   return b;
 }
 
 std::string render_junit(const json& report) {
-  const json cases = report.value("cases", json::array());
+  using record::Status;
+  const std::vector<record::CaseRecord> cases = record::read_cases(report);
   std::size_t failures = 0, errors = 0, skipped = 0;
-  for (const json& c : cases) {
-    const std::string st = text(c, "status"), o = outcome(c);
+  for (const record::CaseRecord& c : cases) {
     // A known failure or a flake is not a failure of this run: JUnit readers show it as skipped.
-    if (o == "expected" || o == "flake") {
-      skipped += st != "PASS" && st != "XFAIL";
+    if (excused(c)) {
+      skipped += c.status != Status::Pass && c.status != Status::XFail;
       continue;
     }
-    failures += st == "FAIL" || st == "XPASS";
-    errors += st == "ERROR";
+    failures += c.status == Status::Fail || c.status == Status::XPass;
+    errors += c.status == Status::Error;
   }
   std::ostringstream x;
   x << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites>\n<testsuite name=\"shadowref conform\" tests=\""
     << cases.size() << "\" failures=\"" << failures << "\" errors=\"" << errors << "\" skipped=\"" << skipped << "\">\n";
-  for (const json& c : cases) {
-    const std::string st = text(c, "status");
-    x << "  <testcase classname=\"" << escape_html(text(c, "scene")) << "\" name=\"" << escape_html(text(c, "technique"))
-      << "\" time=\"" << c.value("seconds", 0.0) << "\">";
-    const std::string env = case_environment(c);
-    if (c.contains("resolving_power") || !env.empty()) {
+  for (const record::CaseRecord& c : cases) {
+    const std::string st = to_string(c.status);
+    x << "  <testcase classname=\"" << escape_html(c.scene) << "\" name=\"" << escape_html(c.technique)
+      << "\" time=\"" << c.seconds << "\">";
+    const std::string env = outputs::environment_text(c.environment);
+    if (c.resolving_power || !env.empty()) {
       x << "<properties>";
-      if (c.contains("resolving_power"))
-        x << "<property name=\"resolving_power\" value=\"" << escape_html(c["resolving_power"].value("summary", "")) << "\"/>";
+      if (c.resolving_power)
+        x << "<property name=\"resolving_power\" value=\"" << escape_html(c.resolving_power->summary) << "\"/>";
       if (!env.empty()) x << "<property name=\"environment\" value=\"" << escape_html(env) << "\"/>";
       x << "</properties>";
     }
-    const std::string o = outcome(c);
-    if ((o == "expected" || o == "flake") && st != "PASS" && st != "XFAIL")
-      x << "<skipped message=\"" << escape_html((o == "flake" ? "flaky: " + st : "known failure: " + expected_by(c)) + ": " + reasons(c)) << "\"/>";
-    else if (o == "improvement")
+    if (excused(c) && c.status != Status::Pass && c.status != Status::XFail)
+      x << "<skipped message=\"" << escape_html((is(c, record::Outcome::Flake) ? "flaky: " + st : "known failure: " + expected_by(c)) + ": " + reasons(c)) << "\"/>";
+    else if (is(c, record::Outcome::Improvement))
       x << "<system-out>" << escape_html("improvement: " + st + " where the expectations say " + expected_by(c) + ": remove that line") << "</system-out>";
-    else if (st == "FAIL" || st == "XPASS")
-      x << "<failure message=\"" << escape_html((o == "new-failure" ? "new failure: " : "") + st + ": " + reasons(c)) << "\">" << escape_html(text(c, "why")) << "</failure>";
-    else if (st == "ERROR")
-      x << "<error message=\"" << escape_html(text(c, "error")) << "\"/>";
-    else if (st == "XFAIL" || st == "WARN")
-      x << "<system-out>" << escape_html(st + ": " + (st == "XFAIL" ? text(c, "why") : reasons(c))) << "</system-out>";
+    else if (c.status == Status::Fail || c.status == Status::XPass)
+      x << "<failure message=\"" << escape_html((is(c, record::Outcome::NewFailure) ? "new failure: " : "") + st + ": " + reasons(c)) << "\">" << escape_html(c.why) << "</failure>";
+    else if (c.status == Status::Error)
+      x << "<error message=\"" << escape_html(c.error) << "\"/>";
+    else if (c.status == Status::XFail || c.status == Status::Warn)
+      x << "<system-out>" << escape_html(st + ": " + (c.status == Status::XFail ? c.why : reasons(c))) << "</system-out>";
     x << "</testcase>\n";
   }
   x << "</testsuite>\n</testsuites>\n";
@@ -117,26 +116,27 @@ std::string render_junit(const json& report) {
 }
 
 std::string render_markdown(const json& report) {
-  const json cases = report.value("cases", json::array());
-  std::map<std::string, std::size_t> counts;
+  using record::Status;
+  const std::vector<record::CaseRecord> cases = record::read_cases(report);
+  std::map<Status, std::size_t> counts;
   std::vector<std::string> scenes, techniques;
-  std::map<std::pair<std::string, std::string>, std::string> at;
-  for (const json& c : cases) {
-    const std::string s = text(c, "scene"), t = text(c, "technique");
-    if (std::find(scenes.begin(), scenes.end(), s) == scenes.end()) scenes.push_back(s);
-    if (std::find(techniques.begin(), techniques.end(), t) == techniques.end()) techniques.push_back(t);
-    at[{s, t}] = text(c, "status");
-    ++counts[text(c, "status")];
+  std::map<std::pair<std::string, std::string>, const record::CaseRecord*> at;
+  for (const record::CaseRecord& c : cases) {
+    if (std::find(scenes.begin(), scenes.end(), c.scene) == scenes.end()) scenes.push_back(c.scene);
+    if (std::find(techniques.begin(), techniques.end(), c.technique) == techniques.end()) techniques.push_back(c.technique);
+    at[{c.scene, c.technique}] = &c;
+    ++counts[c.status];
   }
   std::ostringstream m;
   m << "## shadowref conform\n\n" << cases.size() << " cases:";
-  for (const char* st : {"PASS", "XFAIL", "WARN", "FAIL", "XPASS", "ERROR"}) m << " " << counts[st] << " " << st << ",";
+  for (Status st : {Status::Pass, Status::XFail, Status::Warn, Status::Fail, Status::XPass, Status::Error})
+    m << " " << counts[st] << " " << to_string(st) << ",";
   m.seekp(-1, std::ios_base::cur);
   m << " (convention " << cell(text(report, "convention")) << ")\n";
   // Where the candidates were rendered: one line per environment the cases declared.
   std::map<std::string, std::size_t> environments;
-  for (const json& c : cases)
-    if (const std::string env = case_environment(c); !env.empty()) ++environments[env];
+  for (const record::CaseRecord& c : cases)
+    if (!c.environment.empty()) ++environments[outputs::environment_text(c.environment)];
   for (const auto& [env, n] : environments) m << "\nRendered on: " << cell(env) << " (" << n << " case(s))\n";
   if (report.contains("expectations")) {
     const json& e = report["expectations"];
@@ -145,7 +145,7 @@ std::string render_markdown(const json& report) {
     for (const auto& [k, v] : outcomes.items()) m << " " << v.dump() << " " << k << ",";
     m << " " << e.value("stale", json::array()).size() << " stale line(s); the next file: `expectations-update.txt`\n";
     for (const json& st : e.value("stale", json::array()))
-      m << "- **stale** " << cell(st.value("line", "")) << ": `" << cell(st.value("text", "")) << "` names no case of this run\n";
+      m << "- **stale** " << cell(st.value(record::key::kLine, "")) << ": `" << cell(st.value("text", "")) << "` names no case of this run\n";
   }
   if (report.contains("shard") && report["shard"].is_object())
     m << "\nShard " << report["shard"].value("index", 0) << "/" << report["shard"].value("total", 0) << " ("
@@ -159,13 +159,14 @@ std::string render_markdown(const json& report) {
     m << "| " << cell(s) << " |";
     for (const auto& t : techniques) {
       const auto it = at.find({s, t});
-      const std::string st = it == at.end() ? "-" : it->second;
-      const json* c = nullptr;
-      for (const json& k : cases)
-        if (text(k, "scene") == s && text(k, "technique") == t) c = &k;
-      const std::string o = c ? outcome(*c) : "";
-      const bool bad = (st == "FAIL" || st == "XPASS" || st == "ERROR") && o != "expected" && o != "flake";
-      m << " " << (bad ? "**" + st + "**" : st) << (o.empty() || o == "green" ? "" : " (" + o + ")") << " |";
+      if (it == at.end()) {
+        m << " - |";
+        continue;
+      }
+      const record::CaseRecord& c = *it->second;
+      const std::string st = to_string(c.status), o = outcome_name(c);
+      const bool bad = is_failure(c.status) && !excused(c);
+      m << " " << (bad ? "**" + st + "**" : st) << (o.empty() || is(c, record::Outcome::Green) ? "" : " (" + o + ")") << " |";
     }
     m << "\n";
   }
@@ -176,17 +177,17 @@ std::string render_markdown(const json& report) {
       << (blind.blind ? " (" + cell(blind.kinds) + "): " + std::string(kHowToSharpen) : std::string(": none lets a probe that changes a decided pixel pass"))
       << "\n";
   bool any = false;
-  for (const json& c : cases) {
-    const std::string st = text(c, "status");
-    if (st == "PASS" && outcome(c) != "improvement") continue;
+  for (const record::CaseRecord& c : cases) {
+    if (c.status == Status::Pass && !is(c, record::Outcome::Improvement)) continue;
     if (!any) m << "\n";
     any = true;
-    const std::string o = outcome(c);
-    m << "- **" << st << "**" << (o.empty() || o == "green" ? "" : " (" + o + (c["expectation"].contains("status") ? ": " + expected_by(c) : "") + ")")
-      << " " << cell(text(c, "scene")) << " × " << cell(text(c, "technique"));
-    if (st == "XFAIL" || st == "XPASS") m << ": expected to fail: " << cell(text(c, "why"));
+    const std::string st = to_string(c.status), o = outcome_name(c);
+    m << "- **" << st << "**"
+      << (o.empty() || is(c, record::Outcome::Green) ? "" : " (" + o + (!c.expectation->status.empty() ? ": " + expected_by(c) : "") + ")")
+      << " " << cell(c.scene) << " × " << cell(c.technique);
+    if (c.status == Status::XFail || c.status == Status::XPass) m << ": expected to fail: " << cell(c.why);
     const std::string r = reasons(c);
-    if (!r.empty() && st != "XFAIL") m << (st == "XPASS" ? "; but only: " : ": ") << cell(r);
+    if (!r.empty() && c.status != Status::XFail) m << (c.status == Status::XPass ? "; but only: " : ": ") << cell(r);
     m << "\n";
   }
   return m.str();

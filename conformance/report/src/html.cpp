@@ -13,6 +13,7 @@
 
 #include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/candidate.hpp"
+#include "shadowref/record/case_record.hpp"
 #include "shadowref/report/ci_summary.hpp"
 #include "triage_html.hpp"
 
@@ -52,19 +53,22 @@ std::string anchor(const std::string& scene, const std::string& technique) {
 
 // A case's outcome against the expectations files in words ("known failure", "new failure",
 // "improvement", "flaky"), or "" when there were no files or the case is green.
-std::string outcome_word(const json& c) {
-  if (!c.contains("expectation") || !c["expectation"].is_object()) return "";
-  const std::string o = c["expectation"].value("outcome", "");
-  if (o == "expected") return "known failure";
-  if (o == "new-failure") return "new failure";
-  if (o == "new-warning") return "new warning";
-  if (o == "flake") return "flaky";
-  return o == "green" ? "" : o;
+std::string outcome_word(const record::CaseRecord& c) {
+  if (!c.expectation) return "";
+  switch (c.expectation->outcome) {
+    case record::Outcome::Green: return "";
+    case record::Outcome::Expected: return "known failure";
+    case record::Outcome::NewFailure: return "new failure";
+    case record::Outcome::NewWarning: return "new warning";
+    case record::Outcome::Improvement: return "improvement";
+    case record::Outcome::Flake: return "flaky";
+  }
+  return "";
 }
 
-std::string status_class(const std::string& s) {
+std::string status_class(record::Status st) {
   std::string c = "st-";
-  for (char ch : s) c += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  for (const char* ch = to_string(st); *ch; ++ch) c += static_cast<char>(std::tolower(static_cast<unsigned char>(*ch)));
   return c;
 }
 
@@ -275,16 +279,6 @@ void visibility_table(std::ostringstream& h, const json& v) {
 
 }  // namespace
 
-std::string case_environment(const json& c) {
-  if (!c.contains("candidate") || !c["candidate"].is_object()) return "";
-  const json& env = c["candidate"].value("environment", json::object());
-  if (!env.is_object()) return "";
-  outputs::Environment e;
-  for (const char* key : outputs::kEnvironmentKeys)
-    if (env.contains(key) && env[key].is_string()) e.emplace_back(key, env[key].get<std::string>());
-  return outputs::environment_text(e);
-}
-
 std::string escape_html(const std::string& text) {
   std::string out;
   out.reserve(text.size());
@@ -302,7 +296,7 @@ std::string escape_html(const std::string& text) {
 }
 
 // The page's parts, in the order render_html writes them.
-void expectations_section(std::ostringstream& h, const json& r, const json& cases);
+void expectations_section(std::ostringstream& h, const json& r, const std::vector<record::CaseRecord>& cases);
 void header_section(std::ostringstream& h, const json& r) {
   const json gl = r.value("gl", json::object());
   h << "<header><h1>shadowref conformance</h1><div class=\"meta\">";
@@ -318,7 +312,7 @@ void header_section(std::ostringstream& h, const json& r) {
 }
 
 // Counts and the scene × technique table.
-void summary_section(std::ostringstream& h, const json& r, const json& cases) {
+void summary_section(std::ostringstream& h, const json& r, const json& cases, const std::vector<record::CaseRecord>& records) {
   const json summary = r.value("summary", json::object());
   h << "<section><h2>Summary</h2><div class=\"counts\">";
   const auto count = [&](const char* key, const char* label, const char* cls) {
@@ -342,8 +336,8 @@ void summary_section(std::ostringstream& h, const json& r, const json& cases) {
   std::vector<std::string> scenes, techniques;
   if (r.contains("scenes")) scenes = r["scenes"].get<std::vector<std::string>>();
   if (r.contains("techniques")) techniques = r["techniques"].get<std::vector<std::string>>();
-  std::map<std::pair<std::string, std::string>, json> at;
-  for (const json& c : cases) at[{str(c, "scene"), str(c, "technique")}] = c;
+  std::map<std::pair<std::string, std::string>, std::size_t> at;  // the case's index in both
+  for (std::size_t i = 0; i < records.size(); ++i) at[{records[i].scene, records[i].technique}] = i;
   h << "<table id=\"summary\"><thead><tr><th>scene</th>";
   for (const auto& t : techniques) h << "<th>" << escape_html(t) << "</th>";
   h << "</tr></thead><tbody>\n";
@@ -355,25 +349,25 @@ void summary_section(std::ostringstream& h, const json& r, const json& cases) {
         h << "<td>-</td>";
         continue;
       }
-      const std::string st = str(it->second, "status");
-      const json cmp = it->second.value("comparison", json::object());
-      const std::string tip = cmp.contains("total") ? "wrong " + num(cmp["total"], "wrong_percent") + " %" : str(it->second, "error", "");
-      h << "<td class=\"" << status_class(st) << "\" title=\"" << escape_html(tip) << "\"><a href=\"#"
-        << anchor(s, t) << "\">" << escape_html(st) << "</a>"
+      const record::CaseRecord& c = records[it->second];
+      const json cmp = cases[it->second].value(record::key::kComparison, json::object());
+      const std::string tip = cmp.contains("total") ? "wrong " + num(cmp["total"], "wrong_percent") + " %" : c.error;
+      h << "<td class=\"" << status_class(c.status) << "\" title=\"" << escape_html(tip) << "\"><a href=\"#"
+        << anchor(s, t) << "\">" << to_string(c.status) << "</a>"
         << (cmp.contains("total") ? "<small>" + short_percent(cmp["total"]) + " %</small>" : std::string())
-        << (outcome_word(it->second).empty() ? std::string() : "<small>" + escape_html(outcome_word(it->second)) + "</small>")
+        << (outcome_word(c).empty() ? std::string() : "<small>" + escape_html(outcome_word(c)) + "</small>")
         << "</td>";
     }
     h << "</tr>\n";
   }
   h << "</tbody></table></section>\n";
-  expectations_section(h, r, cases);
+  expectations_section(h, r, records);
 
 }
 
 // Against an engine team's expectations files: each outcome's count, the cases that are new or
 // improved, and the stale lines (expectations.hpp's words).
-void expectations_section(std::ostringstream& h, const json& r, const json& cases) {
+void expectations_section(std::ostringstream& h, const json& r, const std::vector<record::CaseRecord>& cases) {
   if (!r.contains("expectations") || !r["expectations"].is_object()) return;
   const json& e = r["expectations"];
   h << "<section id=\"expectations\"><h2>Against the expectations files</h2><div class=\"counts\">";
@@ -381,15 +375,16 @@ void expectations_section(std::ostringstream& h, const json& r, const json& case
   for (const auto& [k, v] : counts.items())
     h << "<span style=\"background:#eef1f6\">" << escape_html(k) << " " << v.dump() << "</span>";
   h << "<span style=\"background:#eef1f6\">stale " << e.value("stale", json::array()).size() << "</span></div><ul>";
-  for (const json& c : cases) {
-    const std::string o = outcome_word(c);
-    if (o != "new failure" && o != "new warning" && o != "improvement") continue;
-    const json& x = c["expectation"];
-    h << "<li class=\"outcome\" data-outcome=\"" << escape_html(x.value("outcome", "")) << "\"><a href=\"#"
-      << anchor(str(c, "scene"), str(c, "technique")) << "\">" << escape_html(str(c, "scene") + " · " + str(c, "technique"))
-      << "</a>: " << escape_html(o) << ", " << escape_html(str(c, "status")) << " where the files expect "
-      << escape_html(x.value("status", "green")) << (x.contains("line") ? " (" + escape_html(x.value("line", "")) + ")" : "")
-      << (o == "improvement" ? ": remove the line" : "") << "</li>";
+  for (const record::CaseRecord& c : cases) {
+    if (!c.expectation) continue;
+    const record::ExpectationRecord& x = *c.expectation;
+    using record::Outcome;
+    if (x.outcome != Outcome::NewFailure && x.outcome != Outcome::NewWarning && x.outcome != Outcome::Improvement) continue;
+    h << "<li class=\"outcome\" data-outcome=\"" << to_string(x.outcome) << "\"><a href=\"#"
+      << anchor(c.scene, c.technique) << "\">" << escape_html(c.scene + " · " + c.technique)
+      << "</a>: " << escape_html(outcome_word(c)) << ", " << to_string(c.status) << " where the files expect "
+      << escape_html(x.status.empty() ? "green" : x.status) << (x.line.empty() ? "" : " (" + escape_html(x.line) + ")")
+      << (x.outcome == Outcome::Improvement ? ": remove the line" : "") << "</li>";
   }
   for (const json& st : e.value("stale", json::array()))
     h << "<li class=\"outcome\" data-outcome=\"stale\">stale " << escape_html(st.value("line", "")) << ": <code>"
@@ -422,46 +417,45 @@ void legend_section(std::ostringstream& h) {
 }
 
 // A case's left cell: status, expectation, signature, declaration, reasons and numbers.
-void case_info(std::ostringstream& h, const json& c) {
-  const std::string st = str(c, "status");
-  const json cmp = c.value("comparison", json::object());
-  h << "<tr class=\"case\" id=\"" << anchor(str(c, "scene"), str(c, "technique")) << "\" data-status=\""
-    << escape_html(st) << "\"><td class=\"info\"><h3>" << escape_html(str(c, "scene")) << " · "
-    << escape_html(str(c, "technique")) << "</h3><span class=\"badge " << status_class(st) << "\">"
-    << escape_html(st) << "</span> <span class=\"notes\">expected " << escape_html(str(c, "expected"))
+void case_info(std::ostringstream& h, const record::CaseRecord& rec, const json& c) {
+  const char* st = to_string(rec.status);
+  const json cmp = c.value(record::key::kComparison, json::object());
+  h << "<tr class=\"case\" id=\"" << anchor(rec.scene, rec.technique) << "\" data-status=\""
+    << st << "\"><td class=\"info\"><h3>" << escape_html(rec.scene) << " · "
+    << escape_html(rec.technique) << "</h3><span class=\"badge " << status_class(rec.status) << "\">"
+    << st << "</span> <span class=\"notes\">expected " << escape_html(rec.expected)
     << (cmp.contains("threshold") ? ", threshold " + escape_html(str(cmp["threshold"], "name")) : std::string())
     << "</span>";
-  if (!outcome_word(c).empty())
-    h << "<div class=\"why\"><b>expectations file:</b> " << escape_html(outcome_word(c)) << " (expected "
-      << escape_html(c["expectation"].value("status", "green"))
-      << (c["expectation"].contains("line") ? ", " + escape_html(c["expectation"].value("line", "")) : std::string()) << ")</div>";
-  if (c.contains("shard") || c.contains("host"))
-    h << "<div class=\"notes\">judged on " << escape_html(str(c, "host", "?"))
-      << (c.contains("shard") ? ", shard " + escape_html(str(c, "shard")) : std::string()) << "</div>";
-  if (!str(c, "why", "").empty()) {
-    const int from = c.value("expected_from_height", 0);
+  if (!outcome_word(rec).empty())
+    h << "<div class=\"why\"><b>expectations file:</b> " << escape_html(outcome_word(rec)) << " (expected "
+      << escape_html(rec.expectation->status.empty() ? "green" : rec.expectation->status)
+      << (rec.expectation->line.empty() ? std::string() : ", " + escape_html(rec.expectation->line)) << ")</div>";
+  if (rec.shard || rec.host)
+    h << "<div class=\"notes\">judged on " << escape_html(rec.host.value_or("?"))
+      << (rec.shard ? ", shard " + std::to_string(*rec.shard) : std::string()) << "</div>";
+  if (!rec.why.empty()) {
+    const int from = rec.expected_from_height;
     h << "<div class=\"why\"><b>why it is expected to fail" << (from ? " from an image height of " + std::to_string(from) + " px" : "")
-      << ":</b> " << escape_html(str(c, "why")) << "</div>";
+      << ":</b> " << escape_html(rec.why) << "</div>";
   }
-  if (!str(c, "signature", "").empty()) h << "<div class=\"why\"><b>signature:</b> " << escape_html(str(c, "signature")) << "</div>";
-  if (!str(c, "unmet_expectation", "").empty())
-    h << "<div class=\"why\"><b>expectation not met:</b> " << escape_html(str(c, "unmet_expectation")) << "</div>";
-  if (!str(c, "causes", "").empty()) h << "<div class=\"notes\">causes judged: " << escape_html(str(c, "causes")) << "</div>";
-  if (c.contains("resolving_power")) {
-    const json& rp = c["resolving_power"];
-    const bool blind = !rp.value("blind_to", json::array()).empty();
-    h << "<div class=\"" << (blind ? "why" : "notes") << "\"><b>resolving power:</b> " << escape_html(str(rp, "summary"))
+  if (!rec.signature.empty()) h << "<div class=\"why\"><b>signature:</b> " << escape_html(rec.signature) << "</div>";
+  if (!rec.unmet_expectation.empty())
+    h << "<div class=\"why\"><b>expectation not met:</b> " << escape_html(rec.unmet_expectation) << "</div>";
+  if (!rec.causes.empty()) h << "<div class=\"notes\">causes judged: " << escape_html(rec.causes) << "</div>";
+  if (rec.resolving_power) {
+    const bool blind = !rec.resolving_power->blind_to.empty();
+    h << "<div class=\"" << (blind ? "why" : "notes") << "\"><b>resolving power:</b> " << escape_html(rec.resolving_power->summary)
       << (blind ? std::string(" (a probe of the reference's own masks that changes decided pixels and does not FAIL here: an error of that kind would "
                               "have passed too)")
                 : std::string())
       << "</div>";
   }
-  if (c.contains("error")) h << "<p class=\"error\">" << escape_html(str(c, "error")) << "</p>";
+  if (!rec.error.empty()) h << "<p class=\"error\">" << escape_html(rec.error) << "</p>";
   if (c.contains("candidate")) {
     const json& d = c["candidate"];
     // Volumes and planar shadows have no map, filter or bias: their settings would only list
     // defaults that mean nothing for them.
-    const std::string technique = str(c, "technique");
+    const std::string& technique = rec.technique;
     const bool map_settings = !(technique.rfind("volume", 0) == 0 || technique == "planar");
     std::string defaulted;
     for (const auto& k : d.value("defaulted", json::array())) {
@@ -486,8 +480,8 @@ void case_info(std::ostringstream& h, const json& c) {
       << " · depth faces " << escape_html(str(d, "depth_faces", "back"))
       << (str(d, "depth", "window") == "distance" ? " · distance maps over " + escape_html(str(d, "depth_range")) : std::string());
     h << (defaulted.empty() ? std::string() : " (defaulted: " + escape_html(defaulted) + ")") << "</div>";
-    if (const std::string env = case_environment(c); !env.empty())
-      h << "<div class=\"notes environment\">rendered on: " << escape_html(env) << "</div>";
+    if (!rec.environment.empty())
+      h << "<div class=\"notes environment\">rendered on: " << escape_html(outputs::environment_text(rec.environment)) << "</div>";
     if (d.contains("lights") && !d["lights"].empty())
       h << "<div class=\"notes\">per light (overrides of the above, in the pack's light order): <code>"
         << escape_html(d["lights"].dump()) << "</code></div>";
@@ -555,14 +549,15 @@ void thresholds_section(std::ostringstream& h, const json& r) {
 
 std::string render_html(const json& r) {
   std::ostringstream h;
-  const json cases = r.contains("cases") && r["cases"].is_array() ? r["cases"] : json::array();
+  const json cases = r.contains(record::key::kCases) && r[record::key::kCases].is_array() ? r[record::key::kCases] : json::array();
+  const std::vector<record::CaseRecord> records = record::read_cases(r);
   h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
     << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
     << "<title>shadowref conformance — " << escape_html(str(r, "backend", "candidate renders")) << "</title><style>"
     << kStyle << "</style></head>\n<body data-checked=\"0\">\n";
 
   header_section(h, r);
-  summary_section(h, r, cases);
+  summary_section(h, r, cases, records);
   triage_section(h, r);
   legend_section(h);
   // Cases, one row each.
@@ -571,8 +566,9 @@ std::string render_html(const json& r) {
     << "<button onclick=\"shadowrefFilter('problems', this)\">FAIL / XPASS / WARN / ERROR</button>"
     << "<button onclick=\"shadowrefFilter('xfail', this)\">XFAIL</button></div>"
     << "<table id=\"cases\"><thead><tr><th>case</th><th>reference · candidate · error · shaded</th></tr></thead><tbody>\n";
-  for (const json& c : cases) {
-    case_info(h, c);
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const json& c = cases[i];
+    case_info(h, records[i], c);
     triage_marks(h, r, c);
     h << "</td><td>";
     case_images(h, c);

@@ -103,8 +103,7 @@ struct Expectations {
 // or the same case listed twice.
 Expectations read_expectations(const std::vector<std::filesystem::path>& files);
 
-enum class Outcome { Green, Expected, NewFailure, NewWarning, Improvement, Flake };
-const char* to_string(Outcome o);  // "green", "expected", "new-failure", "new-warning", "improvement", "flake"
+using record::Outcome;  // its names are the record's (record/status.hpp)
 
 // The outcome of a case whose status is `s` (`expected_warning`: the catalogue expects its WARN)
 // under `line` (nullptr: unlisted) and whether it matches a flake regex.

@@ -1,15 +1,7 @@
 // shadowref/conform/status.hpp — the status of a judged case under the catalogue's expectation, and
-// the exit code of a run: the rules alone, with no I/O (status_test.cpp covers every one).
+// the exit code of a run: the rules alone, with no I/O (status_test.cpp covers every one). The
+// statuses and their names are the record's (record/status.hpp, which says what each means).
 //
-// Status of a case (VK-GL-CTS wording where it exists):
-//   PASS   expected to pass, verdict pass
-//   WARN   expected to pass, verdict quality warning (within the looser bound)
-//   FAIL   expected to pass, verdict fail; or an expected failure whose errors are not the predicted ones
-//   XFAIL  expected to fail (the catalogue's `why`), verdict fail: the limitation is detected and,
-//          where the catalogue predicts the errors' kind or an engine's candidate is judged, its
-//          errors are the predicted ones (judge.hpp)
-//   XPASS  expected to fail, verdict pass or warning: a broken expectation, counted as a failure
-//   ERROR  the case could not be judged (GL error, missing or unreadable candidate file)
 // Exit (docs/output-contract.md): 2 when any FAIL, XPASS or ERROR; else 1 when any WARN the catalogue
 // does not expect ("result": "warn"); else 0.
 #pragma once
@@ -20,14 +12,15 @@
 #include <vector>
 
 #include "shadowref/compare/compare.hpp"
+#include "shadowref/record/status.hpp"
 #include "shadowref/scene/scene.hpp"
 
 namespace shadowref::conform {
 
-enum class Status { Pass, Warn, Fail, XFail, XPass, Error };
-const char* to_string(Status s);  // "PASS", "WARN", ...
-std::optional<Status> status_from_string(std::string_view name);  // to_string's inverse; nullopt otherwise
-bool is_failure(Status s);         // FAIL, XPASS, ERROR
+using record::is_failure;
+using record::Status;
+using record::status_from_string;
+using record::to_string;
 
 // The status of a verdict under an expectation (expected_pass false: an expected failure).
 Status status_of(compare::Verdict verdict, bool expected_pass);

@@ -23,11 +23,6 @@ std::string render_html(const nlohmann::json& report);
 // Writes render_html(report) to `file` (creating its folder). Throws std::runtime_error.
 void write_html(const nlohmann::json& report, const std::filesystem::path& file);
 
-// Where a case's candidate was rendered (its report.json `candidate.environment`), in one line as
-// outputs::environment_text writes it ("api webgpu · adapter google swiftshader · …"); "" when the
-// candidate declared none. The HTML, JUnit and summary.md all show it through this.
-std::string case_environment(const nlohmann::json& c);
-
 // "&", "<", ">", '"' and "'" escaped for HTML text and attribute values.
 std::string escape_html(const std::string& text);
 

@@ -1,0 +1,123 @@
+// shadowref/record/case_record.hpp — a case of report.json as one typed record: the names of its
+// keys (written nowhere else), the record every reader gets back, and the writer of its keys.
+//
+// report.json (docs/output-contract.md) holds "cases", one object per scene × technique. The record
+// types what the readers of a run act on — who the case is, its status and why, its outcome
+// against the expectations files, its resolving power, where its candidate was rendered; the
+// comparison's metrics and the images stay JSON (comparison_json.hpp writes and the page reads
+// them) and travel beside the record as `json`. A key added to a case is added here (the key, the
+// field, read_case and write_case) and where its value is made (docs/architecture.md).
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "shadowref/outputs/candidate.hpp"
+#include "shadowref/record/status.hpp"
+
+namespace shadowref::record {
+
+// The keys of a case, and of the objects the record types inside it.
+namespace key {
+inline constexpr char kCases[] = "cases";  // the report's array of cases
+inline constexpr char kScene[] = "scene";
+inline constexpr char kSceneFile[] = "scene_file";
+inline constexpr char kTechnique[] = "technique";
+inline constexpr char kStatus[] = "status";
+inline constexpr char kExpected[] = "expected";  // the catalogue's "pass", "warn" or "fail"
+inline constexpr char kWhy[] = "why";
+inline constexpr char kExpectedFromHeight[] = "expected_from_height";
+inline constexpr char kSignature[] = "signature";
+inline constexpr char kReferenceDir[] = "reference_dir";
+inline constexpr char kCandidateDir[] = "candidate_dir";
+inline constexpr char kFrameMs[] = "frame_ms";
+inline constexpr char kSeconds[] = "seconds";
+inline constexpr char kNotes[] = "notes";
+inline constexpr char kCauses[] = "causes";
+inline constexpr char kResolvingPower[] = "resolving_power";
+inline constexpr char kHost[] = "host";
+inline constexpr char kShard[] = "shard";
+inline constexpr char kExpectation[] = "expectation";
+inline constexpr char kUnmetExpectation[] = "unmet_expectation";
+inline constexpr char kError[] = "error";
+inline constexpr char kReadThroughLinks[] = "read_through_links";
+inline constexpr char kCandidate[] = "candidate";
+inline constexpr char kComparison[] = "comparison";
+inline constexpr char kLights[] = "lights";
+inline constexpr char kShaded[] = "shaded";
+inline constexpr char kReferenceShaded[] = "reference_shaded";
+// Inside "expectation".
+inline constexpr char kOutcome[] = "outcome";
+inline constexpr char kLine[] = "line";  // also a stale line's place, "fails.txt:3"
+// Inside "resolving_power".
+inline constexpr char kSummary[] = "summary";
+inline constexpr char kBlindTo[] = "blind_to";
+inline constexpr char kUnseen[] = "unseen";
+inline constexpr char kProbes[] = "probes";
+// Inside "comparison" and "candidate".
+inline constexpr char kReasons[] = "reasons";
+inline constexpr char kEnvironment[] = "environment";
+}  // namespace key
+
+// A case's place in the expectations files (present when the run was given any).
+struct ExpectationRecord {
+  Outcome outcome = Outcome::Green;
+  std::string status;  // the status a line gives the case ("FAIL"); "" when no line names it
+  std::string line;    // that line's place, "fails.txt:3"; "" when none
+  // "FAIL at fails.txt:3", "green" when no line names the case.
+  std::string expected_by() const;
+};
+
+// What the probes of the reference's own masks showed (conform/resolving_power.hpp writes it).
+struct ResolvingPowerRecord {
+  std::string summary;                      // "resolves 1-px shifts, ..." or "blind to ..."
+  std::vector<std::string> blind_to, unseen;  // the probe kinds' names
+};
+
+struct CaseRecord {
+  std::string scene, technique;
+  Status status = Status::Pass;
+  std::string expected = "pass";   // the catalogue's expectation: "pass", "warn" or "fail"
+  std::string why;                 // why the catalogue expects a failure; "" when it expects none
+  int expected_from_height = 0;    // the failure is expected from this image height (0: at every height)
+  std::string signature;           // the expected failure's errors as seen ("" none)
+  std::string error;               // why an ERROR case could not be judged ("" none)
+  std::string unmet_expectation;   // a catalogue expectation the verdict did not meet ("" none)
+  std::string causes;              // the causes the judge weighed
+  std::optional<std::string> host; // the machine that judged the case
+  std::optional<int> shard;        // its shard, in a sharded run (1-based)
+  double seconds = 0;              // wall time of the case
+  std::vector<std::string> reasons;  // the verdict's reasons ("comparison"."reasons")
+  std::optional<ExpectationRecord> expectation;
+  std::optional<ResolvingPowerRecord> resolving_power;
+  outputs::Environment environment;  // where the candidate was rendered (empty: none declared);
+                                     // outputs::environment_text says it in one line
+};
+
+// A case or report whose JSON is not the shape above: one line naming the JSON path
+// ("cases[3].status: \"MAYBE\" is not a status (PASS, WARN, FAIL, XFAIL, XPASS, ERROR)").
+class RecordError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+// The record of case `c`, the `index`-th of its report (for the path in a RecordError). "scene",
+// "technique" and "status" must be there; every other key may be absent (its default above), but a
+// key that is there must have its type. Cost: one pass over the case's top-level keys.
+CaseRecord read_case(const nlohmann::json& c, std::size_t index);
+
+// Every case of `report` (an object whose "cases" is an array; none when it has no "cases").
+std::vector<CaseRecord> read_cases(const nlohmann::json& report);
+
+// The keys of `r` written into `k` as read_case reads them back: absent optionals and empty
+// optional texts are not written ("why", "causes" and "seconds" always are). Two fields are not
+// written from here: `environment` lies in "candidate", written whole from the candidate's
+// declaration, and the resolving power carries its probes besides (resolving_power_json).
+void write_case(const CaseRecord& r, nlohmann::json& k);
+
+}  // namespace shadowref::record

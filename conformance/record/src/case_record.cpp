@@ -1,0 +1,151 @@
+// case_record.cpp — a case of report.json read into its record and written from it (case_record.hpp).
+#include "shadowref/record/case_record.hpp"
+
+#include <climits>
+#include <cstdint>
+
+namespace shadowref::record {
+namespace {
+
+using nlohmann::json;
+
+std::string path_of(std::size_t index, const char* key) { return "cases[" + std::to_string(index) + "]." + key; }
+
+// c[key] as a string; `fallback` when absent or null. Another type is a RecordError at its path.
+std::string text(const json& c, const char* key, std::size_t index, const std::string& fallback = "") {
+  const auto it = c.find(key);
+  if (it == c.end() || it->is_null()) return fallback;
+  if (!it->is_string()) throw RecordError(path_of(index, key) + ": must be a string, not " + it->dump());
+  return it->get<std::string>();
+}
+
+// c[key], which is there, as a count: an integer from 0 to INT_MAX (a shard, an image height), never
+// a float cast out of range.
+int count(const json& c, const char* key, std::size_t index) {
+  const json& v = c[key];
+  if (!v.is_number_integer() || (v.is_number_unsigned() ? v.get<std::uint64_t>() > INT_MAX : v.get<std::int64_t>() < 0 ||
+                                                                                              v.get<std::int64_t>() > INT_MAX))
+    throw RecordError(path_of(index, key) + ": must be a whole number from 0 to " + std::to_string(INT_MAX) + ", not " + v.dump());
+  return static_cast<int>(v.get<std::int64_t>());
+}
+
+std::vector<std::string> texts(const json& j, const char* key, const std::string& where) {
+  std::vector<std::string> out;
+  const auto it = j.find(key);
+  if (it == j.end()) return out;
+  if (!it->is_array()) throw RecordError(where + "." + key + ": must be an array of strings");
+  for (const json& s : *it) {
+    if (!s.is_string()) throw RecordError(where + "." + key + ": must be an array of strings, not with " + s.dump());
+    out.push_back(s.get<std::string>());
+  }
+  return out;
+}
+
+std::string names_of_statuses() {
+  std::string s;
+  for (Status st : kStatuses) s += (s.empty() ? "" : ", ") + std::string(to_string(st));
+  return s;
+}
+
+ExpectationRecord read_expectation(const json& e, std::size_t index) {
+  const std::string where = path_of(index, key::kExpectation);
+  if (!e.is_object()) throw RecordError(where + ": must be an object");
+  ExpectationRecord r;
+  const std::string outcome = text(e, key::kOutcome, index, "green");
+  const std::optional<Outcome> o = outcome_from_string(outcome);
+  if (!o) throw RecordError(where + "." + key::kOutcome + ": \"" + outcome + "\" is not an outcome");
+  r.outcome = *o;
+  r.status = text(e, key::kStatus, index);
+  r.line = text(e, key::kLine, index);
+  return r;
+}
+
+ResolvingPowerRecord read_resolving_power(const json& p, std::size_t index) {
+  const std::string where = path_of(index, key::kResolvingPower);
+  if (!p.is_object()) throw RecordError(where + ": must be an object");
+  return {text(p, key::kSummary, index), texts(p, key::kBlindTo, where), texts(p, key::kUnseen, where)};
+}
+
+// The candidate's declared environment, in kEnvironmentKeys' order (empty when none).
+outputs::Environment environment_of(const json& c) {
+  outputs::Environment e;
+  const auto candidate = c.find(key::kCandidate);
+  if (candidate == c.end() || !candidate->is_object()) return e;
+  const auto env = candidate->find(key::kEnvironment);
+  if (env == candidate->end() || !env->is_object()) return e;
+  for (const char* k : outputs::kEnvironmentKeys)
+    if (const auto v = env->find(k); v != env->end() && v->is_string()) e.emplace_back(k, v->get<std::string>());
+  return e;
+}
+
+}  // namespace
+
+std::string ExpectationRecord::expected_by() const {
+  return (status.empty() ? std::string("green") : status) + (line.empty() ? "" : " at " + line);
+}
+
+CaseRecord read_case(const json& c, std::size_t index) {
+  if (!c.is_object()) throw RecordError("cases[" + std::to_string(index) + "]: must be an object");
+  CaseRecord r;
+  for (const char* required : {key::kScene, key::kTechnique, key::kStatus})
+    if (!c.contains(required)) throw RecordError(path_of(index, required) + ": missing");
+  r.scene = text(c, key::kScene, index);
+  r.technique = text(c, key::kTechnique, index);
+  const std::string status = text(c, key::kStatus, index);
+  const std::optional<Status> st = status_from_string(status);
+  if (!st) throw RecordError(path_of(index, key::kStatus) + ": \"" + status + "\" is not a status (" + names_of_statuses() + ")");
+  r.status = *st;
+  r.expected = text(c, key::kExpected, index, "pass");
+  r.why = text(c, key::kWhy, index);
+  r.signature = text(c, key::kSignature, index);
+  r.error = text(c, key::kError, index);
+  r.unmet_expectation = text(c, key::kUnmetExpectation, index);
+  r.causes = text(c, key::kCauses, index);
+  if (c.contains(key::kHost)) r.host = text(c, key::kHost, index);
+  if (const auto it = c.find(key::kSeconds); it != c.end()) {
+    if (!it->is_number()) throw RecordError(path_of(index, key::kSeconds) + ": must be a number, not " + it->dump());
+    r.seconds = it->get<double>();
+  }
+  if (c.contains(key::kShard)) r.shard = count(c, key::kShard, index);
+  if (c.contains(key::kExpectedFromHeight)) r.expected_from_height = count(c, key::kExpectedFromHeight, index);
+  if (const auto cmp = c.find(key::kComparison); cmp != c.end() && cmp->is_object())
+    r.reasons = texts(*cmp, key::kReasons, path_of(index, key::kComparison));
+  if (const auto e = c.find(key::kExpectation); e != c.end()) r.expectation = read_expectation(*e, index);
+  if (const auto p = c.find(key::kResolvingPower); p != c.end()) r.resolving_power = read_resolving_power(*p, index);
+  r.environment = environment_of(c);
+  return r;
+}
+
+std::vector<CaseRecord> read_cases(const json& report) {
+  std::vector<CaseRecord> out;
+  if (!report.is_object() || !report.contains(key::kCases)) return out;
+  const json& cases = report[key::kCases];
+  if (!cases.is_array()) throw RecordError(std::string(key::kCases) + ": must be an array");
+  out.reserve(cases.size());
+  for (std::size_t i = 0; i < cases.size(); ++i) out.push_back(read_case(cases[i], i));
+  return out;
+}
+
+void write_case(const CaseRecord& r, json& k) {
+  k[key::kScene] = r.scene;
+  k[key::kTechnique] = r.technique;
+  k[key::kStatus] = to_string(r.status);
+  k[key::kExpected] = r.expected;
+  k[key::kWhy] = r.why;
+  if (r.expected_from_height) k[key::kExpectedFromHeight] = r.expected_from_height;
+  if (!r.signature.empty()) k[key::kSignature] = r.signature;
+  k[key::kSeconds] = r.seconds;
+  k[key::kCauses] = r.causes;
+  if (r.host) k[key::kHost] = *r.host;
+  if (r.shard) k[key::kShard] = *r.shard;
+  if (r.expectation) {
+    json e = {{key::kOutcome, to_string(r.expectation->outcome)}};
+    if (!r.expectation->status.empty()) e[key::kStatus] = r.expectation->status;
+    if (!r.expectation->line.empty()) e[key::kLine] = r.expectation->line;
+    k[key::kExpectation] = e;
+  }
+  if (!r.unmet_expectation.empty()) k[key::kUnmetExpectation] = r.unmet_expectation;
+  if (!r.error.empty()) k[key::kError] = r.error;
+}
+
+}  // namespace shadowref::record

@@ -1,0 +1,139 @@
+// case_record_test.cpp — a case of report.json through its record (case_record.hpp): the name
+// tables round-trip, a written record reads back equal, and a case of the wrong shape is refused
+// with its JSON path.
+#include <gtest/gtest.h>
+
+#include "shadowref/record/case_record.hpp"
+
+namespace shadowref::record {
+namespace {
+
+using nlohmann::json;
+
+TEST(CaseRecord, EveryStatusAndOutcomeNameReadsBackAsItself) {
+  for (Status s : kStatuses) EXPECT_EQ(status_from_string(to_string(s)), s) << to_string(s);
+  for (Outcome o : kOutcomes) EXPECT_EQ(outcome_from_string(to_string(o)), o) << to_string(o);
+  EXPECT_FALSE(status_from_string("pass"));  // names are case-sensitive, as report.json writes them
+  EXPECT_FALSE(outcome_from_string("Green"));
+  int failures = 0;
+  for (Status s : kStatuses) failures += is_failure(s);
+  EXPECT_EQ(failures, 3);  // FAIL, XPASS, ERROR
+  EXPECT_TRUE(is_failure(Status::XPass));
+  EXPECT_FALSE(is_failure(Status::XFail));
+}
+
+CaseRecord full() {
+  CaseRecord r;
+  r.scene = "two_lights";
+  r.technique = "shadowmap-pcf";
+  r.status = Status::XFail;
+  r.expected = "fail";
+  r.why = "a 512 map";
+  r.expected_from_height = 240;
+  r.signature = "3 mask px too dark";
+  r.unmet_expectation = "expected WARN not seen";
+  r.causes = "texel, bias";
+  r.host = "ci-7";
+  r.shard = 2;
+  r.seconds = 0.25;
+  r.expectation = ExpectationRecord{Outcome::Expected, "XFAIL", "fails.txt:3"};
+  return r;
+}
+
+TEST(CaseRecord, AWrittenRecordReadsBackEqual) {
+  json k;
+  write_case(full(), k);
+  // What write_case leaves to others, as the writer adds them.
+  k[key::kComparison] = {{key::kReasons, {"1 unexplained core pixel(s)"}}};
+  k[key::kResolvingPower] = {{key::kSummary, "blind to 8x8 tiles"}, {key::kBlindTo, {"8x8 tiles"}}, {key::kUnseen, json::array()}};
+  k[key::kCandidate] = {{key::kEnvironment, {{"api", "webgpu"}, {"engine", "three.js"}}}};
+  const CaseRecord r = read_case(k, 0);
+  const CaseRecord f = full();
+  EXPECT_EQ(r.scene, f.scene);
+  EXPECT_EQ(r.technique, f.technique);
+  EXPECT_EQ(r.status, f.status);
+  EXPECT_EQ(r.expected, f.expected);
+  EXPECT_EQ(r.why, f.why);
+  EXPECT_EQ(r.expected_from_height, 240);
+  EXPECT_EQ(r.signature, f.signature);
+  EXPECT_EQ(r.unmet_expectation, f.unmet_expectation);
+  EXPECT_EQ(r.causes, f.causes);
+  EXPECT_EQ(r.host, f.host);
+  EXPECT_EQ(r.shard, 2);
+  EXPECT_EQ(r.seconds, 0.25);
+  ASSERT_TRUE(r.expectation);
+  EXPECT_EQ(r.expectation->outcome, Outcome::Expected);
+  EXPECT_EQ(r.expectation->expected_by(), "XFAIL at fails.txt:3");
+  EXPECT_EQ(r.reasons, std::vector<std::string>{"1 unexplained core pixel(s)"});
+  ASSERT_TRUE(r.resolving_power);
+  EXPECT_EQ(r.resolving_power->blind_to, std::vector<std::string>{"8x8 tiles"});
+  EXPECT_EQ(outputs::environment_text(r.environment), "api webgpu · engine three.js");
+  // Written again from what was read, the keys are the same.
+  json again;
+  write_case(r, again);
+  json written;
+  write_case(f, written);
+  EXPECT_EQ(again, written);
+}
+
+TEST(CaseRecord, OptionalKeysAreLeftOutAndReadAsTheirDefaults) {
+  CaseRecord r;
+  r.scene = "s";
+  r.technique = "planar";
+  json k;
+  write_case(r, k);
+  for (const char* absent : {key::kHost, key::kShard, key::kExpectation, key::kError, key::kSignature,
+                             key::kUnmetExpectation, key::kExpectedFromHeight})
+    EXPECT_FALSE(k.contains(absent)) << absent;
+  const CaseRecord back = read_case(k, 0);
+  EXPECT_FALSE(back.host);
+  EXPECT_FALSE(back.shard);
+  EXPECT_FALSE(back.expectation);
+  EXPECT_FALSE(back.resolving_power);
+  EXPECT_EQ(back.status, Status::Pass);
+  EXPECT_EQ(ExpectationRecord{}.expected_by(), "green");
+}
+
+// Each wrong shape is refused with the JSON path a person looks at.
+TEST(CaseRecord, AWrongShapeIsRefusedWithItsPath) {
+  const json good = {{"scene", "s"}, {"technique", "t"}, {"status", "PASS"}};
+  const auto refused = [&](json c, std::size_t index) -> std::string {
+    try {
+      read_case(c, index);
+    } catch (const RecordError& e) {
+      return e.what();
+    }
+    return "(accepted)";
+  };
+  EXPECT_EQ(refused(good, 0), "(accepted)");
+  json c = good;
+  c["status"] = "MAYBE";
+  EXPECT_EQ(refused(c, 3), "cases[3].status: \"MAYBE\" is not a status (PASS, WARN, FAIL, XFAIL, XPASS, ERROR)");
+  c = good;
+  c.erase("technique");
+  EXPECT_EQ(refused(c, 1), "cases[1].technique: missing");
+  c = good;
+  c["scene"] = 7;
+  EXPECT_EQ(refused(c, 0), "cases[0].scene: must be a string, not 7");
+  c = good;
+  c["seconds"] = "fast";
+  EXPECT_EQ(refused(c, 0), "cases[0].seconds: must be a number, not \"fast\"");
+  c = good;
+  c["shard"] = 1e300;  // a float: no cast out of range
+  EXPECT_EQ(refused(c, 0), "cases[0].shard: must be a whole number from 0 to 2147483647, not 1e+300");
+  c = good;
+  c["expected_from_height"] = -2;
+  EXPECT_EQ(refused(c, 0), "cases[0].expected_from_height: must be a whole number from 0 to 2147483647, not -2");
+  c = good;
+  c["expectation"] = {{"outcome", "maybe"}};
+  EXPECT_EQ(refused(c, 2), "cases[2].expectation.outcome: \"maybe\" is not an outcome");
+  c = good;
+  c["resolving_power"] = {{"blind_to", {1}}};
+  EXPECT_EQ(refused(c, 0), "cases[0].resolving_power.blind_to: must be an array of strings, not with 1");
+  EXPECT_EQ(refused(json::array(), 5), "cases[5]: must be an object");
+  EXPECT_THROW(read_cases(json{{"cases", 1}}), RecordError);
+  EXPECT_TRUE(read_cases(json::object()).empty());
+}
+
+}  // namespace
+}  // namespace shadowref::record
