@@ -12,6 +12,7 @@
 #include "shadowref/conform/mask_difference.hpp"
 #include "shadowref/conform/run_report.hpp"
 #include "shadowref/outputs/image_io.hpp"
+#include "shadowref/record/case_record.hpp"
 
 namespace shadowref::conform {
 namespace {
@@ -77,13 +78,19 @@ std::vector<CaseKey> read_cases(const RunReport& r, std::map<CaseKey, DiffSide>&
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const json& c = cases[i];
     const std::string path = "cases[" + std::to_string(i) + "]";
-    if (!c.is_object()) r.bad(path, "not an object");
-    const CaseKey key{r.text(c, path, "scene"), r.text(c, path, "technique")};
+    // Who the case is and its status, through its record: a status outside the table is refused.
+    record::CaseRecord rec;
+    try {
+      rec = record::read_case(c, i);
+    } catch (const record::RecordError& e) {
+      throw ReportUnreadable(r.file + ": " + e.what());
+    }
+    const CaseKey key{rec.scene, rec.technique};
     if (const auto it = seen.find(key); it != seen.end())
       r.bad(path, key.first + "@" + key.second + " is also cases[" + std::to_string(it->second) + "]");
     seen[key] = i;
     DiffSide s;
-    s.status = r.text(c, path, "status");
+    s.status = to_string(rec.status);
     if (c.contains("comparison") && !c["comparison"].is_null()) {
       const json& cmp = c["comparison"];
       if (!cmp.is_object() || !cmp.contains("total") || !cmp["total"].is_object())
