@@ -6,17 +6,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
 #include <fstream>
-#include <functional>
 #include <optional>
 #include <string>
-#include <utility>
-#include <vector>
 
 #include "grid_scene.hpp"
 #include "shadowref/conform/catalogue.hpp"
@@ -28,18 +22,7 @@
 namespace shadowref {
 namespace {
 
-using test::for_surface;
-using test::Image8;
-using test::kMaskLit;
-using test::kMaskNoSurface;
-using test::kMaskShadowed;
-using test::kOurMatrices;
-using test::Mutation;
-using test::SceneUnderTest;
-namespace fs = std::filesystem;
-
-using test::shifted;
-using test::swapped_tile;
+using namespace test;  // the grid's scene and mutations (grid_scene.hpp)
 
 // Peter-panning of a measured size, declared honestly: our shadowmap with a constant offset of
 // 6.4 cm and of 26 cm along the sun (renderer/faults.hpp, constant_offset_world; the renderer

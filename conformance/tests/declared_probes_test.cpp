@@ -5,40 +5,16 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <algorithm>
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
 #include <fstream>
-#include <functional>
-#include <optional>
 #include <string>
-#include <utility>
-#include <vector>
 
 #include "grid_scene.hpp"
-#include "shadowref/conform/catalogue.hpp"
-#include "shadowref/conform/reference_cache.hpp"
-#include "shadowref/reference/causes.hpp"
-#include "shadowref/scene/load_scene.hpp"
-#include "shadowref/scene/prepared_scene.hpp"
 
 namespace shadowref {
 namespace {
 
-using test::for_surface;
-using test::Image8;
-using test::kMaskLit;
-using test::kMaskNoSurface;
-using test::kMaskShadowed;
-using test::kOurMatrices;
-using test::Mutation;
-using test::SceneUnderTest;
-namespace fs = std::filesystem;
-
-using test::shifted;
-using test::swapped_tile;
+using namespace test;  // the grid's scene and mutations (grid_scene.hpp)
 
 // The judge keeps one resolving power per reference, threshold and declaration as judged. A
 // cascaded technique declares "cascades": 0 for its default count, so csm-pcf's declaration reads

@@ -10,11 +10,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <functional>
-#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -29,18 +24,7 @@
 namespace shadowref {
 namespace {
 
-using test::for_surface;
-using test::Image8;
-using test::kMaskLit;
-using test::kMaskNoSurface;
-using test::kMaskShadowed;
-using test::kOurMatrices;
-using test::Mutation;
-using test::SceneUnderTest;
-namespace fs = std::filesystem;
-
-using test::shifted;
-using test::swapped_tile;
+using namespace test;  // the grid's scene and mutations (grid_scene.hpp)
 
 // A declared map size on the pack's grid is checked against the mask's own staircases
 // (conform/staircases.hpp). Under grazing_light's sun 8 degrees up a 512-texel map's texel spans
