@@ -473,6 +473,13 @@ std::vector<Case> make_cases() {
                    },
                    with(conform, {"--shard", "1/2", "--shard-weights", "@/weights.json"}), 4, "@/weights.json: $.cases[0]"});
   cases.push_back({"missing_shard_merge", nullptr, {"merge", "@/shard-1", "--out", "@/out"}, 4, "@/shard-1/report.json"});
+  // A shard's case is read through its record: a status outside the table is refused with its path.
+  cases.push_back({"bad_case_status_merge",
+                   [](const fs::path& dir) {
+                     write_text(dir / "shard-1" / "report.json",
+                                R"({"plan": {}, "cases": [{"scene": "s", "technique": "planar", "status": "MAYBE"}]})");
+                   },
+                   {"merge", "@/shard-1", "--out", "@/out"}, 4, "@/shard-1/report.json: cases[0].status: \"MAYBE\" is not a status"});
   // diff: two finished runs' report.json, each field checked before use.
   cases.push_back({"missing_report_diff", nullptr, {"diff", "@/run-a", "@/run-b", "--out", "@/out"}, 4, "@/run-a/report.json"});
   cases.push_back({"bad_case_diff",
