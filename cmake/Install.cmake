@@ -3,6 +3,7 @@
 #   P/share/shadowref/conformance/scenes/            the catalogue, meshes included
 #   P/share/shadowref/goldens/images/                the reference masks `shadowref goldens` checks
 #   P/share/shadowref/pack/README.template.md        the pack README's template `shadowref export` fills
+#   P/share/shadowref/report.schema.json             report.json's JSON Schema (docs/output-contract.md)
 #   P/include/shadowref/*.hpp                        the header-only math (mathlib/CMakeLists.txt)
 #   P/share/cmake/shadowref/                         find_package(shadowref): shadowref::mathlib, with
 #                                                    Eigen3 found by find_dependency, and
@@ -20,6 +21,7 @@ set(SHADOWREF_INSTALL_CMAKEDIR ${CMAKE_INSTALL_DATADIR}/cmake/shadowref)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/conformance/scenes DESTINATION ${SHADOWREF_INSTALL_DATADIR}/conformance)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/goldens/images DESTINATION ${SHADOWREF_INSTALL_DATADIR}/goldens)
 install(FILES ${PROJECT_SOURCE_DIR}/pack/README.template.md DESTINATION ${SHADOWREF_INSTALL_DATADIR}/pack)
+install(FILES ${PROJECT_SOURCE_DIR}/conformance/record/report.schema.json DESTINATION ${SHADOWREF_INSTALL_DATADIR})
 
 install(EXPORT shadowrefTargets NAMESPACE shadowref:: DESTINATION ${SHADOWREF_INSTALL_CMAKEDIR})
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/shadowrefConfig.cmake.in

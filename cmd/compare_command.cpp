@@ -7,10 +7,14 @@
 // scene's cause model under the candidate's declaration, a soft technique's lit fraction is judged,
 // and the scene file's expectation gives the case's status. Without --scene nothing explains a
 // wrong pixel (the strictest reading) and a soft technique is refused. Prints the numbers per mask
-// and the verdict, or one JSON object with --json; writes the error image(s) with --out.
+// and the verdict, or with --json one case as conform's report.json holds it (conform/case_json.hpp:
+// the same keys, with "technique_source", "error_images" and "exit_code" besides; without --scene,
+// "scene" is "" and the status is the verdict's); writes the error image(s) with --out.
 // Exit: 0 pass, 1 quality warning, 2 fail, 3 size mismatch, 4 bad input; with --scene, the case's
 // status as conform's exit code reads it (status.hpp).
 #include <CLI/CLI.hpp>
+
+#include <chrono>
 
 #include <nlohmann/json.hpp>
 
@@ -23,6 +27,7 @@
 
 #include "command.hpp"
 #include "shadowref/compare/compare.hpp"
+#include "shadowref/conform/case_json.hpp"
 #include "shadowref/conform/expectations.hpp"
 #include "shadowref/conform/judge.hpp"
 #include "shadowref/conform/resolving_power.hpp"
@@ -32,7 +37,6 @@
 #include "shadowref/outputs/image_io.hpp"
 #include "shadowref/outputs/json_text.hpp"
 #include "shadowref/outputs/techniques.hpp"
-#include "shadowref/report/comparison_json.hpp"
 #include "shadowref/scene/load_scene.hpp"
 #include "shadowref/scene/prepared_scene.hpp"
 
@@ -126,12 +130,15 @@ int run_compare(const CompareArgs& a) {
   conform::CaseJudgement j;
   ScratchFolder scratch;
   std::string scene_name;
+  double seconds = 0;  // the judging's wall time, as a conform case's "seconds"
   try {
     const std::unique_ptr<KnownScene> known = load_known_scene(a);
     if (known) scene_name = known->file.name;
+    const auto started = std::chrono::steady_clock::now();
     conform::Judge judge;
     const std::filesystem::path models = a.out.empty() ? scratch.path : std::filesystem::path(a.out) / "model";
     j = judge.judge(known ? &*known->prepared : nullptr, {a.reference, a.candidate, a.technique, false, models});
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     if (!a.technique.empty()) j.technique_source = "--technique";
   } catch (const outputs::InputError& e) {
     if (e.kind() == outputs::InputError::Kind::SizeMismatch) {
@@ -164,24 +171,22 @@ int run_compare(const CompareArgs& a) {
                    : c.decision.verdict == compare::Verdict::QualityWarning ? kExitWarnings
                                                                              : kExitFailures;
   if (a.json) {
-    nlohmann::json out = report::to_json(c);
-    out["reference"] = a.reference;
-    out["candidate"] = a.candidate;
-    out["technique"] = j.technique;
-    out["technique_source"] = j.technique_source;
-    out["causes"] = j.causes;
-    if (j.resolving_power) out["resolving_power"] = conform::resolving_power_json(*j.resolving_power);
-    if (!a.scene.empty()) {
-      out["status"] = conform::to_string(j.status);
-      out["signature"] = j.signature;
-      out["unmet_expectation"] = j.unmet_expectation;
-    }
-    if (files) {
-      out["expectation"] = {{"outcome", conform::to_string(files->outcome)}, {"case", files->name}};
-      if (files->line) out["expectation"].update({{"status", conform::to_string(files->line->status)}, {"line", files->line->where}});
-    }
-    out["error_images"] = errors;
-    out["exit_code"] = code;
+    // conform's case shape (case_json.hpp), and what is compare's own.
+    namespace key = record::key;
+    record::CaseRecord rec = conform::judged_case(scene_name, j.expectation, &j);
+    rec.seconds = seconds;
+    if (files)
+      rec.expectation = record::ExpectationRecord{files->outcome, files->line ? conform::to_string(files->line->status) : "",
+                                                  files->line ? files->line->where : ""};
+    nlohmann::json out;
+    record::write_case(rec, out);
+    conform::write_judgement(j, out);
+    if (files) out[key::kExpectation][key::kCaseName] = files->name;
+    out[key::kReferenceDir] = a.reference;
+    out[key::kCandidateDir] = a.candidate;
+    out[key::kTechniqueSource] = j.technique_source;
+    out[key::kErrorImages] = errors;
+    out[key::kExitCode] = code;
     std::cout << outputs::json_text(out, 2) << "\n";
     return code;
   }
@@ -239,7 +244,7 @@ void register_compare_command(CLI::App& app, int& exit_code) {
                   "candidate.json, a soft technique's lit fraction is judged, and the scene's expectation gives a status, "
                   "exactly as conform does; without it nothing explains a wrong pixel, and soft techniques are refused");
   add_convention_option(*cmd, args->convention);
-  cmd->add_flag("--json", args->json, "print one JSON object instead of text");
+  cmd->add_flag("--json", args->json, "print the case as one JSON object, in the shape of a case of conform's report.json");
   add_expectations_option(*cmd, args->expectations);
   cmd->footer(
       "Error image: " + outputs::error_colours_line() + ".\n"

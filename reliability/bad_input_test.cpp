@@ -471,7 +471,7 @@ std::vector<Case> make_cases() {
                      write_text(dir / "cat" / "scene.json", good);
                      write_text(dir / "weights.json", "{\"cases\": [{\"scene\": 1}]}");
                    },
-                   with(conform, {"--shard", "1/2", "--shard-weights", "@/weights.json"}), 4, "@/weights.json: $.cases[0]"});
+                   with(conform, {"--shard", "1/2", "--shard-weights", "@/weights.json"}), 4, "@/weights.json: cases[0]"});
   cases.push_back({"missing_shard_merge", nullptr, {"merge", "@/shard-1", "--out", "@/out"}, 4, "@/shard-1/report.json"});
   // A shard's case is read through its record: a status outside the table is refused with its path.
   cases.push_back({"bad_case_status_merge",

@@ -10,7 +10,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libglm-dev libopenimageio-dev openimageio-tools
   libembree-dev libtbb-dev librapidcheck-dev libgtest-dev libgmock-dev
-  libbenchmark-dev libbenchmark-tools python3-scipy python3-matplotlib python3-yaml
+  libbenchmark-dev libbenchmark-tools python3-scipy python3-matplotlib python3-yaml python3-jsonschema
   libosmesa6-dev libegl-dev libgl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
   nlohmann-json3-dev libcli11-dev libtinyobjloader-dev libtinygltf-dev
   libmeshoptimizer-dev zlib1g-dev libpng-dev libre2-dev

@@ -81,7 +81,7 @@ nlohmann::json synthetic(const fs::path& dir, int n) {
     write_mask(dir / base / "shaded.png", 200, 3);
     r["cases"].push_back({{"scene", scene}, {"technique", t}, {"status", i == 1 ? "XFAIL" : "PASS"},
                           {"expected", i == 1 ? "fail" : "pass"}, {"why", i == 1 ? "a <known> limit & its why" : ""},
-                          {"comparison", {{"total", {{"wrong", 0}, {"wrong_percent", 0.0}}}, {"reasons", nlohmann::json::array()}}},
+                          {"comparison", {{"total", {{"wrong", 0}, {"unexplained", 0}, {"wrong_percent", 0.0}}}, {"reasons", nlohmann::json::array()}}},
                           {"lights", {{{"mask", "mask.png"}, {"reference", base + "reference.png"}, {"candidate", base + "candidate.png"},
                                        {"error", base + "error.png"}, {"metrics", {{"wrong", 0}}}}}},
                           {"shaded", base + "shaded.png"}});

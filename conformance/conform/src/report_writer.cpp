@@ -25,6 +25,7 @@
 #include "shadowref/renderer/render_variants.hpp"
 #include "shadowref/outputs/json_text.hpp"
 #include "shadowref/record/case_record.hpp"
+#include "shadowref/conform/case_json.hpp"
 
 namespace shadowref::conform {
 namespace {
@@ -51,20 +52,12 @@ std::string host_name() {
   return buf;
 }
 
-// The case's record (record/case_record.hpp): the keys every reader of report.json acts on.
+// The case's record (record/case_record.hpp): the keys every reader of report.json acts on. The
+// judgement's keys are compare --json's too (case_json.hpp); the run adds the rest.
 record::CaseRecord case_record(const CaseResult& c, const ConformResult& r, bool with_expectations) {
-  record::CaseRecord k;
-  k.scene = c.scene;
-  k.technique = c.technique;
+  record::CaseRecord k = judged_case(c.scene, c.expected, c.judgement ? &*c.judgement : nullptr);
+  k.technique = c.technique;  // as run: an extra technique's own name
   k.status = c.status;
-  k.expected = !c.expected.pass ? "fail" : c.expected.warn ? "warn" : "pass";
-  k.why = c.expected.why;
-  k.expected_from_height = c.expected.from_height;
-  if (c.judgement) {
-    k.signature = c.judgement->signature;
-    k.causes = c.judgement->causes;
-    k.unmet_expectation = c.judgement->unmet_expectation;
-  }
   k.seconds = c.seconds;
   k.host = host_name();
   if (r.plan.shards > 1) k.shard = static_cast<int>(r.plan.shard_of.at(c.scene) + 1);
@@ -85,19 +78,20 @@ json case_json(const CaseResult& c, const outputs::StagedFolder& staged, std::se
   k[key::kCandidateDir] = c.candidate_dir.string();
   k[key::kFrameMs] = c.frame_ms;
   k[key::kNotes] = c.notes;
-  if (c.judgement && c.judgement->resolving_power) k[key::kResolvingPower] = resolving_power_json(*c.judgement->resolving_power);
   if (!c.read_through_links.empty()) {
     json links = json::array();
     for (const auto& [file, target] : c.read_through_links) links.push_back({{"file", file}, {"resolves_to", target}});
     k[key::kReadThroughLinks] = links;
   }
-  // An ERROR case before a verdict records the declaration's defaults, as every case has one.
-  const outputs::CandidateDeclaration declared = c.judgement ? c.judgement->declaration : outputs::CandidateDeclaration{};
-  k[key::kCandidate] = json::parse(outputs::declaration_text(declared));
-  k[key::kCandidate]["defaulted"] = declared.defaulted;
-  if (!c.judgement) return k;
+  if (!c.judgement) {
+    // An ERROR case before a verdict records the declaration's defaults, as every case has one.
+    const outputs::CandidateDeclaration defaults;
+    k[key::kCandidate] = json::parse(outputs::declaration_text(defaults));
+    k[key::kCandidate]["defaulted"] = defaults.defaulted;
+    return k;
+  }
+  write_judgement(*c.judgement, k);
   const compare::FolderComparison& comparison = c.judgement->comparison;
-  k[key::kComparison] = report::to_json(comparison);
   // The images the page shows, per light: reference mask, candidate mask, error, candidate shaded.
   const std::string base = "img/" + c.scene + "/" + c.technique + "/";
   json lights = json::array();

@@ -1,8 +1,9 @@
 // run_diff.cpp — two finished runs read back and compared case by case (run_diff.hpp).
 //
-// Every field read from a report.json is checked before use and named by its JSON path when wrong:
-// the report may come from another machine or another version (a CI artefact), and `diff` is how
-// one looks at such reports, so it must say what is wrong rather than throw a type error.
+// Every case is read through its record (record/case_record.hpp), which checks each field before use
+// and names its JSON path when wrong: the report may come from another machine or another version (a
+// CI artefact), and `diff` is how one looks at such reports, so it must say what is wrong rather
+// than throw a type error.
 #include "shadowref/conform/run_diff.hpp"
 
 #include <algorithm>
@@ -29,41 +30,13 @@ struct RunReport {
   [[noreturn]] void bad(const std::string& path, const std::string& what) const {
     throw ReportUnreadable(file + ": " + path + ": " + what);
   }
-  std::string text(const json& o, const std::string& path, const char* key) const {
-    if (!o.contains(key) || !o[key].is_string()) bad(path + "." + key, "missing or not a string");
-    return o[key].get<std::string>();
-  }
-  std::size_t count(const json& o, const std::string& path, const char* key) const {
-    if (!o.contains(key) || !o[key].is_number_unsigned()) bad(path + "." + key, "missing or not a pixel count");
-    return o[key].get<std::size_t>();
-  }
-  // An image of the case's report/ copy: "" for none, else a path that must stay in report/.
-  fs::path image(const json& light, const std::string& path, const char* key) const {
-    if (!light.contains(key) || light[key].is_null()) return {};
-    const std::string rel = text(light, path, key);
-    if (rel.empty()) return {};
-    if (!inside_report_folder(rel)) bad(path + "." + key, "'" + rel + "' leaves the report folder");
-    return dir / "report" / rel;
-  }
+  // An image of the case's report/ copy (the record checked that it stays there): none for "".
+  fs::path image(const std::string& rel) const { return rel.empty() ? fs::path() : dir / "report" / rel; }
 };
 
-std::vector<DiffLight> read_lights(const RunReport& r, const json& c, const std::string& path) {
+std::vector<DiffLight> lights_of(const RunReport& r, const record::CaseRecord& rec) {
   std::vector<DiffLight> lights;
-  if (!c.contains("lights")) return lights;
-  if (!c["lights"].is_array()) r.bad(path + ".lights", "not an array");
-  for (std::size_t i = 0; i < c["lights"].size(); ++i) {
-    const json& l = c["lights"][i];
-    const std::string at = path + ".lights[" + std::to_string(i) + "]";
-    if (!l.is_object()) r.bad(at, "not an object");
-    DiffLight d;
-    d.mask = r.text(l, at, "mask");
-    // The mask's name also names the page's copies: a plain file name, as outputs/file_names.hpp gives.
-    if (d.mask.empty() || fs::path(d.mask).filename() != d.mask || d.mask == "." || d.mask == "..")
-      r.bad(at + ".mask", "'" + d.mask + "' is not a mask file name");
-    d.candidate = r.image(l, at, "candidate");
-    d.error = r.image(l, at, "error");
-    lights.push_back(std::move(d));
-  }
+  for (const record::LightRecord& l : rec.lights) lights.push_back({l.mask, r.image(l.candidate), r.image(l.error)});
   return lights;
 }
 
@@ -91,14 +64,11 @@ std::vector<CaseKey> read_cases(const RunReport& r, std::map<CaseKey, DiffSide>&
     seen[key] = i;
     DiffSide s;
     s.status = to_string(rec.status);
-    if (c.contains("comparison") && !c["comparison"].is_null()) {
-      const json& cmp = c["comparison"];
-      if (!cmp.is_object() || !cmp.contains("total") || !cmp["total"].is_object())
-        r.bad(path + ".comparison.total", "missing or not an object");
-      s.wrong = r.count(cmp["total"], path + ".comparison.total", "wrong");
-      s.unexplained = r.count(cmp["total"], path + ".comparison.total", "unexplained");
+    if (rec.totals) {
+      s.wrong = rec.totals->wrong;
+      s.unexplained = rec.totals->unexplained;
     }
-    s.lights = read_lights(r, c, path);
+    s.lights = lights_of(r, rec);
     out[key] = std::move(s);
     order.push_back(key);
   }

@@ -25,10 +25,4 @@ std::string report_text(const json& j, const char* key) {
   return j[key].is_string() ? j[key].get<std::string>() : j[key].dump();
 }
 
-bool inside_report_folder(const std::string& rel) {
-  const fs::path p(rel);
-  if (rel.empty() || p.is_absolute()) return false;
-  return std::none_of(p.begin(), p.end(), [](const fs::path& part) { return part == ".."; });
-}
-
 }  // namespace shadowref::conform

@@ -1,6 +1,8 @@
 // shard_plan.cpp — scene-to-shard assignment and the CI systems' sharding protocols (shard_plan.hpp).
 #include "shadowref/conform/shard_plan.hpp"
 
+#include "shadowref/record/case_record.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <fstream>
@@ -91,20 +93,17 @@ std::map<std::string, int> assign_shards(const std::vector<std::string>& scenes,
 }
 
 std::map<std::string, double> read_shard_weights(const std::filesystem::path& report_json) {
+  const std::string said = "--shard-weights " + report_json.string() + ": ";
   std::ifstream in(report_json);
-  if (!in) throw std::invalid_argument("--shard-weights " + report_json.string() + ": cannot read the file");
+  if (!in) throw std::invalid_argument(said + "cannot read the file");
   const nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-  if (j.is_discarded() || !j.is_object()) throw std::invalid_argument("--shard-weights " + report_json.string() + ": not a JSON object (a report.json)");
-  if (!j.contains("cases") || !j["cases"].is_array())
-    throw std::invalid_argument("--shard-weights " + report_json.string() + ": $.cases: missing or not an array (a report.json)");
+  if (j.is_discarded() || !j.is_object()) throw std::invalid_argument(said + "not a JSON object (a report.json)");
+  if (!j.contains(record::key::kCases)) throw std::invalid_argument(said + "cases: missing (a report.json)");
   std::map<std::string, double> out;
-  for (std::size_t i = 0; i < j["cases"].size(); ++i) {
-    const nlohmann::json& c = j["cases"][i];
-    if (!c.is_object() || !c.contains("scene") || !c["scene"].is_string() || !c.contains("seconds") || !c["seconds"].is_number() ||
-        !(c["seconds"].get<double>() >= 0))
-      throw std::invalid_argument("--shard-weights " + report_json.string() + ": $.cases[" + std::to_string(i) +
-                                  "]: expected \"scene\" (a string) and \"seconds\" (a number >= 0)");
-    out[c["scene"].get<std::string>()] += c["seconds"].get<double>();
+  try {
+    for (const record::CaseRecord& c : record::read_cases(j)) out[c.scene] += c.seconds;
+  } catch (const record::RecordError& e) {
+    throw std::invalid_argument(said + e.what());
   }
   return out;
 }

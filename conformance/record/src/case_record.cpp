@@ -1,7 +1,9 @@
 // case_record.cpp — a case of report.json read into its record and written from it (case_record.hpp).
 #include "shadowref/record/case_record.hpp"
 
+#include <algorithm>
 #include <climits>
+#include <filesystem>
 #include <cstdint>
 
 namespace shadowref::record {
@@ -45,6 +47,59 @@ std::string names_of_statuses() {
   std::string s;
   for (Status st : kStatuses) s += (s.empty() ? "" : ", ") + std::string(to_string(st));
   return s;
+}
+
+// j[key] at `where`, which must be there, as a pixel count (a whole number >= 0).
+std::size_t pixels(const json& j, const char* key, const std::string& where) {
+  const auto it = j.find(key);
+  if (it == j.end() || !it->is_number_integer() || (!it->is_number_unsigned() && it->get<std::int64_t>() < 0))
+    throw RecordError(where + "." + key + ": missing or not a pixel count" + (it == j.end() ? "" : ", " + it->dump()));
+  return it->get<std::size_t>();
+}
+
+std::optional<TotalsRecord> read_totals(const json& c, std::size_t index) {
+  const auto cmp = c.find(key::kComparison);
+  if (cmp == c.end() || cmp->is_null()) return std::nullopt;
+  const std::string where = path_of(index, key::kComparison);
+  const auto total = cmp->is_object() ? cmp->find(key::kTotal) : cmp->end();
+  if (!cmp->is_object() || total == cmp->end() || !total->is_object())
+    throw RecordError(where + "." + key::kTotal + ": missing or not an object");
+  return TotalsRecord{pixels(*total, key::kWrong, where + "." + key::kTotal), pixels(*total, key::kUnexplained, where + "." + key::kTotal)};
+}
+
+// l[key]: an image path under report/, "" when absent, null or empty.
+std::string image(const json& l, const char* key, const std::string& where) {
+  const auto it = l.find(key);
+  if (it == l.end() || it->is_null()) return "";
+  if (!it->is_string()) throw RecordError(where + "." + key + ": must be a string, not " + it->dump());
+  const std::string rel = it->get<std::string>();
+  if (!rel.empty() && !inside_report_folder(rel)) throw RecordError(where + "." + key + ": '" + rel + "' leaves the report folder");
+  return rel;
+}
+
+std::vector<LightRecord> read_lights(const json& c, std::size_t index) {
+  std::vector<LightRecord> out;
+  const auto lights = c.find(key::kLights);
+  if (lights == c.end()) return out;
+  if (!lights->is_array()) throw RecordError(path_of(index, key::kLights) + ": not an array");
+  for (std::size_t i = 0; i < lights->size(); ++i) {
+    const json& l = (*lights)[i];
+    const std::string at = path_of(index, key::kLights) + "[" + std::to_string(i) + "]";
+    if (!l.is_object()) throw RecordError(at + ": not an object");
+    LightRecord r;
+    const auto mask = l.find(key::kMask);
+    if (mask == l.end() || !mask->is_string()) throw RecordError(at + "." + key::kMask + ": missing or not a string");
+    r.mask = mask->get<std::string>();
+    // The mask's name also names the page's copies: a plain file name.
+    if (r.mask.empty() || std::filesystem::path(r.mask).filename() != r.mask || r.mask == "." || r.mask == "..")
+      throw RecordError(at + "." + key::kMask + ": '" + r.mask + "' is not a mask file name");
+    r.reference = image(l, key::kReference, at);
+    r.decided = image(l, key::kDecided, at);
+    r.candidate = image(l, key::kCandidate, at);
+    r.error = image(l, key::kErrorImage, at);
+    out.push_back(std::move(r));
+  }
+  return out;
 }
 
 ExpectationRecord read_expectation(const json& e, std::size_t index) {
@@ -103,7 +158,8 @@ CaseRecord read_case(const json& c, std::size_t index) {
   r.causes = text(c, key::kCauses, index);
   if (c.contains(key::kHost)) r.host = text(c, key::kHost, index);
   if (const auto it = c.find(key::kSeconds); it != c.end()) {
-    if (!it->is_number()) throw RecordError(path_of(index, key::kSeconds) + ": must be a number, not " + it->dump());
+    if (!it->is_number() || !(it->get<double>() >= 0))
+      throw RecordError(path_of(index, key::kSeconds) + ": must be a number >= 0, not " + it->dump());
     r.seconds = it->get<double>();
   }
   if (c.contains(key::kShard)) r.shard = count(c, key::kShard, index);
@@ -112,8 +168,16 @@ CaseRecord read_case(const json& c, std::size_t index) {
     r.reasons = texts(*cmp, key::kReasons, path_of(index, key::kComparison));
   if (const auto e = c.find(key::kExpectation); e != c.end()) r.expectation = read_expectation(*e, index);
   if (const auto p = c.find(key::kResolvingPower); p != c.end()) r.resolving_power = read_resolving_power(*p, index);
+  r.totals = read_totals(c, index);
+  r.lights = read_lights(c, index);
   r.environment = environment_of(c);
   return r;
+}
+
+bool inside_report_folder(const std::string& rel) {
+  const std::filesystem::path p(rel);
+  if (rel.empty() || p.is_absolute()) return false;
+  return std::none_of(p.begin(), p.end(), [](const std::filesystem::path& part) { return part == ".."; });
 }
 
 std::vector<CaseRecord> read_cases(const json& report) {

@@ -44,7 +44,9 @@ TEST(CaseRecord, AWrittenRecordReadsBackEqual) {
   json k;
   write_case(full(), k);
   // What write_case leaves to others, as the writer adds them.
-  k[key::kComparison] = {{key::kReasons, {"1 unexplained core pixel(s)"}}};
+  k[key::kComparison] = {{key::kReasons, {"1 unexplained core pixel(s)"}}, {key::kTotal, {{key::kWrong, 7}, {key::kUnexplained, 1}}}};
+  k[key::kLights] = {{{key::kMask, "mask_1.png"}, {key::kReference, "img/two_lights/reference_mask_1.png"}, {key::kDecided, ""},
+                      {key::kCandidate, "img/two_lights/shadowmap-pcf/candidate_mask_1.png"}, {key::kErrorImage, nullptr}}};
   k[key::kResolvingPower] = {{key::kSummary, "blind to 8x8 tiles"}, {key::kBlindTo, {"8x8 tiles"}}, {key::kUnseen, json::array()}};
   k[key::kCandidate] = {{key::kEnvironment, {{"api", "webgpu"}, {"engine", "three.js"}}}};
   const CaseRecord r = read_case(k, 0);
@@ -68,6 +70,15 @@ TEST(CaseRecord, AWrittenRecordReadsBackEqual) {
   ASSERT_TRUE(r.resolving_power);
   EXPECT_EQ(r.resolving_power->blind_to, std::vector<std::string>{"8x8 tiles"});
   EXPECT_EQ(outputs::environment_text(r.environment), "api webgpu · engine three.js");
+  ASSERT_TRUE(r.totals);
+  EXPECT_EQ(r.totals->wrong, 7u);
+  EXPECT_EQ(r.totals->unexplained, 1u);
+  ASSERT_EQ(r.lights.size(), 1u);
+  EXPECT_EQ(r.lights[0].mask, "mask_1.png");
+  EXPECT_EQ(r.lights[0].reference, "img/two_lights/reference_mask_1.png");
+  EXPECT_EQ(r.lights[0].decided, "");
+  EXPECT_EQ(r.lights[0].candidate, "img/two_lights/shadowmap-pcf/candidate_mask_1.png");
+  EXPECT_EQ(r.lights[0].error, "");  // null: none
   // Written again from what was read, the keys are the same.
   json again;
   write_case(r, again);
@@ -90,6 +101,8 @@ TEST(CaseRecord, OptionalKeysAreLeftOutAndReadAsTheirDefaults) {
   EXPECT_FALSE(back.shard);
   EXPECT_FALSE(back.expectation);
   EXPECT_FALSE(back.resolving_power);
+  EXPECT_FALSE(back.totals);
+  EXPECT_TRUE(back.lights.empty());
   EXPECT_EQ(back.status, Status::Pass);
   EXPECT_EQ(ExpectationRecord{}.expected_by(), "green");
 }
@@ -117,7 +130,23 @@ TEST(CaseRecord, AWrongShapeIsRefusedWithItsPath) {
   EXPECT_EQ(refused(c, 0), "cases[0].scene: must be a string, not 7");
   c = good;
   c["seconds"] = "fast";
-  EXPECT_EQ(refused(c, 0), "cases[0].seconds: must be a number, not \"fast\"");
+  EXPECT_EQ(refused(c, 0), "cases[0].seconds: must be a number >= 0, not \"fast\"");
+  c["seconds"] = -1;
+  EXPECT_EQ(refused(c, 0), "cases[0].seconds: must be a number >= 0, not -1");
+  c = good;
+  c["comparison"] = {{"reasons", json::array()}};
+  EXPECT_EQ(refused(c, 4), "cases[4].comparison.total: missing or not an object");
+  c["comparison"]["total"] = {{"wrong", 2.5}, {"unexplained", 0}};
+  EXPECT_EQ(refused(c, 4), "cases[4].comparison.total.wrong: missing or not a pixel count, 2.5");
+  c = good;
+  c["lights"] = {{{"mask", "../mask.png"}}};
+  EXPECT_EQ(refused(c, 0), "cases[0].lights[0].mask: '../mask.png' is not a mask file name");
+  c["lights"] = {{{"mask", "mask.png"}, {"candidate", "../../../etc/passwd"}}};
+  EXPECT_EQ(refused(c, 0), "cases[0].lights[0].candidate: '../../../etc/passwd' leaves the report folder");
+  c["lights"] = {{{"mask", "mask.png"}, {"error", "/etc/passwd"}}};
+  EXPECT_EQ(refused(c, 0), "cases[0].lights[0].error: '/etc/passwd' leaves the report folder");
+  c["lights"] = {{{"mask", "mask.png"}, {"reference", 3}}};
+  EXPECT_EQ(refused(c, 0), "cases[0].lights[0].reference: must be a string, not 3");
   c = good;
   c["shard"] = 1e300;  // a float: no cast out of range
   EXPECT_EQ(refused(c, 0), "cases[0].shard: must be a whole number from 0 to 2147483647, not 1e+300");

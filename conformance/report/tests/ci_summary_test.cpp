@@ -14,7 +14,7 @@ nlohmann::json sample() {
   r["cases"] = json::array();
   r["cases"].push_back({{"scene", "ground_sphere"}, {"technique", "shadowmap"}, {"status", "PASS"}, {"seconds", 0.5}});
   r["cases"].push_back({{"scene", "ground_sphere"}, {"technique", "planar"}, {"status", "FAIL"},
-                        {"comparison", {{"reasons", {"1 unexplained core pixel(s) <here>"}}}}});
+                        {"comparison", {{"total", {{"wrong", 3}, {"unexplained", 3}}}, {"reasons", {"1 unexplained core pixel(s) <here>"}}}}});
   r["cases"].push_back({{"scene", "cornell_box"}, {"technique", "planar"}, {"status", "XFAIL"}, {"why", "walls & ceiling"}});
   r["cases"].push_back({{"scene", "cornell_box"}, {"technique", "shadowmap"}, {"status", "ERROR"}, {"error", "no mask.png"}});
   return r;

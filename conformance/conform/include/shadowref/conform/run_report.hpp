@@ -13,6 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "shadowref/record/case_record.hpp"
+
 namespace shadowref::conform {
 
 // A report.json that is missing, does not parse or is not a run's: one line naming the file.
@@ -30,6 +32,6 @@ nlohmann::json read_run_report(const std::filesystem::path& dir);
 std::string report_text(const nlohmann::json& j, const char* key);
 
 // Whether `rel`, an image path of a case, is relative and has no ".." part (it stays in report/).
-bool inside_report_folder(const std::string& rel);
+using record::inside_report_folder;
 
 }  // namespace shadowref::conform

@@ -51,9 +51,14 @@ inline constexpr char kComparison[] = "comparison";
 inline constexpr char kLights[] = "lights";
 inline constexpr char kShaded[] = "shaded";
 inline constexpr char kReferenceShaded[] = "reference_shaded";
+// `compare --json` only: where the technique came from, the error images --out holds, the exit code.
+inline constexpr char kTechniqueSource[] = "technique_source";
+inline constexpr char kErrorImages[] = "error_images";
+inline constexpr char kExitCode[] = "exit_code";
 // Inside "expectation".
 inline constexpr char kOutcome[] = "outcome";
 inline constexpr char kLine[] = "line";  // also a stale line's place, "fails.txt:3"
+inline constexpr char kCaseName[] = "case";  // `compare --json` only: the case's name in the files
 // Inside "resolving_power".
 inline constexpr char kSummary[] = "summary";
 inline constexpr char kBlindTo[] = "blind_to";
@@ -62,6 +67,14 @@ inline constexpr char kProbes[] = "probes";
 // Inside "comparison" and "candidate".
 inline constexpr char kReasons[] = "reasons";
 inline constexpr char kEnvironment[] = "environment";
+inline constexpr char kTotal[] = "total";  // "comparison"."total": every light's counts summed
+inline constexpr char kWrong[] = "wrong";
+inline constexpr char kUnexplained[] = "unexplained";
+// Inside each of "lights": the mask's name and the page's copies of its images (under report/).
+inline constexpr char kMask[] = "mask";
+inline constexpr char kReference[] = "reference";
+inline constexpr char kDecided[] = "decided";
+inline constexpr char kErrorImage[] = "error";
 }  // namespace key
 
 // A case's place in the expectations files (present when the run was given any).
@@ -79,6 +92,19 @@ struct ResolvingPowerRecord {
   std::vector<std::string> blind_to, unseen;  // the probe kinds' names
 };
 
+// One light of a judged case as the page shows it: its mask's name (a plain file name, as
+// outputs/file_names.hpp gives) and the report folder's copies of its images, each a path relative to
+// report/ that stays in it ("" when there is none: a case that ended before its image was written).
+struct LightRecord {
+  std::string mask;
+  std::string reference, decided, candidate, error;
+};
+
+// The comparison's counts over every light ("comparison"."total"), the ones a run is compared by.
+struct TotalsRecord {
+  std::size_t wrong = 0, unexplained = 0;
+};
+
 struct CaseRecord {
   std::string scene, technique;
   Status status = Status::Pass;
@@ -93,6 +119,8 @@ struct CaseRecord {
   std::optional<int> shard;        // its shard, in a sharded run (1-based)
   double seconds = 0;              // wall time of the case
   std::vector<std::string> reasons;  // the verdict's reasons ("comparison"."reasons")
+  std::optional<TotalsRecord> totals;  // absent before a verdict
+  std::vector<LightRecord> lights;     // empty before a verdict
   std::optional<ExpectationRecord> expectation;
   std::optional<ResolvingPowerRecord> resolving_power;
   outputs::Environment environment;  // where the candidate was rendered (empty: none declared);
@@ -108,16 +136,23 @@ class RecordError : public std::invalid_argument {
 
 // The record of case `c`, the `index`-th of its report (for the path in a RecordError). "scene",
 // "technique" and "status" must be there; every other key may be absent (its default above), but a
-// key that is there must have its type. Cost: one pass over the case's top-level keys.
+// key that is there must have its type ("seconds" a number >= 0, a count a whole number, an image
+// path one that stays in report/). Cost: one pass over the case's keys and its lights.
 CaseRecord read_case(const nlohmann::json& c, std::size_t index);
+
+// Whether `rel`, an image path of a case, is relative and has no ".." part (it stays in report/):
+// a report.json from elsewhere (a CI artefact) must not make a reader open files beside it.
+bool inside_report_folder(const std::string& rel);
 
 // Every case of `report` (an object whose "cases" is an array; none when it has no "cases").
 std::vector<CaseRecord> read_cases(const nlohmann::json& report);
 
 // The keys of `r` written into `k` as read_case reads them back: absent optionals and empty
-// optional texts are not written ("why", "causes" and "seconds" always are). Two fields are not
+// optional texts are not written ("why", "causes" and "seconds" always are). Four fields are not
 // written from here: `environment` lies in "candidate", written whole from the candidate's
-// declaration, and the resolving power carries its probes besides (resolving_power_json).
+// declaration; the resolving power carries its probes besides (resolving_power_json); the totals and
+// the reasons lie in "comparison" and the lights carry their metrics, each written whole by the
+// comparison's writer (report/comparison_json.hpp) and the report's, which copies the images.
 void write_case(const CaseRecord& r, nlohmann::json& k);
 
 }  // namespace shadowref::record
