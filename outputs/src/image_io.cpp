@@ -3,6 +3,8 @@
 // (image_codec.hpp), loaded on first use.
 #include "shadowref/outputs/image_io.hpp"
 
+#include <atomic>
+
 #include <dlfcn.h>
 #include <fcntl.h>
 #include <unistd.h>
@@ -132,9 +134,16 @@ void write_exr_image(const std::filesystem::path& file, int width, int height, c
 
 }  // namespace
 
+namespace {
+std::atomic<std::size_t> g_image_files_read{0};
+}  // namespace
+
+std::size_t image_files_read() { return g_image_files_read.load(std::memory_order_relaxed); }
+
 Image8 read_image8(const std::filesystem::path& file, int channels) { return read_image8(file, channels, 0, 0); }
 
 Image8 read_image8(const std::filesystem::path& file, int channels, int width, int height) {
+  g_image_files_read.fetch_add(1, std::memory_order_relaxed);
   const auto bad = [&](const std::string& what) { return InputError(InputError::Kind::BadInput, file.string() + ": " + what); };
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) throw bad("no such file");

@@ -472,11 +472,8 @@ Decision decide_lights(const std::vector<MaskMetrics>& lights, const Threshold& 
   return out;
 }
 
-FolderComparison compare_folders(const std::filesystem::path& reference_dir,
-                                 const std::filesystem::path& candidate_dir, const Threshold& threshold,
-                                 const CompareOptions& options) {
-  FolderComparison out;
-  out.threshold = &threshold;
+FolderImages read_folder_images(const std::filesystem::path& reference_dir, const std::filesystem::path& candidate_dir) {
+  FolderImages out;
   out.masks = outputs::find_mask_names(reference_dir);
   std::error_code ec;
   if (!std::filesystem::is_directory(candidate_dir, ec))
@@ -492,35 +489,54 @@ FolderComparison compare_folders(const std::filesystem::path& reference_dir,
                              (n == 1 ? out.masks[0] : out.masks.front() + " ... " + out.masks.back()));
   for (std::size_t i = 0; i < out.masks.size(); ++i) {
     const std::string& name = out.masks[i];
-    const std::string decided_name = outputs::decided_name(i, out.masks.size());
     if (!std::filesystem::exists(candidate_dir / name, ec))
       throw CompareError(CompareError::Kind::BadInput,
                          (candidate_dir / name).string() + ": no such file (the reference has " +
                              std::to_string(out.masks.size()) + " light mask(s): " +
                              (out.masks.size() == 1 ? out.masks[0] : out.masks.front() + " ... " + out.masks.back()) + ")");
-    const Image8 ref = read_image8(reference_dir / name, 1);
-    const Image8 dec = read_image8(reference_dir / decided_name, 1);
-    const Image8 cand = read_image8(candidate_dir / name, 1, ref.width, ref.height);
-    CompareOptions o = options;
-    if (!threshold.bands) o.explain = nullptr;  // exact techniques: no texel or bias band
-    out.per_light.push_back(compare_mask(ref, dec, cand, (candidate_dir / name).string(), i, o));
-    out.total += out.per_light.back().metrics;
-    // Soft shadows: the lit fraction of a light with an area.
-    const bool soft = i < options.visibility.size() && options.visibility[i].tolerance >= 0;
-    out.visibility.emplace_back();
-    if (!soft) continue;
-    const std::string vis = outputs::visibility_name(i, out.masks.size());
+    out.reference.push_back(read_image8(reference_dir / name, 1));
+    out.decided.push_back(read_image8(reference_dir / outputs::decided_name(i, out.masks.size()), 1));
+    out.candidate.push_back(read_image8(candidate_dir / name, 1, out.reference.back().width, out.reference.back().height));
+    out.candidate_files.push_back((candidate_dir / name).string());
+  }
+  out.fractions.resize(out.masks.size());
+  return out;
+}
+
+void add_fractions(FolderImages& images, const std::filesystem::path& reference_dir, const std::filesystem::path& candidate_dir,
+                   const CompareOptions& options) {
+  std::error_code ec;
+  for (std::size_t i = 0; i < images.masks.size(); ++i) {
+    if (!(i < options.visibility.size() && options.visibility[i].tolerance >= 0)) continue;
+    const int w = images.reference[i].width, h = images.reference[i].height;
+    const std::string vis = outputs::visibility_name(i, images.masks.size());
     if (!std::filesystem::exists(candidate_dir / vis, ec))
       throw CompareError(CompareError::Kind::BadInput, (candidate_dir / vis).string() +
                                                            ": no such file (a soft technique's lit fraction, 8-bit grey, "
                                                            "beside its mask)");
-    const Image8 covered = read_image8(reference_dir / outputs::kCoveredName, 1, ref.width, ref.height);
-    const std::vector<float> fraction =
-        outputs::read_exr(reference_dir / outputs::per_light_name("visibility", "exr", i, out.masks.size()), ref.width, ref.height);
-    const Image8 cand_vis = read_image8(candidate_dir / vis, 1, ref.width, ref.height);
-    out.visibility.back() =
-        compare_visibility(fraction, covered, cand_vis, cand, options.visibility[i], options.explain_visibility, i,
-                           options.visibility_texel_shift);
+    if (images.covered.pixels.empty()) images.covered = read_image8(reference_dir / outputs::kCoveredName, 1, w, h);
+    FolderImages::Fraction f;
+    f.reference = outputs::read_exr(reference_dir / outputs::per_light_name("visibility", "exr", i, images.masks.size()), w, h);
+    f.candidate = read_image8(candidate_dir / vis, 1, w, h);
+    images.fractions[i] = std::move(f);
+  }
+}
+
+FolderComparison compare_images(const FolderImages& images, const Threshold& threshold, const CompareOptions& options) {
+  FolderComparison out;
+  out.threshold = &threshold;
+  out.masks = images.masks;
+  CompareOptions o = options;
+  if (!threshold.bands) o.explain = nullptr;  // exact techniques: no texel or bias band
+  for (std::size_t i = 0; i < images.masks.size(); ++i) {
+    out.per_light.push_back(compare_mask(images.reference[i], images.decided[i], images.candidate[i], images.candidate_files[i], i, o));
+    out.total += out.per_light.back().metrics;
+    // Soft shadows: the lit fraction of a light with an area.
+    out.visibility.emplace_back();
+    if (i >= images.fractions.size() || !images.fractions[i]) continue;
+    out.visibility.back() = compare_visibility(images.fractions[i]->reference, images.covered, images.fractions[i]->candidate,
+                                               images.candidate[i], options.visibility[i], options.explain_visibility, i,
+                                               options.visibility_texel_shift);
     if (!out.visibility_total) out.visibility_total = VisibilityMetrics{};
     *out.visibility_total += out.visibility.back()->metrics;
   }
@@ -534,6 +550,14 @@ FolderComparison compare_folders(const std::filesystem::path& reference_dir,
   out.decision = decide_lights(lights, threshold, out.masks, displaced_how);
   if (out.visibility_total) decide_visibility(*out.visibility_total, out.decision);
   return out;
+}
+
+FolderComparison compare_folders(const std::filesystem::path& reference_dir,
+                                 const std::filesystem::path& candidate_dir, const Threshold& threshold,
+                                 const CompareOptions& options) {
+  FolderImages images = read_folder_images(reference_dir, candidate_dir);
+  add_fractions(images, reference_dir, candidate_dir, options);
+  return compare_images(images, threshold, options);
 }
 
 void decide_visibility(const VisibilityMetrics& m, Decision& j) {

@@ -85,22 +85,16 @@ compare::CompareOptions options_for(const scene::PreparedScene& prepared, const 
 }
 
 // `declared` with the map size of every light whose staircases contradict it (staircases.hpp)
-// taken back to the automatic size; `said` gets each checked light's finding. A mask that cannot be
-// read, or of another size than the scene's, is left to the comparison, which says what is wrong.
+// taken back to the automatic size; `said` gets each checked light's finding. `masks` are the
+// candidate's, read with the reference's (compare::read_folder_images).
 outputs::CandidateDeclaration checked_against_staircases(const reference::CauseModel& model, const scene::Scene& s,
-                                                         const std::filesystem::path& candidate_dir,
+                                                         const std::vector<outputs::Image8>& masks,
                                                          const outputs::CandidateDeclaration& declared, std::string& said) {
   outputs::CandidateDeclaration judged = declared;
-  for (std::size_t i = 0; i < s.lights.size(); ++i) {
+  for (std::size_t i = 0; i < s.lights.size() && i < masks.size(); ++i) {
     const outputs::CandidateDeclaration& d = declared.for_light(i);
     if (!staircases_apply(d)) continue;
-    outputs::Image8 mask;
-    try {
-      mask = outputs::read_image8(candidate_dir / outputs::mask_name(i, s.lights.size()), 1, s.width, s.height);
-    } catch (const outputs::InputError&) {
-      continue;
-    }
-    const StaircaseCheck check = check_staircases(model, mask, i, d);
+    const StaircaseCheck check = check_staircases(model, masks[i], i, d);
     said += (said.empty() ? "" : "; ") + describe(check, i, d);
     if (!check.contradicted) continue;
     if (judged.lights.size() <= i) {  // the lights without an entry take the top level's declaration
@@ -210,12 +204,14 @@ CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJud
       throw outputs::InputError(outputs::InputError::Kind::BadInput, (c.candidate_dir / outputs::kCandidateFile).string() + ": " + p);
   if (const auto e = s.expect.find(j.technique); e != s.expect.end()) j.expectation = e->second;
 
-  // 2-4. Threshold, causes, lit fraction: the comparison, under the declaration as the pixels bear it out.
+  // 2-4. Threshold, causes, lit fraction: the comparison, under the declaration as the pixels bear it
+  // out. The masks are read once here, for the staircases, the comparison, the probes and the model.
+  compare::FolderImages images = compare::read_folder_images(c.reference_dir, c.candidate_dir);
   reference::CauseModel* model = threshold.bands || soft ? &causes_of(*prepared) : nullptr;
   std::string staircases;
   const outputs::CandidateDeclaration judged =
       model && named && named->family == outputs::TechniqueFamily::ShadowMap
-          ? checked_against_staircases(*model, s, c.candidate_dir, j.declaration, staircases)
+          ? checked_against_staircases(*model, s, images.candidate, j.declaration, staircases)
           : j.declaration;
   // What the cause model's answers depend on (the memo's key, and with the reference and threshold
   // the probes' verdicts'): not the producer or version, nor the technique's name (the volume
@@ -236,13 +232,14 @@ CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJud
   Explainers explainers;
   const compare::CompareOptions options = options_for(*prepared, threshold, named, judged, model, memo, explainers, j.causes);
   if (!staircases.empty()) j.causes += "; " + staircases;
-  j.comparison = compare::compare_folders(c.reference_dir, c.candidate_dir, threshold, options);
+  compare::add_fractions(images, c.reference_dir, c.candidate_dir, options);
+  j.comparison = compare::compare_images(images, threshold, options);
 
   // 5. What the verdict could have seen, once per reference, threshold and declaration as judged.
   if (probe_) {
     const std::string key = c.reference_dir.string() + '\n' + std::string(threshold.name) + '\n' + cause_key;
     auto known = resolving_.find(key);
-    if (known == resolving_.end()) known = resolving_.emplace(key, resolving_power(c.reference_dir, s.lights.size(), threshold, options)).first;
+    if (known == resolving_.end()) known = resolving_.emplace(key, resolving_power(images.reference, images.decided, threshold, options)).first;
     j.resolving_power = known->second;
   }
 
@@ -275,7 +272,13 @@ CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJud
   // failure here (our render's fraction is no ground truth to measure an engine's against).
   compare::CompareOptions model_options = options;
   model_options.visibility.clear();
-  const compare::FolderComparison against_model = compare::compare_folders(model_dir, c.candidate_dir, threshold, model_options);
+  // Against the model's masks, on the reference's decided pixels (draw_model copies them beside the
+  // model's masks for a person to look at): the candidate as read above.
+  compare::FolderImages against = images;
+  against.fractions.assign(against.masks.size(), std::nullopt);
+  for (std::size_t i = 0; i < against.masks.size(); ++i)
+    against.reference[i] = outputs::read_image8(model_dir / against.masks[i], 1, against.candidate[i].width, against.candidate[i].height);
+  const compare::FolderComparison against_model = compare::compare_images(against, threshold, model_options);
   j.model_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::string ours = " (our " + j.technique + ")";
   if (against_model.decision.verdict == compare::Verdict::Fail) {

@@ -216,18 +216,13 @@ std::string ResolvingPower::summary() const {
   return s;
 }
 
-ResolvingPower resolving_power(const std::filesystem::path& reference_dir, std::size_t lights,
+ResolvingPower resolving_power(const std::vector<Image8>& masks, const std::vector<Image8>& decided,
                                const compare::Threshold& threshold, const compare::CompareOptions& options) {
   compare::CompareOptions o = options;
   o.visibility.clear();  // the masks alone (resolving_power.hpp)
   o.error_image = false;  // a probe's counts are all it gives
   if (!threshold.bands) o.explain = nullptr;
-  std::vector<Image8> masks, decided;
-  for (std::size_t i = 0; i < lights; ++i) {
-    masks.push_back(outputs::read_image8(reference_dir / outputs::mask_name(i, lights), 1));
-    decided.push_back(outputs::read_image8(reference_dir / outputs::decided_name(i, lights), 1, masks.back().width,
-                                           masks.back().height));
-  }
+  const std::size_t lights = masks.size();
   // The displaced-shadow search is the costly part of a comparison and can only raise a verdict to
   // FAIL: a probe that FAILs without it is judged without it, the same verdict at a fraction of the cost.
   compare::CompareOptions quick = o;

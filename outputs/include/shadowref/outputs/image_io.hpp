@@ -16,6 +16,7 @@
 // StagedFolder (staged_folder.hpp).
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -32,6 +33,10 @@ Image8 read_image8(const std::filesystem::path& file, int channels);
 // another size is InputError(SizeMismatch) "<file>: candidate is WxH, reference is WxH", known from
 // the header before any pixel is decoded, so a decompression bomb costs no memory.
 Image8 read_image8(const std::filesystem::path& file, int channels, int width, int height);
+
+// How many image files read_image8 has been asked to read in this process, all threads: what a test
+// of a judgement counts to see that it reads each of a case's files once. Cost: one atomic add per read.
+std::size_t image_files_read();
 
 // PNG bytes held in memory (an image embedded in a glTF file) as an 8-bit image with the stream's
 // own 1 to 4 channels, by the same reader and checks as read_image8; `name` stands for the file in

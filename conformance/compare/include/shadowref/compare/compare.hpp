@@ -199,6 +199,38 @@ struct FolderComparison {
   const Threshold* threshold = nullptr;
 };
 
+// What one comparison of a reference folder with a candidate folder reads, each image decoded once
+// (read_folder_images), so that a judge that looks at the candidate more than once (its staircases,
+// the comparison, the probes of the reference's own masks, the technique's model) reads no file twice.
+struct FolderImages {
+  std::vector<std::string> masks;                       // mask file names, in light order
+  std::vector<Image8> reference, decided, candidate;    // per light
+  std::vector<std::string> candidate_files;             // per light: the candidate mask's path, for messages
+  // Soft shadows, per light whose lit fraction is judged (add_fractions): the reference's lit
+  // fraction and the candidate's; `covered` (the reference's covered pixels) once for all of them.
+  struct Fraction {
+    std::vector<float> reference;
+    Image8 candidate;
+  };
+  std::vector<std::optional<Fraction>> fractions;
+  Image8 covered;
+};
+
+// The masks of `reference_dir` and `candidate_dir`: every check compare_folders makes of them, in
+// its order (a stray or missing candidate mask, an unreadable file, a size mismatch). Throws
+// CompareError as compare_folders does. Cost: three PNG decodes per light.
+FolderImages read_folder_images(const std::filesystem::path& reference_dir, const std::filesystem::path& candidate_dir);
+
+// Adds the lit fractions of the lights `options` judges them for (options.visibility[i].tolerance
+// >= 0): the reference's visibility exr and covered.png, the candidate's visibility png. Throws
+// CompareError for a missing, unreadable or mis-sized one. Cost: two decodes per such light, and one.
+void add_fractions(FolderImages& images, const std::filesystem::path& reference_dir, const std::filesystem::path& candidate_dir,
+                   const CompareOptions& options);
+
+// The comparison of images already read (what compare_folders does after reading them).
+FolderComparison compare_images(const FolderImages& images, const Threshold& threshold, const CompareOptions& options = {});
+
+// Reads both folders (read_folder_images, add_fractions) and compares them (compare_images).
 // Throws CompareError: BadInput for missing or unreadable files, a candidate lacking a mask the
 // reference has; SizeMismatch when a candidate mask is not the reference's size.
 FolderComparison compare_folders(const std::filesystem::path& reference_dir,

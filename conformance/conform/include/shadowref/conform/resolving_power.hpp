@@ -113,10 +113,10 @@ outputs::Image8 swapped_tile_at(const outputs::Image8& mask, TilePlace place);
 // when it has no such place. The declaration grid's tile mutants are these, on our render's masks.
 outputs::Image8 swapped_tile(const outputs::Image8& mask, int rank);
 
-// The probes of the reference folder's masks (mask.png or mask_<i>.png, decided.png or
-// decided_<i>.png, `lights` of them) judged by `threshold` with `options` (its lit-fraction bounds
-// ignored). Throws outputs::InputError when a reference file cannot be read.
-ResolvingPower resolving_power(const std::filesystem::path& reference_dir, std::size_t lights,
+// The probes of the reference's masks (one per light, `masks[i]` with its decided pixels
+// `decided[i]`, as compare::read_folder_images reads them) judged by `threshold` with `options` (its
+// lit-fraction bounds ignored).
+ResolvingPower resolving_power(const std::vector<outputs::Image8>& masks, const std::vector<outputs::Image8>& decided,
                                const compare::Threshold& threshold, const compare::CompareOptions& options);
 
 // A case's resolving power as report.json and `shadowref compare --json` give it: {"summary",
