@@ -480,6 +480,13 @@ std::vector<Case> make_cases() {
                                 R"({"plan": {}, "cases": [{"scene": "s", "technique": "planar", "status": "MAYBE"}]})");
                    },
                    {"merge", "@/shard-1", "--out", "@/out"}, 4, "@/shard-1/report.json: cases[0].status: \"MAYBE\" is not a status"});
+  // A shard number is checked before use: a float is never cast out of range.
+  cases.push_back({"bad_shard_number_merge",
+                   [](const fs::path& dir) {
+                     write_text(dir / "shard-1" / "report.json", R"({"plan": {"shards": 1e300}, "cases": []})");
+                   },
+                   {"merge", "@/shard-1", "--out", "@/out"}, 4,
+                   "@/shard-1/report.json: plan.shards: must be a whole number from 1 to 2147483647, not 1e+300"});
   // diff: two finished runs' report.json, each field checked before use.
   cases.push_back({"missing_report_diff", nullptr, {"diff", "@/run-a", "@/run-b", "--out", "@/out"}, 4, "@/run-a/report.json"});
   cases.push_back({"bad_case_diff",

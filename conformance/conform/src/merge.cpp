@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <climits>
+#include <cstdint>
 #include <ctime>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -32,6 +34,39 @@ struct Shard {
 // A shard's report is read as every finished run's (run_report.hpp).
 std::string text_of(const json& j, const char* key) { return report_text(j, key); }
 
+// The shard numbers a report holds (plan.shards, each plan.scenes[].shard and scene, shard.index
+// and shard.total), each checked once here so that every later reading of them holds: a number must
+// be a whole one from 1 to INT_MAX (a float is never cast out of range), a scene a string.
+void check_shard_numbers(const json& report, const fs::path& file) {
+  const auto refuse = [&](const std::string& path, const json& v, const char* what) {
+    throw MergeRefused({file.string() + ": " + path + ": must be " + what + ", not " + v.dump()});
+  };
+  const auto whole = [&](const json& o, const char* key, const std::string& at) {
+    const auto it = o.find(key);
+    if (it == o.end()) return;
+    const bool ok = it->is_number_integer() && (it->is_number_unsigned() ? it->get<std::uint64_t>() <= INT_MAX
+                                                                           : it->get<std::int64_t>() >= 1 &&
+                                                                                 it->get<std::int64_t>() <= INT_MAX);
+    if (!ok || *it == 0) refuse(at + key, *it, "a whole number from 1 to 2147483647");
+  };
+  const json& plan = report["plan"];
+  whole(plan, "shards", "plan.");
+  if (const auto scenes = plan.find("scenes"); scenes != plan.end()) {
+    if (!scenes->is_array()) refuse("plan.scenes", *scenes, "an array");
+    for (std::size_t i = 0; i < scenes->size(); ++i) {
+      const json& p = (*scenes)[i];
+      const std::string at = "plan.scenes[" + std::to_string(i) + "]";
+      if (!p.is_object()) refuse(at, p, "an object");
+      if (p.contains("scene") && !p["scene"].is_string()) refuse(at + ".scene", p["scene"], "a string");
+      whole(p, "shard", at + ".");
+    }
+  }
+  if (const auto shard = report.find("shard"); shard != report.end() && shard->is_object()) {
+    whole(*shard, "index", "shard.");
+    whole(*shard, "total", "shard.");
+  }
+}
+
 Shard read_shard(const fs::path& dir) {
   Shard s;
   s.dir = dir;
@@ -47,6 +82,7 @@ Shard read_shard(const fs::path& dir) {
   } catch (const record::RecordError& e) {
     throw MergeRefused({(dir / "report.json").string() + ": " + e.what()});
   }
+  check_shard_numbers(s.report, dir / "report.json");
   if (s.report.contains("shard") && s.report["shard"].is_object()) {
     s.index = s.report["shard"].value("index", 0);
     s.total = s.report["shard"].value("total", 0);
