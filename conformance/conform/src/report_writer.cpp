@@ -25,12 +25,14 @@
 #include "shadowref/renderer/render_variants.hpp"
 #include "shadowref/outputs/json_text.hpp"
 #include "shadowref/record/case_record.hpp"
+#include "shadowref/record/run_record.hpp"
 #include "shadowref/conform/case_json.hpp"
 
 namespace shadowref::conform {
 namespace {
 
 namespace fs = std::filesystem;
+namespace key = record::key;
 using nlohmann::json;
 
 // Copies `from` to <report>/<rel> and returns rel; "" when `from` is missing (a case that ended in an
@@ -70,7 +72,6 @@ record::CaseRecord case_record(const CaseResult& c, const ConformResult& r, bool
 json case_json(const CaseResult& c, const outputs::StagedFolder& staged, std::set<std::string>& scenes_copied,
                const ConformResult& r, bool with_expectations) {
   std::error_code ec;
-  namespace key = record::key;
   json k;
   record::write_case(case_record(c, r, with_expectations), k);
   k[key::kSceneFile] = fs::absolute(c.scene_file).string();
@@ -112,8 +113,8 @@ json case_json(const CaseResult& c, const outputs::StagedFolder& staged, std::se
       const std::size_t n = comparison.masks.size();
       const std::string vis = outputs::visibility_name(i, n);
       const std::string vis_err = outputs::per_light_name("visibility_error", "png", i, n);
-      l["candidate_visibility"] = copy_in(c.candidate_dir / vis, staged, base + "candidate_" + vis);
-      l["visibility_error"] = copy_in(err.parent_path() / vis_err, staged, base + vis_err);
+      l[key::kCandidateVisibility] = copy_in(c.candidate_dir / vis, staged, base + "candidate_" + vis);
+      l[key::kVisibilityError] = copy_in(err.parent_path() / vis_err, staged, base + vis_err);
       l["visibility"] = report::to_json(comparison.visibility[i]->metrics);
     }
     lights.push_back(l);
@@ -134,10 +135,10 @@ json case_json(const CaseResult& c, const outputs::StagedFolder& staged, std::se
 // the catalogue's identity and the run's declarations.
 json plan_json(const ConformResult& r, const ConformOptions& o) {
   json scenes = json::array();
-  for (const std::string& s : r.plan.scenes) scenes.push_back({{"scene", s}, {"shard", r.plan.shard_of.at(s) + 1}});
-  json p = {{"scenes", scenes},           {"shards", r.plan.shards},        {"assignment", r.plan.assignment},
-            {"techniques", r.techniques}, {"convention", r.convention},     {"catalogue", r.plan.catalogue_id},
-            {"control", r.plan.control}};
+  for (const std::string& s : r.plan.scenes) scenes.push_back({{key::kScene, s}, {key::kShard, r.plan.shard_of.at(s) + 1}});
+  json p = {{key::kScenes, scenes},           {key::kShards, r.plan.shards},     {"assignment", r.plan.assignment},
+            {key::kTechniques, r.techniques}, {key::kConvention, r.convention},  {key::kCatalogue, r.plan.catalogue_id},
+            {key::kControl, r.plan.control}};
   if (!o.shard_weights_file.empty()) p["weights_file"] = fs::absolute(o.shard_weights_file).string();
   return p;
 }
@@ -249,9 +250,9 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
   j["thresholds"] = thresholds;
   j["scenes"] = r.scenes;
   j["techniques"] = r.techniques;
-  j["plan"] = plan_json(r, o);
+  j[key::kPlan] = plan_json(r, o);
   j["declarations"] = declarations_json(o);
-  j["skipped"] = r.skipped;
+  j[key::kSkipped] = r.skipped;
   j["summary"] = summary_json(r.cases.size(), r.count(Status::Pass), r.count(Status::Warn), r.count(Status::Fail),
                               r.count(Status::XFail), r.count(Status::XPass), r.count(Status::Error), r.exit_code());
 
@@ -261,11 +262,11 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
   j["cases"] = cases;
   if (o.shard) {
     // The control case (none only when a [skips] regex left it out).
-    const json control = r.control ? json{{"scene", r.control->scene}, {"technique", r.control->technique},
-                                          {"status", to_string(r.control->status)}}
+    const json control = r.control ? json{{key::kScene, r.control->scene}, {key::kTechnique, r.control->technique},
+                                          {key::kStatus, to_string(r.control->status)}}
                                    : json::object();
-    j["shard"] = {{"index", o.shard->index + 1}, {"total", o.shard->total}, {"source", o.shard->source},
-                  {"scenes", r.scenes}, {"control", control}};
+    j[key::kShard] = {{key::kIndex, o.shard->index + 1}, {key::kTotalShards, o.shard->total}, {"source", o.shard->source},
+                      {key::kScenes, r.scenes}, {key::kControl, control}};
   }
   std::vector<CaseOutcome> outcomes;
   for (const CaseResult& c : r.cases) outcomes.push_back({c.scene, c.technique, c.status, c.outcome, c.environment});

@@ -25,7 +25,7 @@ using nlohmann::json;
 struct RunReport {
   fs::path dir;
   std::string file;  // "<dir>/report.json"
-  json report;
+  record::RunRecord run;
 
   [[noreturn]] void bad(const std::string& path, const std::string& what) const {
     throw ReportUnreadable(file + ": " + path + ": " + what);
@@ -47,17 +47,9 @@ using CaseKey = std::pair<std::string, std::string>;  // scene, technique
 std::vector<CaseKey> read_cases(const RunReport& r, std::map<CaseKey, DiffSide>& out) {
   std::vector<CaseKey> order;
   std::map<CaseKey, std::size_t> seen;
-  const json& cases = r.report["cases"];
-  for (std::size_t i = 0; i < cases.size(); ++i) {
-    const json& c = cases[i];
+  for (std::size_t i = 0; i < r.run.cases.size(); ++i) {
+    const record::CaseRecord& rec = r.run.cases[i];
     const std::string path = "cases[" + std::to_string(i) + "]";
-    // Who the case is and its status, through its record: a status outside the table is refused.
-    record::CaseRecord rec;
-    try {
-      rec = record::read_case(c, i);
-    } catch (const record::RecordError& e) {
-      throw ReportUnreadable(r.file + ": " + e.what());
-    }
     const CaseKey key{rec.scene, rec.technique};
     if (const auto it = seen.find(key); it != seen.end())
       r.bad(path, key.first + "@" + key.second + " is also cases[" + std::to_string(it->second) + "]");
@@ -135,7 +127,7 @@ RunReport read_run(const fs::path& dir) {
   RunReport r;
   r.dir = dir;
   r.file = (dir / "report.json").string();
-  r.report = read_run_report(dir);
+  r.run = read_finished_run(dir).run;  // every case through its record: a status outside the table is refused
   return r;
 }
 
@@ -169,8 +161,8 @@ RunDiff diff_runs(const fs::path& a, const fs::path& b) {
   RunDiff d;
   d.a = a;
   d.b = b;
-  d.convention_a = report_text(ra.report, "convention");
-  d.convention_b = report_text(rb.report, "convention");
+  d.convention_a = ra.run.convention.empty() ? "(none)" : ra.run.convention;
+  d.convention_b = rb.run.convention.empty() ? "(none)" : rb.run.convention;
   for (const auto& key : order) {
     CaseDiff c;
     c.scene = key.first;

@@ -6,48 +6,26 @@
 #include <filesystem>
 #include <cstdint>
 
+#include "read_json.hpp"
+
 namespace shadowref::record {
 namespace {
 
 using nlohmann::json;
 
-std::string path_of(std::size_t index, const char* key) { return "cases[" + std::to_string(index) + "]." + key; }
+using detail::text_at;
+using detail::texts_at;
+
+std::string where_of(std::size_t index) { return "cases[" + std::to_string(index) + "]"; }
+std::string path_of(std::size_t index, const char* key) { return where_of(index) + "." + key; }
 
 // c[key] as a string; `fallback` when absent or null. Another type is a RecordError at its path.
 std::string text(const json& c, const char* key, std::size_t index, const std::string& fallback = "") {
-  const auto it = c.find(key);
-  if (it == c.end() || it->is_null()) return fallback;
-  if (!it->is_string()) throw RecordError(path_of(index, key) + ": must be a string, not " + it->dump());
-  return it->get<std::string>();
+  return text_at(c, key, where_of(index), fallback);
 }
 
-// c[key], which is there, as a count: an integer from 0 to INT_MAX (a shard, an image height), never
-// a float cast out of range.
-int count(const json& c, const char* key, std::size_t index) {
-  const json& v = c[key];
-  if (!v.is_number_integer() || (v.is_number_unsigned() ? v.get<std::uint64_t>() > INT_MAX : v.get<std::int64_t>() < 0 ||
-                                                                                              v.get<std::int64_t>() > INT_MAX))
-    throw RecordError(path_of(index, key) + ": must be a whole number from 0 to " + std::to_string(INT_MAX) + ", not " + v.dump());
-  return static_cast<int>(v.get<std::int64_t>());
-}
-
-std::vector<std::string> texts(const json& j, const char* key, const std::string& where) {
-  std::vector<std::string> out;
-  const auto it = j.find(key);
-  if (it == j.end()) return out;
-  if (!it->is_array()) throw RecordError(where + "." + key + ": must be an array of strings");
-  for (const json& s : *it) {
-    if (!s.is_string()) throw RecordError(where + "." + key + ": must be an array of strings, not with " + s.dump());
-    out.push_back(s.get<std::string>());
-  }
-  return out;
-}
-
-std::string names_of_statuses() {
-  std::string s;
-  for (Status st : kStatuses) s += (s.empty() ? "" : ", ") + std::string(to_string(st));
-  return s;
-}
+// c[key], which is there, as a count from 0 (a shard, an image height).
+int count(const json& c, const char* key, std::size_t index) { return detail::whole_at(c, key, where_of(index), 0); }
 
 // j[key] at `where`, which must be there, as a pixel count (a whole number >= 0).
 std::size_t pixels(const json& j, const char* key, const std::string& where) {
@@ -97,6 +75,8 @@ std::vector<LightRecord> read_lights(const json& c, std::size_t index) {
     r.decided = image(l, key::kDecided, at);
     r.candidate = image(l, key::kCandidate, at);
     r.error = image(l, key::kErrorImage, at);
+    r.candidate_visibility = image(l, key::kCandidateVisibility, at);
+    r.visibility_error = image(l, key::kVisibilityError, at);
     out.push_back(std::move(r));
   }
   return out;
@@ -118,7 +98,7 @@ ExpectationRecord read_expectation(const json& e, std::size_t index) {
 ResolvingPowerRecord read_resolving_power(const json& p, std::size_t index) {
   const std::string where = path_of(index, key::kResolvingPower);
   if (!p.is_object()) throw RecordError(where + ": must be an object");
-  return {text(p, key::kSummary, index), texts(p, key::kBlindTo, where), texts(p, key::kUnseen, where)};
+  return {text(p, key::kSummary, index), texts_at(p, key::kBlindTo, where), texts_at(p, key::kUnseen, where)};
 }
 
 // The candidate's declared environment, in kEnvironmentKeys' order (empty when none).
@@ -146,10 +126,7 @@ CaseRecord read_case(const json& c, std::size_t index) {
     if (!c.contains(required)) throw RecordError(path_of(index, required) + ": missing");
   r.scene = text(c, key::kScene, index);
   r.technique = text(c, key::kTechnique, index);
-  const std::string status = text(c, key::kStatus, index);
-  const std::optional<Status> st = status_from_string(status);
-  if (!st) throw RecordError(path_of(index, key::kStatus) + ": \"" + status + "\" is not a status (" + names_of_statuses() + ")");
-  r.status = *st;
+  r.status = detail::status_at(c, key::kStatus, where_of(index));
   r.expected = text(c, key::kExpected, index, "pass");
   r.why = text(c, key::kWhy, index);
   r.signature = text(c, key::kSignature, index);
@@ -165,11 +142,13 @@ CaseRecord read_case(const json& c, std::size_t index) {
   if (c.contains(key::kShard)) r.shard = count(c, key::kShard, index);
   if (c.contains(key::kExpectedFromHeight)) r.expected_from_height = count(c, key::kExpectedFromHeight, index);
   if (const auto cmp = c.find(key::kComparison); cmp != c.end() && cmp->is_object())
-    r.reasons = texts(*cmp, key::kReasons, path_of(index, key::kComparison));
+    r.reasons = texts_at(*cmp, key::kReasons, path_of(index, key::kComparison));
   if (const auto e = c.find(key::kExpectation); e != c.end()) r.expectation = read_expectation(*e, index);
   if (const auto p = c.find(key::kResolvingPower); p != c.end()) r.resolving_power = read_resolving_power(*p, index);
   r.totals = read_totals(c, index);
   r.lights = read_lights(c, index);
+  r.shaded = image(c, key::kShaded, where_of(index));
+  r.reference_shaded = image(c, key::kReferenceShaded, where_of(index));
   r.environment = environment_of(c);
   return r;
 }

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "shadowref/record/case_record.hpp"
+#include "shadowref/record/run_record.hpp"
 
 namespace shadowref::conform {
 
@@ -27,9 +28,17 @@ class ReportUnreadable : public std::invalid_argument {
 // "<dir>/report.json: not a shadowref report.json with "plan" and "cases"".
 nlohmann::json read_run_report(const std::filesystem::path& dir);
 
-// `j[key]` as text: a string as itself, any other value as its JSON, "(none)" when `j` is not an
-// object or has no `key` (for messages and keys that must not throw on a foreign report).
-std::string report_text(const nlohmann::json& j, const char* key);
+// A finished run as read back: its report.json as written (for the keys a merged report carries
+// whole) and its record, through which every reader acts on it.
+struct FinishedRun {
+  nlohmann::json report;
+  record::RunRecord run;
+};
+
+// read_run_report(dir) and its record. A record of the wrong shape throws ReportUnreadable
+// "<dir>/report.json: <JSON path>: <what is wrong>" (record::read_run).
+FinishedRun read_finished_run(const std::filesystem::path& dir);
+
 
 // Whether `rel`, an image path of a case, is relative and has no ".." part (it stays in report/).
 using record::inside_report_folder;

@@ -75,6 +75,8 @@ inline constexpr char kMask[] = "mask";
 inline constexpr char kReference[] = "reference";
 inline constexpr char kDecided[] = "decided";
 inline constexpr char kErrorImage[] = "error";
+inline constexpr char kCandidateVisibility[] = "candidate_visibility";  // soft shadows: the lit fractions
+inline constexpr char kVisibilityError[] = "visibility_error";
 }  // namespace key
 
 // A case's place in the expectations files (present when the run was given any).
@@ -98,6 +100,7 @@ struct ResolvingPowerRecord {
 struct LightRecord {
   std::string mask;
   std::string reference, decided, candidate, error;
+  std::string candidate_visibility, visibility_error;  // soft shadows' lit fractions ("" none)
 };
 
 // The comparison's counts over every light ("comparison"."total"), the ones a run is compared by.
@@ -121,6 +124,7 @@ struct CaseRecord {
   std::vector<std::string> reasons;  // the verdict's reasons ("comparison"."reasons")
   std::optional<TotalsRecord> totals;  // absent before a verdict
   std::vector<LightRecord> lights;     // empty before a verdict
+  std::string shaded, reference_shaded;  // the page's shaded views, under report/ ("" none)
   std::optional<ExpectationRecord> expectation;
   std::optional<ResolvingPowerRecord> resolving_power;
   outputs::Environment environment;  // where the candidate was rendered (empty: none declared);

@@ -1,0 +1,115 @@
+// run_record_test.cpp — a whole report.json through its record (run_record.hpp): a shard's report
+// reads into its plan, shard and cases; a report of the wrong shape is refused with its JSON path;
+// every image a case shows is listed once for a reader that moves it.
+#include <gtest/gtest.h>
+
+#include <functional>
+
+#include "shadowref/record/run_record.hpp"
+
+namespace shadowref::record {
+namespace {
+
+using nlohmann::json;
+
+// A shard's report as conform writes one (its run-level keys; one case).
+json shard_report() {
+  return json::parse(R"({
+    "version": "0.9.0", "convention": "gl", "host": "ci-2", "seconds": 12.5,
+    "declarations": {"mode": "render"}, "skipped": ["level@planar@gl"],
+    "plan": {"scenes": [{"scene": "two_lights", "shard": 1}, {"scene": "level", "shard": 2}],
+             "shards": 2, "assignment": "weights", "techniques": ["planar", "shadowmap"], "convention": "gl",
+             "catalogue": {"scenes": 2}, "control": "directional_light"},
+    "shard": {"index": 2, "total": 2, "source": "given", "scenes": ["level"],
+              "control": {"scene": "directional_light", "technique": "planar", "status": "PASS"}},
+    "cases": [{"scene": "level", "technique": "shadowmap", "status": "XFAIL", "shaded": "img/level/shadowmap/shaded.png",
+               "reference_shaded": "img/level/reference_shaded.png",
+               "lights": [{"mask": "mask.png", "reference": "img/level/reference_mask.png", "decided": "",
+                           "candidate": "img/level/shadowmap/candidate_mask.png", "error": "img/level/shadowmap/error.png",
+                           "candidate_visibility": "img/level/shadowmap/candidate_visibility.png"}]}]
+  })");
+}
+
+TEST(RunRecord, AShardReadsIntoItsPlanShardAndCases) {
+  const RunRecord r = read_run(shard_report());
+  EXPECT_EQ(r.version, "0.9.0");
+  EXPECT_EQ(r.convention, "gl");
+  EXPECT_EQ(r.host, "ci-2");
+  EXPECT_EQ(r.seconds, 12.5);
+  ASSERT_EQ(r.plan.scenes.size(), 2u);
+  EXPECT_EQ(r.plan.scenes[1].scene, "level");
+  EXPECT_EQ(r.plan.scenes[1].shard, 2);
+  EXPECT_EQ(r.plan.shards, 2);
+  EXPECT_EQ(r.plan.techniques, (std::vector<std::string>{"planar", "shadowmap"}));
+  EXPECT_EQ(r.plan.whole.at("assignment"), "weights");  // carried whole, for the shards' comparison
+  EXPECT_EQ(r.catalogue, json({{"scenes", 2}}));
+  EXPECT_EQ(r.declarations, json({{"mode", "render"}}));
+  ASSERT_TRUE(r.shard);
+  EXPECT_EQ(r.shard->index, 2);
+  EXPECT_EQ(r.shard->total, 2);
+  ASSERT_TRUE(r.shard->control);
+  EXPECT_EQ(r.shard->control->scene, "directional_light");
+  EXPECT_EQ(r.shard->control->status, Status::Pass);
+  EXPECT_EQ(r.skipped, (std::vector<std::string>{"level@planar@gl"}));
+  ASSERT_EQ(r.cases.size(), 1u);
+  EXPECT_EQ(r.cases[0].status, Status::XFail);
+}
+
+TEST(RunRecord, AnUnsplitRunHasNoShardAndOnePlannedShard) {
+  json j = shard_report();
+  j.erase("shard");
+  j["plan"].erase("shards");
+  j.erase("host");
+  const RunRecord r = read_run(j);
+  EXPECT_FALSE(r.shard);
+  EXPECT_EQ(r.plan.shards, 1);
+  EXPECT_FALSE(r.host);
+}
+
+TEST(RunRecord, AWrongShapeIsRefusedWithItsPath) {
+  const auto refused = [](const std::function<void(json&)>& edit) {
+    json j = shard_report();
+    edit(j);
+    try {
+      read_run(j);
+    } catch (const RecordError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(refused([](json& j) { j.erase("plan"); }), "plan: missing or not an object");
+  EXPECT_EQ(refused([](json& j) { j["cases"] = json::object(); }), "cases: missing or not an array");
+  // A shard number is a whole number from 1: never a float cast out of range, never 0.
+  EXPECT_EQ(refused([](json& j) { j["plan"]["shards"] = 1e300; }),
+            "plan.shards: must be a whole number from 1 to 2147483647, not 1e+300");
+  EXPECT_EQ(refused([](json& j) { j["plan"]["scenes"][1]["shard"] = 0; }),
+            "plan.scenes[1].shard: must be a whole number from 1 to 2147483647, not 0");
+  EXPECT_EQ(refused([](json& j) { j["plan"]["scenes"][0]["scene"] = 7; }), "plan.scenes[0].scene: must be a string, not 7");
+  EXPECT_EQ(refused([](json& j) { j["plan"]["scenes"] = "all"; }), "plan.scenes: must be an array, not \"all\"");
+  EXPECT_EQ(refused([](json& j) { j["shard"]["index"] = -1; }), "shard.index: must be a whole number from 1 to 2147483647, not -1");
+  EXPECT_EQ(refused([](json& j) { j["shard"]["total"] = 4294967296.0; }),
+            "shard.total: must be a whole number from 1 to 2147483647, not 4294967296.0");
+  EXPECT_EQ(refused([](json& j) { j["shard"]["control"]["status"] = "MAYBE"; }),
+            "shard.control.status: \"MAYBE\" is not a status (PASS, WARN, FAIL, XFAIL, XPASS, ERROR)");
+  EXPECT_EQ(refused([](json& j) { j["shard"]["control"].erase("technique"); }), "shard.control.technique: missing");
+  EXPECT_EQ(refused([](json& j) { j["shard"]["control"] = 3; }), "shard.control: must be an object, not 3");
+  EXPECT_EQ(refused([](json& j) { j["skipped"] = {1}; }), "skipped: must be an array of strings, not with 1");
+  EXPECT_EQ(refused([](json& j) { j["seconds"] = -2; }), "seconds: must be a number >= 0, not -2");
+  EXPECT_EQ(refused([](json& j) { j["convention"] = json::array(); }), "convention: must be a string, not []");
+  // The cases go through read_case, with their index.
+  EXPECT_EQ(refused([](json& j) { j["cases"][0]["shaded"] = "../../x.png"; }), "cases[0].shaded: '../../x.png' leaves the report folder");
+  EXPECT_EQ(refused([](json& j) { j["cases"][0]["lights"][0]["visibility_error"] = "/etc/passwd"; }),
+            "cases[0].lights[0].visibility_error: '/etc/passwd' leaves the report folder");
+}
+
+TEST(RunRecord, ACaseListsEveryImageItShowsOnce) {
+  const RunRecord r = read_run(shard_report());
+  const std::vector<std::string> images = case_images(r.cases[0]);
+  // The decided image's "" (not written) is no image; each other path once.
+  EXPECT_EQ(images, (std::vector<std::string>{"img/level/shadowmap/shaded.png", "img/level/reference_shaded.png",
+                                              "img/level/reference_mask.png", "img/level/shadowmap/candidate_mask.png",
+                                              "img/level/shadowmap/error.png", "img/level/shadowmap/candidate_visibility.png"}));
+}
+
+}  // namespace
+}  // namespace shadowref::record
