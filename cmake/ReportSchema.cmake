@@ -1,5 +1,5 @@
 # report.json's JSON Schema (conformance/record/report.schema.json) holds for every report.json the
-# tests leave in the build tree: `record.report_schema` (scripts/check_reports.py) walks the build
+# tests leave in the build tree: `record.report_schema` (conformance/record/check_reports.py) walks the build
 # folder once the tests that write them have ended, and tries its teeth on the first judged report.
 # The order is a CTest fixture, `shadowref_reports`, which the check cleans up after: a folder whose
 # tests write report.json calls shadowref_writes_reports() at its end, and each of its add_test

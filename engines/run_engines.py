@@ -40,6 +40,10 @@ import sys
 import time
 import zlib
 
+# report.json is read as the record library reads it: held to its schema first.
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "conformance" / "record"))
+import report_record  # noqa: E402
+
 HERE = pathlib.Path(__file__).resolve().parent
 # Irrlicht needs an X display with a stencil buffer; Mesa's llvmpipe draws through Xvfb's GLX.
 # -noreset: an X server resets when its last client leaves, and a harness that opens a new device per
@@ -132,8 +136,10 @@ def judge(r, shadowref, pack, candidates, out, cache, scenes, probe):
     p = run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if p.returncode not in (0, 1, 2):  # 0 pass, 1 warnings, 2 failures: all verdicts; others are errors
         sys.exit(f"{r['run']}: shadowref conform failed (exit {p.returncode}):\n{p.stdout}")
-    report = json.loads((out / "report.json").read_text())
-    return {c["scene"]: c["status"] for c in report["cases"]}
+    try:
+        return report_record.case_statuses(report_record.read_report(out / "report.json"))
+    except report_record.ReportError as e:
+        sys.exit(f"{r['run']}: {e}")
 
 
 def grey_png(path):

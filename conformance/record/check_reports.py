@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Every report.json that shadowref wrote under the given folders holds to report.json's JSON Schema.
 
-    scripts/check_reports.py --schema conformance/record/report.schema.json build/release [MORE...]
-    scripts/check_reports.py --schema S --at-least 50 build/release     (CTest: the suite's reports)
-    scripts/check_reports.py --schema S run-a/report.json               (one file)
+    conformance/record/check_reports.py --schema conformance/record/report.schema.json build/release [MORE...]
+    conformance/record/check_reports.py --schema S --at-least 50 build/release     (CTest: the suite's reports)
+    conformance/record/check_reports.py --schema S run-a/report.json               (one file)
 
 A folder is walked for files named report.json that `shadowref conform` or `shadowref merge` wrote:
 those with summary.md beside them (both commands write it, and report.json only after it). A
@@ -18,7 +18,7 @@ status outside the table, a key of the wrong type, a key no writer writes, a cou
 and each broken copy must be refused at the path it was broken at. A schema that passed any of
 them would pass a wrong writer.
 
-Uses python3-jsonschema (Debian 12: 4.10.3, which has Draft 2020-12).
+Reads each report through report_record.py beside it, the Python side of the record library.
 Exit 0 when every report holds and the teeth bite; 1 when a report does not hold, a tooth does not
 bite or fewer than --at-least reports were found; 4 when the schema or a named file cannot be read.
 """
@@ -29,24 +29,10 @@ import pathlib
 import sys
 
 try:
-    from jsonschema import Draft202012Validator
-except ImportError:  # pragma: no cover - set-up installs it
+    from report_record import ReportError, problems, validator
+except ImportError:  # pragma: no cover - set-up installs python3-jsonschema
     print("check_reports.py: python3-jsonschema is not installed (bash scripts/setup.sh installs it)", file=sys.stderr)
     sys.exit(4)
-
-
-def json_path(error):
-    """`cases[3].status` for a jsonschema error, as shadowref's own messages write a path; `$` for
-    the report itself."""
-    out = ""
-    for part in error.absolute_path:
-        out += f"[{part}]" if isinstance(part, int) else f".{part}" if out else str(part)
-    return out or "$"
-
-
-def problems(validator, report):
-    """[(JSON path, message)] of `report` against the schema, in document order."""
-    return [(json_path(e), e.message) for e in validator.iter_errors(report)]
 
 
 def shadowref_reports(folder):
@@ -77,14 +63,14 @@ def mutants(report):
     ]
 
 
-def teeth(validator, report, where):
+def teeth(v, report, where):
     """Lines naming each broken copy of `report` the schema let through or refused elsewhere."""
     out = []
     found = mutants(report)
     if not found:
         return [f"{where}: no judged case to break (the teeth need one)"]
     for what, broken, at in found:
-        paths = [p for p, _ in problems(validator, broken)]
+        paths = [p for p, _ in problems(v, broken)]
         if at not in paths:
             out.append(f"{where}: the schema does not refuse {what} at {at} (it said: {paths or 'nothing'})")
     return out
@@ -107,15 +93,10 @@ def main():
     a = ap.parse_args()
 
     try:
-        schema = json.loads(a.schema.read_text(encoding="utf-8"))
-        Draft202012Validator.check_schema(schema)
-    except (OSError, ValueError) as e:
-        print(f"check_reports.py: {a.schema}: not a readable JSON Schema ({e})", file=sys.stderr)
+        v = validator(a.schema)
+    except ReportError as e:
+        print(f"check_reports.py: {e}", file=sys.stderr)
         return 4
-    except Exception as e:  # jsonschema's SchemaError: the schema itself is wrong
-        print(f"check_reports.py: {a.schema}: {e.message if hasattr(e, 'message') else e}", file=sys.stderr)
-        return 4
-    validator = Draft202012Validator(schema)
 
     files = []
     for p in a.paths:
@@ -134,9 +115,9 @@ def main():
         if isinstance(report, json.JSONDecodeError):
             bad.append(f"{f}: not JSON ({report})")
             continue
-        bad += [f"{f}: {path}: {message}" for path, message in problems(validator, report)]
+        bad += [f"{f}: {path}: {message}" for path, message in problems(v, report)]
         if toothless is None and any("comparison" in c for c in report.get("cases", []) if isinstance(c, dict)):
-            toothless = teeth(validator, report, f)
+            toothless = teeth(v, report, f)
     for line in bad + (toothless or []):
         print(line, file=sys.stderr)
     if len(files) < a.at_least:
