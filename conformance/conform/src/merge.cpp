@@ -14,7 +14,7 @@
 
 #include "report_writer.hpp"
 #include "shadowref/conform/run_report.hpp"
-#include "shadowref/record/case_record.hpp"
+#include "shadowref/record/run_record.hpp"
 #include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/errors.hpp"
 #include "shadowref/outputs/staged_folder.hpp"
@@ -23,6 +23,7 @@ namespace shadowref::conform {
 namespace {
 
 namespace fs = std::filesystem;
+namespace key = record::key;
 using nlohmann::json;
 
 struct Shard {
@@ -142,7 +143,7 @@ std::vector<MergedCase> gather_cases(const std::vector<Shard>& shards, std::vect
     if (!present_shards.insert(s.index).second) continue;
     skipped.insert(s.run.skipped.begin(), s.run.skipped.end());
     for (std::size_t i = 0; i < s.run.cases.size(); ++i) {
-      MergedCase m{s.report[record::key::kCases][i], s.run.cases[i], &s};
+      MergedCase m{s.report[key::kCases][i], s.run.cases[i], &s};
       const std::string name = case_name(m.rec.scene, m.rec.technique, convention);
       if (const auto it = at.find({m.rec.scene, m.rec.technique}); it != at.end()) {
         problems.push_back("case " + name + " seen twice: in " + it->second.from->dir.string() + " and " + s.dir.string());
@@ -202,7 +203,7 @@ ConformResult merged_result(const record::RunRecord& first, std::vector<MergedCa
     k.environment = c.rec.environment;  // as the shard wrote it
     const ExpectationLine* line = e.line_for(k.scene, k.technique, r.convention, k.environment);
     k.outcome = outcome_of(k.status, k.expected.warn, line, e.flaky(case_name(k.scene, k.technique, r.convention)));
-    c.keys.erase(record::key::kExpectation);
+    c.keys.erase(key::kExpectation);
     c.rec.expectation.reset();
     if (!e.empty()) {
       c.rec.expectation = record::ExpectationRecord{k.outcome, line ? to_string(line->status) : "", line ? line->where : ""};
@@ -255,21 +256,21 @@ ConformResult merge_shards(const MergeOptions& o) {
   json merged_cases = json::array();
   for (MergedCase& c : cases) {
     copy_images(c, staged);
-    if (shards.front().run.plan.shards <= 1) c.keys.erase(record::key::kShard);
+    if (shards.front().run.plan.shards <= 1) c.keys.erase(key::kShard);
     merged_cases.push_back(std::move(c.keys));
   }
-  j.erase("shard");
-  j.erase("host");  // each case names its host; merged_from names each shard's
-  j["generated"] = now_utc();
+  j.erase(key::kShard);
+  j.erase(key::kHost);  // each case names its host; merged_from names each shard's
+  j[key::kGenerated] = now_utc();
   j["command"] = o.command_line;
-  j["seconds"] = seconds;
+  j[key::kSeconds] = seconds;
   j["merged_from"] = provenance;
-  j["scenes"] = r.scenes;
-  j["skipped"] = r.skipped;
-  j["cases"] = merged_cases;
+  j[key::kScenes] = r.scenes;
+  j[key::kSkipped] = r.skipped;
+  j[key::kCases] = merged_cases;
   j["summary"] = summary_json(r.cases.size(), r.count(Status::Pass), r.count(Status::Warn), r.count(Status::Fail),
                               r.count(Status::XFail), r.count(Status::XPass), r.count(Status::Error), r.exit_code());
-  j.erase("expectations");
+  j.erase(key::kExpectations);
   std::vector<CaseOutcome> outcomes;
   for (const CaseResult& c : r.cases) outcomes.push_back({c.scene, c.technique, c.status, c.outcome, c.environment});
   std::string update;
@@ -279,10 +280,10 @@ ConformResult merge_shards(const MergeOptions& o) {
       if (std::find(environments.begin(), environments.end(), c.environment) == environments.end())
         environments.push_back(c.environment);
     r.stale = stale_lines(o.expectations, r.scenes, r.techniques, r.convention, environments);
-    j["expectations"] = expectations_json(o.expectations, r.stale, j["cases"]);
+    j[key::kExpectations] = expectations_json(o.expectations, r.stale, j[key::kCases]);
     update = expectations_update_text(o.expectations, outcomes, r.stale, r.convention);
   }
-  j["triage"] = triage_json(o.expectations, outcomes, r.stale, r.convention);
+  j[key::kTriage] = triage_json(o.expectations, outcomes, r.stale, r.convention);
   publish_reports(j, staged, r.report_json, update);
   return r;
 }

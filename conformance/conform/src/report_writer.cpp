@@ -178,12 +178,12 @@ json expectations_json(const Expectations& e, const std::vector<const Expectatio
   json counts = json::object();
   for (Outcome o : {Outcome::Expected, Outcome::NewFailure, Outcome::NewWarning, Outcome::Improvement, Outcome::Flake}) {
     std::size_t n = 0;
-    for (const json& c : cases) n += c.contains("expectation") && c["expectation"].value("outcome", "") == to_string(o);
+    for (const json& c : cases) n += c.contains(key::kExpectation) && c[key::kExpectation].value(key::kOutcome, "") == to_string(o);
     counts[to_string(o)] = n;
   }
   json st = json::array();
-  for (const ExpectationLine* l : stale) st.push_back({{"line", l->where}, {"text", l->text}});
-  return {{"files", files}, {"counts", counts}, {"stale", st}, {"update", "expectations-update.txt"}};
+  for (const ExpectationLine* l : stale) st.push_back({{key::kLine, l->where}, {key::kText, l->text}});
+  return {{key::kFiles, files}, {key::kCounts, counts}, {key::kStale, st}, {key::kUpdate, "expectations-update.txt"}};
 }
 
 json triage_json(const Expectations& e, const std::vector<CaseOutcome>& cases, const std::vector<const ExpectationLine*>& stale,
@@ -191,8 +191,8 @@ json triage_json(const Expectations& e, const std::vector<CaseOutcome>& cases, c
   json lines = json::array();
   for (const CaseOutcome& c : cases)
     if (c.outcome == Outcome::NewFailure || c.outcome == Outcome::NewWarning)
-      lines.push_back({{"scene", c.scene}, {"technique", c.technique}, {"line", known_line(c, convention)}});
-  return {{"base", expectations_update_text(e, cases, stale, convention, false)}, {"cases", lines}};
+      lines.push_back({{key::kScene, c.scene}, {key::kTechnique, c.technique}, {key::kLine, known_line(c, convention)}});
+  return {{key::kBase, expectations_update_text(e, cases, stale, convention, false)}, {key::kCases, lines}};
 }
 
 void publish_reports(const json& j, outputs::StagedFolder& staged, const fs::path& report_json, const std::string& update) {
@@ -222,36 +222,36 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
   const bool with_expectations = !o.expectations.empty();
 
   json j;
-  j["tool"] = "shadowref";
-  j["version"] = SHADOWREF_VERSION;
-  j["generated"] = now_utc();
+  j[key::kTool] = "shadowref";
+  j[key::kVersion] = SHADOWREF_VERSION;
+  j[key::kGenerated] = now_utc();
   j["command"] = o.command_line;
   j["host"] = host_name();
-  j["mode"] = o.candidate_dir ? "candidate-dir" : "render";
+  j[key::kMode] = o.candidate_dir ? "candidate-dir" : "render";
   if (o.candidate_dir) {
-    j["candidate_dir"] = fs::absolute(*o.candidate_dir).string();
+    j[key::kCandidateDir] = fs::absolute(*o.candidate_dir).string();
     std::size_t linked = 0;
     for (const CaseResult& c : r.cases) linked += c.read_through_links.size();
     j["inputs_read_through_links"] = linked;  // each case's read_through_links names them
   }
-  j["backend"] = o.candidate_dir ? json() : json(renderer::to_string(o.backend));
-  j["gl_api"] = o.candidate_dir ? json() : json(renderer::to_string(o.gl_api));
-  j["gl"] = {{"vendor", r.gl_vendor}, {"renderer", r.gl_renderer}, {"version", r.gl_version}};
-  j["convention"] = r.convention;
-  j["reference"] = {{"producer", "shadowref reference (Embree 3)"},
-                    {"samples_per_axis", o.reference.samples_per_axis},
+  j[key::kBackend] = o.candidate_dir ? json() : json(renderer::to_string(o.backend));
+  j[key::kGlApi] = o.candidate_dir ? json() : json(renderer::to_string(o.gl_api));
+  j[key::kGl] = {{"vendor", r.gl_vendor}, {key::kRenderer, r.gl_renderer}, {key::kVersion, r.gl_version}};
+  j[key::kConvention] = r.convention;
+  j[key::kReference] = {{"producer", "shadowref reference (Embree 3)"},
+                    {key::kSamplesPerAxis, o.reference.samples_per_axis},
                     {"cache", fs::absolute(cache).string()}};
-  j["seconds"] = r.seconds;
+  j[key::kSeconds] = r.seconds;
   j["reference_seconds"] = r.reference_seconds;
   j["phase_seconds"] = {{"render", r.phases.render}, {"write", r.phases.write}, {"judge", r.phases.judge},
                         {"error_images", r.phases.error_images}};
   json thresholds = json::array();
   for (const compare::Threshold* t : compare::all_thresholds()) thresholds.push_back(report::to_json(*t));
-  j["thresholds"] = thresholds;
-  j["scenes"] = r.scenes;
-  j["techniques"] = r.techniques;
+  j[key::kThresholds] = thresholds;
+  j[key::kScenes] = r.scenes;
+  j[key::kTechniques] = r.techniques;
   j[key::kPlan] = plan_json(r, o);
-  j["declarations"] = declarations_json(o);
+  j[key::kDeclarations] = declarations_json(o);
   j[key::kSkipped] = r.skipped;
   j["summary"] = summary_json(r.cases.size(), r.count(Status::Pass), r.count(Status::Warn), r.count(Status::Fail),
                               r.count(Status::XFail), r.count(Status::XPass), r.count(Status::Error), r.exit_code());
@@ -259,23 +259,23 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
   json cases = json::array();
   std::set<std::string> scenes_copied;
   for (const CaseResult& c : r.cases) cases.push_back(case_json(c, staged, scenes_copied, r, with_expectations));
-  j["cases"] = cases;
+  j[key::kCases] = cases;
   if (o.shard) {
     // The control case (none only when a [skips] regex left it out).
     const json control = r.control ? json{{key::kScene, r.control->scene}, {key::kTechnique, r.control->technique},
                                           {key::kStatus, to_string(r.control->status)}}
                                    : json::object();
-    j[key::kShard] = {{key::kIndex, o.shard->index + 1}, {key::kTotalShards, o.shard->total}, {"source", o.shard->source},
+    j[key::kShard] = {{key::kIndex, o.shard->index + 1}, {key::kTotalShards, o.shard->total}, {key::kSource, o.shard->source},
                       {key::kScenes, r.scenes}, {key::kControl, control}};
   }
   std::vector<CaseOutcome> outcomes;
   for (const CaseResult& c : r.cases) outcomes.push_back({c.scene, c.technique, c.status, c.outcome, c.environment});
   std::string update;
   if (with_expectations) {
-    j["expectations"] = expectations_json(o.expectations, r.stale, cases);
+    j[key::kExpectations] = expectations_json(o.expectations, r.stale, cases);
     update = expectations_update_text(o.expectations, outcomes, r.stale, r.convention);
   }
-  j["triage"] = triage_json(o.expectations, outcomes, r.stale, r.convention);
+  j[key::kTriage] = triage_json(o.expectations, outcomes, r.stale, r.convention);
   publish_reports(j, staged, r.report_json, update);
 }
 

@@ -139,6 +139,12 @@ CaseRecord read_case(const json& c, std::size_t index) {
       throw RecordError(path_of(index, key::kSeconds) + ": must be a number >= 0, not " + it->dump());
     r.seconds = it->get<double>();
   }
+  if (const auto it = c.find(key::kFrameMs); it != c.end() && !it->is_null()) {
+    if (!it->is_number() || !(it->get<double>() >= 0))
+      throw RecordError(path_of(index, key::kFrameMs) + ": must be a number >= 0, not " + it->dump());
+    r.frame_ms = it->get<double>();
+  }
+  r.notes = texts_at(c, key::kNotes, where_of(index));
   if (c.contains(key::kShard)) r.shard = count(c, key::kShard, index);
   if (c.contains(key::kExpectedFromHeight)) r.expected_from_height = count(c, key::kExpectedFromHeight, index);
   if (const auto cmp = c.find(key::kComparison); cmp != c.end() && cmp->is_object())

@@ -105,6 +105,14 @@ TEST(CaseRecord, OptionalKeysAreLeftOutAndReadAsTheirDefaults) {
   EXPECT_TRUE(back.lights.empty());
   EXPECT_EQ(back.status, Status::Pass);
   EXPECT_EQ(ExpectationRecord{}.expected_by(), "green");
+  // The run's own two, which write_case leaves to the run (compare --json has neither).
+  EXPECT_FALSE(k.contains(key::kFrameMs));
+  EXPECT_FALSE(k.contains(key::kNotes));
+  k[key::kFrameMs] = 12.5;
+  k[key::kNotes] = {"reference read from the cache"};
+  const CaseRecord run = read_case(k, 0);
+  EXPECT_EQ(run.frame_ms, 12.5);
+  EXPECT_EQ(run.notes, (std::vector<std::string>{"reference read from the cache"}));
 }
 
 // Each wrong shape is refused with the JSON path a person looks at.
@@ -133,6 +141,12 @@ TEST(CaseRecord, AWrongShapeIsRefusedWithItsPath) {
   EXPECT_EQ(refused(c, 0), "cases[0].seconds: must be a number >= 0, not \"fast\"");
   c["seconds"] = -1;
   EXPECT_EQ(refused(c, 0), "cases[0].seconds: must be a number >= 0, not -1");
+  c = good;
+  c["frame_ms"] = "slow";
+  EXPECT_EQ(refused(c, 2), "cases[2].frame_ms: must be a number >= 0, not \"slow\"");
+  c = good;
+  c["notes"] = {"cached", 4};
+  EXPECT_EQ(refused(c, 2), "cases[2].notes: must be an array of strings, not with 4");
   c = good;
   c["comparison"] = {{"reasons", json::array()}};
   EXPECT_EQ(refused(c, 4), "cases[4].comparison.total: missing or not an object");

@@ -1,9 +1,11 @@
 // run_record_test.cpp — a whole report.json through its record (run_record.hpp): a shard's report
-// reads into its plan, shard and cases; a report of the wrong shape is refused with its JSON path;
-// every image a case shows is listed once for a reader that moves it.
+// reads into its plan, shard and cases, and a run into what the page shows of it; a report of the
+// wrong shape is refused with its JSON path; every image a case shows is listed once for a reader
+// that moves it.
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <utility>
 
 #include "shadowref/record/run_record.hpp"
 
@@ -100,6 +102,91 @@ TEST(RunRecord, AWrongShapeIsRefusedWithItsPath) {
   EXPECT_EQ(refused([](json& j) { j["cases"][0]["shaded"] = "../../x.png"; }), "cases[0].shaded: '../../x.png' leaves the report folder");
   EXPECT_EQ(refused([](json& j) { j["cases"][0]["lights"][0]["visibility_error"] = "/etc/passwd"; }),
             "cases[0].lights[0].visibility_error: '/etc/passwd' leaves the report folder");
+}
+
+// What the page, JUnit and summary.md show of a run: how it drew, its thresholds, what its
+// expectations files came to, its triage.
+json page_report() {
+  json j = shard_report();
+  j.update(json::parse(R"json({
+    "tool": "shadowref", "generated": "2026-12-04T01:00:00Z", "mode": "render", "backend": "llvmpipe",
+    "gl_api": "egl", "gl": {"vendor": "Mesa", "renderer": "llvmpipe (LLVM 15.0.6, 256 bits)", "version": "4.5"},
+    "reference": {"producer": "shadowref reference (Embree 3)", "samples_per_axis": 4},
+    "scenes": ["level"], "techniques": ["shadowmap"],
+    "thresholds": [{"name": "shadow-map", "bands": true, "unexplained_fail_percent_of_edges": 0.5,
+                    "explained_warn_percent_of_edges": 40, "why": "texels"}],
+    "expectations": {"files": ["/ci/fails.txt"], "counts": {"expected": 1, "new-failure": 0},
+                     "stale": [{"line": "fails.txt:9", "text": "gone@planar,FAIL"}], "update": "expectations-update.txt"},
+    "triage": {"base": "# ours\n", "cases": [{"scene": "level", "technique": "shadowmap", "line": "level@shadowmap,XFAIL"}]}
+  })json"));
+  return j;
+}
+
+TEST(RunRecord, WhatThePageShowsOfARun) {
+  const RunRecord r = read_run(page_report());
+  EXPECT_EQ(r.tool, "shadowref");
+  EXPECT_EQ(r.generated, "2026-12-04T01:00:00Z");
+  EXPECT_EQ(r.mode, "render");
+  EXPECT_EQ(r.backend, "llvmpipe");
+  EXPECT_EQ(r.gl_api, "egl");
+  EXPECT_FALSE(r.candidate_dir);
+  EXPECT_EQ(r.gl_renderer, "llvmpipe (LLVM 15.0.6, 256 bits)");
+  EXPECT_EQ(r.gl_version, "4.5");
+  EXPECT_EQ(r.samples_per_axis, 4);
+  EXPECT_EQ(r.scenes, (std::vector<std::string>{"level"}));
+  EXPECT_EQ(r.techniques, (std::vector<std::string>{"shadowmap"}));
+  ASSERT_EQ(r.thresholds.size(), 1u);
+  EXPECT_EQ(r.thresholds[0].name, "shadow-map");
+  EXPECT_TRUE(r.thresholds[0].bands);
+  EXPECT_EQ(r.thresholds[0].unexplained_fail_percent, 0.5);
+  EXPECT_EQ(r.thresholds[0].explained_warn_percent, 40.0);
+  ASSERT_TRUE(r.expectations);
+  EXPECT_EQ(r.expectations->files, (std::vector<std::string>{"/ci/fails.txt"}));
+  using Count = std::pair<std::string, std::size_t>;
+  EXPECT_EQ(r.expectations->counts, (std::vector<Count>{{"expected", 1}, {"new-failure", 0}}));
+  ASSERT_EQ(r.expectations->stale.size(), 1u);
+  EXPECT_EQ(r.expectations->stale[0].line, "fails.txt:9");
+  EXPECT_EQ(r.expectations->stale[0].text, "gone@planar,FAIL");
+  EXPECT_EQ(r.expectations->update, "expectations-update.txt");
+  EXPECT_EQ(r.triage.base, "# ours\n");
+  ASSERT_EQ(r.triage.cases.size(), 1u);
+  EXPECT_EQ(r.triage.cases[0].line, "level@shadowmap,XFAIL");
+  EXPECT_EQ(r.shard->source, "given");
+  // A candidate-dir run: no backend (null), its folder instead; no files given: no expectations.
+  json c = page_report();
+  c["mode"] = "candidate-dir";
+  c["backend"] = nullptr;
+  c["candidate_dir"] = "/packs/engine";
+  c.erase("expectations");
+  const RunRecord d = read_run(c);
+  EXPECT_FALSE(d.backend);
+  EXPECT_EQ(d.candidate_dir, "/packs/engine");
+  EXPECT_FALSE(d.expectations);
+}
+
+TEST(RunRecord, WhatThePageShowsIsReadStrictlyToo) {
+  const auto refused = [](const std::function<void(json&)>& edit) {
+    json j = page_report();
+    edit(j);
+    try {
+      read_run(j);
+    } catch (const RecordError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(refused([](json& j) { j["thresholds"][0]["bands"] = "yes"; }), "thresholds[0].bands: must be true or false, not \"yes\"");
+  EXPECT_EQ(refused([](json& j) { j["thresholds"][0]["explained_warn_percent_of_edges"] = "40"; }),
+            "thresholds[0].explained_warn_percent_of_edges: must be a number, not \"40\"");
+  EXPECT_EQ(refused([](json& j) { j["thresholds"] = {1}; }), "thresholds[0]: must be an object, not 1");
+  EXPECT_EQ(refused([](json& j) { j["expectations"]["counts"]["expected"] = -1; }),
+            "expectations.counts.expected: must be a whole number >= 0, not -1");
+  EXPECT_EQ(refused([](json& j) { j["expectations"]["stale"][0]["text"] = 3; }), "expectations.stale[0].text: must be a string, not 3");
+  EXPECT_EQ(refused([](json& j) { j["expectations"] = "none"; }), "expectations: must be an object, not \"none\"");
+  EXPECT_EQ(refused([](json& j) { j["triage"]["cases"][0]["line"] = json::object(); }), "triage.cases[0].line: must be a string, not {}");
+  EXPECT_EQ(refused([](json& j) { j["reference"]["samples_per_axis"] = 0.5; }),
+            "reference.samples_per_axis: must be a whole number from 1 to 2147483647, not 0.5");
+  EXPECT_EQ(refused([](json& j) { j["gl"]["renderer"] = 1; }), "gl.renderer: must be a string, not 1");
 }
 
 TEST(RunRecord, ACaseListsEveryImageItShowsOnce) {

@@ -9,20 +9,13 @@
 #include <vector>
 
 #include "shadowref/outputs/atomic_file.hpp"
-#include "shadowref/record/case_record.hpp"
+#include "shadowref/record/run_record.hpp"
 #include "shadowref/report/html.hpp"
 
 namespace shadowref::report {
 namespace {
 
 using nlohmann::json;
-
-// A report-level key as text (the report's own keys, e.g. "convention").
-std::string text(const json& j, const char* key) {
-  if (!j.contains(key)) return "";
-  if (j[key].is_string()) return j[key].get<std::string>();
-  return j[key].dump();
-}
 
 std::string reasons(const record::CaseRecord& c) {
   std::string out;
@@ -58,10 +51,10 @@ void write_file(const std::string& content, const std::filesystem::path& file) {
 
 }  // namespace
 
-BlindCases blind_cases(const json& report) {
+BlindCases blind_cases(const std::vector<record::CaseRecord>& cases) {
   BlindCases b;
   std::map<std::string, std::size_t> kinds;
-  for (const record::CaseRecord& c : record::read_cases(report)) {
+  for (const record::CaseRecord& c : cases) {
     if (!c.resolving_power) continue;
     ++b.judged;
     b.blind += !c.resolving_power->blind_to.empty();
@@ -117,7 +110,8 @@ std::string render_junit(const json& report) {
 
 std::string render_markdown(const json& report) {
   using record::Status;
-  const std::vector<record::CaseRecord> cases = record::read_cases(report);
+  const record::RunRecord run = record::read_run(report);
+  const std::vector<record::CaseRecord>& cases = run.cases;
   std::map<Status, std::size_t> counts;
   std::vector<std::string> scenes, techniques;
   std::map<std::pair<std::string, std::string>, const record::CaseRecord*> at;
@@ -132,24 +126,21 @@ std::string render_markdown(const json& report) {
   for (Status st : {Status::Pass, Status::XFail, Status::Warn, Status::Fail, Status::XPass, Status::Error})
     m << " " << counts[st] << " " << to_string(st) << ",";
   m.seekp(-1, std::ios_base::cur);
-  m << " (convention " << cell(text(report, "convention")) << ")\n";
+  m << " (convention " << cell(run.convention) << ")\n";
   // Where the candidates were rendered: one line per environment the cases declared.
   std::map<std::string, std::size_t> environments;
   for (const record::CaseRecord& c : cases)
     if (!c.environment.empty()) ++environments[outputs::environment_text(c.environment)];
   for (const auto& [env, n] : environments) m << "\nRendered on: " << cell(env) << " (" << n << " case(s))\n";
-  if (report.contains("expectations")) {
-    const json& e = report["expectations"];
+  if (run.expectations) {
+    const record::ExpectationsRecord& e = *run.expectations;
     m << "\nAgainst the expectations files:";
-    const json outcomes = e.value("counts", json::object());
-    for (const auto& [k, v] : outcomes.items()) m << " " << v.dump() << " " << k << ",";
-    m << " " << e.value("stale", json::array()).size() << " stale line(s); the next file: `expectations-update.txt`\n";
-    for (const json& st : e.value("stale", json::array()))
-      m << "- **stale** " << cell(st.value(record::key::kLine, "")) << ": `" << cell(st.value("text", "")) << "` names no case of this run\n";
+    for (const auto& [outcome, n] : e.counts) m << " " << n << " " << outcome << ",";
+    m << " " << e.stale.size() << " stale line(s); the next file: `" << cell(e.update) << "`\n";
+    for (const record::StaleLineRecord& st : e.stale)
+      m << "- **stale** " << cell(st.line) << ": `" << cell(st.text) << "` names no case of this run\n";
   }
-  if (report.contains("shard") && report["shard"].is_object())
-    m << "\nShard " << report["shard"].value("index", 0) << "/" << report["shard"].value("total", 0) << " ("
-      << cell(report["shard"].value("source", "")) << ")\n";
+  if (run.shard) m << "\nShard " << run.shard->index << "/" << run.shard->total << " (" << cell(run.shard->source) << ")\n";
   m << "\n| scene |";
   for (const auto& t : techniques) m << " " << cell(t) << " |";
   m << "\n| --- |";
@@ -170,7 +161,7 @@ std::string render_markdown(const json& report) {
     }
     m << "\n";
   }
-  const BlindCases blind = blind_cases(report);
+  const BlindCases blind = blind_cases(cases);
   if (blind.judged)
     m << "\nResolving power: " << blind.blind << " of " << blind.judged
       << " judged cases are blind to a probe of the reference's own masks under their declaration"

@@ -2,6 +2,7 @@
 #include "shadowref/report/comparison_json.hpp"
 
 #include "shadowref/outputs/cause.hpp"
+#include "shadowref/record/run_record.hpp"
 
 namespace shadowref::report {
 namespace {
@@ -67,16 +68,17 @@ nlohmann::json to_json(const compare::VisibilityMetrics& m) {
 }
 
 nlohmann::json to_json(const compare::Threshold& t) {
-  return {{"name", t.name},
-          {"bands", t.bands},
-          {"unexplained_fail_percent_of_edges", 100.0 * t.unexplained_fail},
-          {"explained_warn_percent_of_edges", 100.0 * t.explained_warn},
+  namespace key = record::key;
+  return {{key::kName, t.name},
+          {key::kBands, t.bands},
+          {key::kUnexplainedFailPercent, 100.0 * t.unexplained_fail},
+          {key::kExplainedWarnPercent, 100.0 * t.explained_warn},
           {"unexplained_core_fail", 0},
           {"displaced_fail_percent_of_edges", 100.0 * compare::kDisplaced.displaced_fail},
           {"displaced_why", compare::kDisplaced.why},
           {"densest_unexplained_fail", compare::kLocalGlitch.densest_fail},
           {"densest_unexplained_why", compare::kLocalGlitch.why},
-          {"why", t.why}};
+          {key::kWhy, t.why}};
 }
 
 nlohmann::json to_json(const compare::FolderComparison& c) {

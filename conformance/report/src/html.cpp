@@ -8,12 +8,13 @@
 
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
 #include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/candidate.hpp"
-#include "shadowref/record/case_record.hpp"
+#include "shadowref/record/run_record.hpp"
 #include "shadowref/report/ci_summary.hpp"
 #include "triage_html.hpp"
 
@@ -34,6 +35,18 @@ std::string num(const json& j, const char* key, const char* format = "%.4g") {
   std::snprintf(buf, sizeof buf, format, j[key].get<double>());
   return buf;
 }
+
+// `v` in `format`; "-" when there is none.
+std::string number_text(std::optional<double> v, const char* format = "%.4g") {
+  if (!v) return "-";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, *v);
+  return buf;
+}
+
+// A text of the run's record, "-" when the report did not say.
+std::string shown(const std::optional<std::string>& s) { return s.value_or("-"); }
+std::string shown(const std::string& s) { return s.empty() ? "-" : s; }
 
 // "0", "0.0021", "2.8", "73", "100": two significant digits without exponents.
 std::string short_percent(const json& total) {
@@ -206,9 +219,8 @@ void figure(std::ostringstream& h, const std::string& src, const std::string& ca
 // flicker (reference and candidate toggled), swipe (the candidate revealed from the left by a slider),
 // amplification (the error image's contrast raised) and the decided overlay (the reference's decided
 // pixels darkened over what is shown).
-void viewer(std::ostringstream& h, const json& l) {
-  const std::string ref = str(l, "reference", ""), cand = str(l, "candidate", ""), err = str(l, "error", ""),
-                    dec = str(l, "decided", "");
+void viewer(std::ostringstream& h, const record::LightRecord& l) {
+  const std::string &ref = l.reference, &cand = l.candidate, &err = l.error, &dec = l.decided;
   if (ref.empty() || cand.empty()) return;
   h << "<div class=\"viewer\" data-ref=\"" << escape_html(ref) << "\" data-cand=\"" << escape_html(cand) << "\" data-err=\""
     << escape_html(err) << "\"><div>"
@@ -296,46 +308,40 @@ std::string escape_html(const std::string& text) {
 }
 
 // The page's parts, in the order render_html writes them.
-void expectations_section(std::ostringstream& h, const json& r, const std::vector<record::CaseRecord>& cases);
-void header_section(std::ostringstream& h, const json& r) {
-  const json gl = r.value("gl", json::object());
+void expectations_section(std::ostringstream& h, const record::RunRecord& run);
+void header_section(std::ostringstream& h, const record::RunRecord& run) {
   h << "<header><h1>shadowref conformance</h1><div class=\"meta\">";
-  if (str(r, "mode") == "candidate-dir")
-    h << "candidate renders from <code>" << escape_html(str(r, "candidate_dir")) << "</code>";
+  if (run.mode == "candidate-dir")
+    h << "candidate renders from <code>" << escape_html(shown(run.candidate_dir)) << "</code>";
   else
-    h << "backend <code>" << escape_html(str(r, "backend")) << "</code> via <code>" << escape_html(str(r, "gl_api"))
-      << "</code> · " << escape_html(str(gl, "renderer")) << " · OpenGL " << escape_html(str(gl, "version"));
-  h << " · reference: Embree, " << escape_html(str(r.value("reference", json::object()), "samples_per_axis"))
-    << "² samples per pixel · " << escape_html(str(r, "tool")) << " " << escape_html(str(r, "version")) << " · "
-    << escape_html(str(r, "generated")) << " · " << num(r, "seconds", "%.1f") << " s</div></header>\n<main>\n";
+    h << "backend <code>" << escape_html(shown(run.backend)) << "</code> via <code>" << escape_html(shown(run.gl_api))
+      << "</code> · " << escape_html(shown(run.gl_renderer)) << " · OpenGL " << escape_html(shown(run.gl_version));
+  h << " · reference: Embree, " << (run.samples_per_axis ? std::to_string(*run.samples_per_axis) : std::string("-"))
+    << "² samples per pixel · " << escape_html(shown(run.tool)) << " " << escape_html(shown(run.version)) << " · "
+    << escape_html(shown(run.generated)) << " · " << number_text(run.seconds, "%.1f") << " s</div></header>\n<main>\n";
 
 }
 
 // Counts and the scene × technique table.
-void summary_section(std::ostringstream& h, const json& r, const json& cases, const std::vector<record::CaseRecord>& records) {
-  const json summary = r.value("summary", json::object());
+void summary_section(std::ostringstream& h, const record::RunRecord& run, const json& cases) {
+  const std::vector<record::CaseRecord>& records = run.cases;
+  using record::Status;
   h << "<section><h2>Summary</h2><div class=\"counts\">";
-  const auto count = [&](const char* key, const char* label, const char* cls) {
-    h << "<span class=\"" << cls << "\">" << label << " " << str(summary, key, "0") << "</span>";
-  };
-  h << "<span style=\"background:#eef1f6\">cases " << str(summary, "cases", "0") << "</span>";
-  count("pass", "PASS", "st-pass");
-  count("xfail", "XFAIL", "st-xfail");
-  count("fail", "FAIL", "st-fail");
-  count("xpass", "XPASS", "st-xpass");
-  count("warn", "WARN", "st-warn");
-  count("error", "ERROR", "st-error");
+  h << "<span style=\"background:#eef1f6\">cases " << records.size() << "</span>";
+  for (const Status st : {Status::Pass, Status::XFail, Status::Fail, Status::XPass, Status::Warn, Status::Error}) {
+    std::size_t n = 0;
+    for (const record::CaseRecord& c : records) n += c.status == st;
+    h << "<span class=\"" << status_class(st) << "\">" << to_string(st) << " " << n << "</span>";
+  }
   h << "</div><p class=\"notes\">PASS: within the technique's threshold. XFAIL: a known limitation the catalogue "
        "expects, detected (its why is in the case). FAIL and XPASS (an expected failure that did not fail) are "
        "failures of the run; WARN is within the looser quality bound.</p>";
-  if (const BlindCases b = blind_cases(r); b.judged)
+  if (const BlindCases b = blind_cases(records); b.judged)
     h << "<p class=\"notes\"><b>Resolving power:</b> " << b.blind << " of " << b.judged
       << " judged cases are blind to a probe of the reference's own masks under their declaration"
       << (b.blind ? " (" + escape_html(b.kinds) + "): " + escape_html(kHowToSharpen) : std::string(": none lets a probe that changes a decided pixel pass"))
       << ".</p>";
-  std::vector<std::string> scenes, techniques;
-  if (r.contains("scenes")) scenes = r["scenes"].get<std::vector<std::string>>();
-  if (r.contains("techniques")) techniques = r["techniques"].get<std::vector<std::string>>();
+  const std::vector<std::string>&scenes = run.scenes, &techniques = run.techniques;
   std::map<std::pair<std::string, std::string>, std::size_t> at;  // the case's index in both
   for (std::size_t i = 0; i < records.size(); ++i) at[{records[i].scene, records[i].technique}] = i;
   h << "<table id=\"summary\"><thead><tr><th>scene</th>";
@@ -361,21 +367,20 @@ void summary_section(std::ostringstream& h, const json& r, const json& cases, co
     h << "</tr>\n";
   }
   h << "</tbody></table></section>\n";
-  expectations_section(h, r, records);
+  expectations_section(h, run);
 
 }
 
 // Against an engine team's expectations files: each outcome's count, the cases that are new or
 // improved, and the stale lines (expectations.hpp's words).
-void expectations_section(std::ostringstream& h, const json& r, const std::vector<record::CaseRecord>& cases) {
-  if (!r.contains("expectations") || !r["expectations"].is_object()) return;
-  const json& e = r["expectations"];
+void expectations_section(std::ostringstream& h, const record::RunRecord& run) {
+  if (!run.expectations) return;
+  const record::ExpectationsRecord& e = *run.expectations;
   h << "<section id=\"expectations\"><h2>Against the expectations files</h2><div class=\"counts\">";
-  const json counts = e.value("counts", json::object());
-  for (const auto& [k, v] : counts.items())
-    h << "<span style=\"background:#eef1f6\">" << escape_html(k) << " " << v.dump() << "</span>";
-  h << "<span style=\"background:#eef1f6\">stale " << e.value("stale", json::array()).size() << "</span></div><ul>";
-  for (const record::CaseRecord& c : cases) {
+  for (const auto& [outcome, n] : e.counts)
+    h << "<span style=\"background:#eef1f6\">" << escape_html(outcome) << " " << n << "</span>";
+  h << "<span style=\"background:#eef1f6\">stale " << e.stale.size() << "</span></div><ul>";
+  for (const record::CaseRecord& c : run.cases) {
     if (!c.expectation) continue;
     const record::ExpectationRecord& x = *c.expectation;
     using record::Outcome;
@@ -386,10 +391,10 @@ void expectations_section(std::ostringstream& h, const json& r, const std::vecto
       << escape_html(x.status.empty() ? "green" : x.status) << (x.line.empty() ? "" : " (" + escape_html(x.line) + ")")
       << (x.outcome == Outcome::Improvement ? ": remove the line" : "") << "</li>";
   }
-  for (const json& st : e.value("stale", json::array()))
-    h << "<li class=\"outcome\" data-outcome=\"stale\">stale " << escape_html(st.value("line", "")) << ": <code>"
-      << escape_html(st.value("text", "")) << "</code> names no case of this run</li>";
-  h << "</ul><p class=\"notes\">The next file, <code>" << escape_html(e.value("update", "")) << "</code>, lies beside "
+  for (const record::StaleLineRecord& st : e.stale)
+    h << "<li class=\"outcome\" data-outcome=\"stale\">stale " << escape_html(st.line) << ": <code>"
+      << escape_html(st.text) << "</code> names no case of this run</li>";
+  h << "</ul><p class=\"notes\">The next file, <code>" << escape_html(e.update) << "</code>, lies beside "
        "report.json.</p></section>\n";
 }
 
@@ -489,40 +494,41 @@ void case_info(std::ostringstream& h, const record::CaseRecord& rec, const json&
       h << "<div class=\"notes\">engine settings (recorded, not judged): <code>" << escape_html(d["settings"].dump())
         << "</code></div>";
   }
-  if (cmp.contains("reasons") && !cmp["reasons"].empty()) {
+  if (!rec.reasons.empty()) {
     h << "<ul class=\"reasons\">";
-    for (const auto& reason : cmp["reasons"]) h << "<li>" << escape_html(reason.get<std::string>()) << "</li>";
+    for (const std::string& reason : rec.reasons) h << "<li>" << escape_html(reason) << "</li>";
     h << "</ul>";
   }
   if (cmp.contains("total")) metrics_table(h, cmp["total"]);
   if (cmp.contains("visibility")) visibility_table(h, cmp["visibility"]);
-  if (c.contains("notes") && !c["notes"].empty()) {
+  if (!rec.notes.empty()) {
     h << "<div class=\"notes\">";
-    for (const auto& n : c["notes"]) h << "note: " << escape_html(n.get<std::string>()) << "<br>";
+    for (const std::string& n : rec.notes) h << "note: " << escape_html(n) << "<br>";
     h << "</div>";
   }
-  if (c.contains("frame_ms") && c["frame_ms"].is_number() && c["frame_ms"].get<double>() > 0)
-    h << "<div class=\"notes\">frame " << num(c, "frame_ms", "%.1f") << " ms</div>";
+  if (rec.frame_ms > 0) h << "<div class=\"notes\">frame " << number_text(rec.frame_ms, "%.1f") << " ms</div>";
 }
 
 // A case's right cell: per light, the reference, the candidate, the error image, the swipe viewer,
 // and a soft technique's lit fraction.
-void case_images(std::ostringstream& h, const json& c) {
-  if (c.contains("lights")) {
-    const json& lights = c["lights"];
-    for (std::size_t i = 0; i < lights.size(); ++i) {
+// The images come from the case's record; each light's metrics stay the comparison's JSON.
+void case_images(std::ostringstream& h, const record::CaseRecord& rec, const json& c) {
+  if (c.contains(record::key::kLights)) {
+    const json& lights = c[record::key::kLights];
+    for (std::size_t i = 0; i < rec.lights.size(); ++i) {
       const json& l = lights[i];
-      const std::string suffix = lights.size() > 1 ? " (light " + std::to_string(i) + ")" : "";
+      const record::LightRecord& images = rec.lights[i];
+      const std::string suffix = rec.lights.size() > 1 ? " (light " + std::to_string(i) + ")" : "";
       h << "<div class=\"light\">";
-      figure(h, str(l, "reference", ""), "reference" + suffix);
-      figure(h, str(l, "candidate", ""), "candidate" + suffix);
-      figure(h, str(l, "error", ""), "error" + suffix + ": " + str(l.value("metrics", json::object()), "wrong") + " wrong");
-      viewer(h, l);
-      if (i == 0) figure(h, str(c, "shaded", ""), "candidate shaded");
+      figure(h, images.reference, "reference" + suffix);
+      figure(h, images.candidate, "candidate" + suffix);
+      figure(h, images.error, "error" + suffix + ": " + str(l.value("metrics", json::object()), "wrong") + " wrong");
+      viewer(h, images);
+      if (i == 0) figure(h, rec.shaded, "candidate shaded");
       if (l.contains("visibility")) {
         const json& v = l["visibility"];
-        figure(h, str(l, "candidate_visibility", ""), "candidate lit fraction" + suffix);
-        figure(h, str(l, "visibility_error", ""),
+        figure(h, images.candidate_visibility, "candidate lit fraction" + suffix);
+        figure(h, images.visibility_error,
                "visibility error" + suffix + ": mean " + num(v, "mean_penumbra_error", "%.3f") + " over the penumbra, " +
                    str(v, "unexplained") + " px unexplained");
       }
@@ -534,14 +540,13 @@ void case_images(std::ostringstream& h, const json& c) {
 }
 
 // Thresholds with their reasons.
-void thresholds_section(std::ostringstream& h, const json& r) {
+void thresholds_section(std::ostringstream& h, const record::RunRecord& run) {
   h << "<section><h2>Thresholds</h2><table id=\"thresholds\"><thead><tr><th>name</th><th>bands</th><th>fail</th><th>warn</th><th>why</th></tr></thead><tbody>";
-  if (r.contains("thresholds"))
-    for (const json& t : r["thresholds"])
-      h << "<tr><td>" << escape_html(str(t, "name")) << "</td><td>" << (t.value("bands", false) ? "texel, bias" : "none")
-        << "</td><td>any unexplained core, or unexplained &gt; " << num(t, "unexplained_fail_percent_of_edges", "%.4g")
-        << " % of edge px</td><td>explained &gt; " << num(t, "explained_warn_percent_of_edges", "%.4g") << " % of edge px</td><td>"
-        << escape_html(str(t, "why")) << "</td></tr>";
+  for (const record::ThresholdRecord& t : run.thresholds)
+    h << "<tr><td>" << escape_html(shown(t.name)) << "</td><td>" << (t.bands ? "texel, bias" : "none")
+      << "</td><td>any unexplained core, or unexplained &gt; " << number_text(t.unexplained_fail_percent, "%.4g")
+      << " % of edge px</td><td>explained &gt; " << number_text(t.explained_warn_percent, "%.4g") << " % of edge px</td><td>"
+      << escape_html(shown(t.why)) << "</td></tr>";
   h << "</tbody></table><p class=\"notes\">Every wrong decided pixel is explained by a cause the reference computes "
        "(texel footprint, depth bias; shadow-map families only) or is unexplained. Edge pixels: the reference's "
        "boundaries, in pixels; the ratios mean the same at any resolution (docs/tolerance-model.md).</p></section>\n";
@@ -549,16 +554,16 @@ void thresholds_section(std::ostringstream& h, const json& r) {
 
 std::string render_html(const json& r) {
   std::ostringstream h;
-  const json cases = r.contains(record::key::kCases) && r[record::key::kCases].is_array() ? r[record::key::kCases] : json::array();
-  const std::vector<record::CaseRecord> records = record::read_cases(r);
+  const record::RunRecord run = record::read_run(r);
+  const json& cases = r[record::key::kCases];  // their comparisons' metrics and declarations, shown as written
   h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
     << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
-    << "<title>shadowref conformance — " << escape_html(str(r, "backend", "candidate renders")) << "</title><style>"
+    << "<title>shadowref conformance — " << escape_html(run.backend.value_or("candidate renders")) << "</title><style>"
     << kStyle << "</style></head>\n<body data-checked=\"0\">\n";
 
-  header_section(h, r);
-  summary_section(h, r, cases, records);
-  triage_section(h, r);
+  header_section(h, run);
+  summary_section(h, run, cases);
+  triage_section(h, run.triage);
   legend_section(h);
   // Cases, one row each.
   h << "<section><h2>Cases</h2><div class=\"filters\" style=\"margin-bottom:10px\">"
@@ -568,14 +573,14 @@ std::string render_html(const json& r) {
     << "<table id=\"cases\"><thead><tr><th>case</th><th>reference · candidate · error · shaded</th></tr></thead><tbody>\n";
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const json& c = cases[i];
-    case_info(h, records[i], c);
-    triage_marks(h, r, c);
+    case_info(h, run.cases[i], c);
+    triage_marks(h, run.triage, run.cases[i]);
     h << "</td><td>";
-    case_images(h, c);
+    case_images(h, run.cases[i], c);
     h << "</td></tr>\n";
   }
   h << "</tbody></table></section>\n";
-  thresholds_section(h, r);
+  thresholds_section(h, run);
   h << "<pre id=\"broken-images\" class=\"notes\"></pre>\n</main>\n<script>" << kScript << kTriageScript << "</script>\n</body></html>\n";
   return h.str();
 }

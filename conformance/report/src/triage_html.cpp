@@ -11,25 +11,20 @@ namespace {
 
 using nlohmann::json;
 
-const json& triage_cases(const json& r) {
-  static const json none = json::array();
-  if (!r.contains("triage") || !r["triage"].is_object()) return none;
-  const json& t = r["triage"];
-  return t.contains("cases") && t["cases"].is_array() ? t["cases"] : none;
-}
-
 // A case's name as the marks and the data know it: "scene@technique".
-std::string case_key(const json& c) { return c.value("scene", "") + "@" + c.value("technique", ""); }
+std::string case_key(const std::string& scene, const std::string& technique) { return scene + "@" + technique; }
 
 }  // namespace
 
-void triage_section(std::ostringstream& h, const json& r) {
-  const json& cases = triage_cases(r);
-  if (cases.empty()) return;
+void triage_section(std::ostringstream& h, const record::TriageRecord& triage) {
+  if (triage.cases.empty()) return;
+  json cases = json::array();
+  for (const record::TriageLineRecord& c : triage.cases)
+    cases.push_back({{record::key::kScene, c.scene}, {record::key::kTechnique, c.technique}, {record::key::kLine, c.line}});
   // The data rides in a JSON script element; every "<" (only ever inside a JSON string) is written
   // "\u003c", so no text of a file (a "</script>", a "<!--") can end or change the element.
   std::string data;
-  for (const char ch : json{{"base", r["triage"].value("base", "")}, {"cases", cases}}.dump()) data += ch == '<' ? "\\u003c" : std::string(1, ch);
+  for (const char ch : json{{record::key::kBase, triage.base}, {record::key::kCases, cases}}.dump()) data += ch == '<' ? "\\u003c" : std::string(1, ch);
   h << "<section id=\"triage\"><h2>Triage</h2><p class=\"notes\">Mark each new failure or warning you accept as known, "
        "with its bug link, in its row below; then download the expectations file the marks make: the file this run was "
        "given (its lines still met, its [flakes] and [skips]) and a line per mark. Checked in and passed to the next run "
@@ -40,10 +35,10 @@ void triage_section(std::ostringstream& h, const json& r) {
     << "</textarea><script type=\"application/json\" id=\"triage-data\">" << data << "</script></section>\n";
 }
 
-void triage_marks(std::ostringstream& h, const json& r, const json& c) {
-  for (const json& t : triage_cases(r))
-    if (t.is_object() && case_key(t) == case_key(c)) {
-      h << "<div class=\"triage\" data-case=\"" << escape_html(case_key(c)) << "\"><label><input type=\"checkbox\" "
+void triage_marks(std::ostringstream& h, const record::TriageRecord& triage, const record::CaseRecord& c) {
+  for (const record::TriageLineRecord& t : triage.cases)
+    if (t.scene == c.scene && t.technique == c.technique) {
+      h << "<div class=\"triage\" data-case=\"" << escape_html(case_key(c.scene, c.technique)) << "\"><label><input type=\"checkbox\" "
            "class=\"triage-known\" onchange=\"shadowrefTriage()\"> known failure</label> <input type=\"url\" "
            "class=\"triage-bug\" placeholder=\"bug link\" size=\"28\" oninput=\"shadowrefTriage()\"></div>";
       return;

@@ -7,17 +7,17 @@
 
 #include <sstream>
 
-#include <nlohmann/json.hpp>
+#include "shadowref/record/run_record.hpp"
 
 namespace shadowref::report {
 
 // The section above the cases: how many are marked, the download button, the file as it stands,
 // and the triage data for the script. Nothing when the report has no "triage" or no new case.
-void triage_section(std::ostringstream& h, const nlohmann::json& report);
+void triage_section(std::ostringstream& h, const record::TriageRecord& triage);
 
 // Case `c`'s marks (a "known" box and a bug-link field) inside its row, when it is one of the
 // report's new cases; nothing otherwise.
-void triage_marks(std::ostringstream& h, const nlohmann::json& report, const nlohmann::json& c);
+void triage_marks(std::ostringstream& h, const record::TriageRecord& triage, const record::CaseRecord& c);
 
 // The page's script for both: builds the file from the marks, counts them, downloads it.
 extern const char* const kTriageScript;

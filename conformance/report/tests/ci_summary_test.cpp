@@ -11,6 +11,7 @@ nlohmann::json sample() {
   using nlohmann::json;
   json r;
   r["convention"] = "gl";
+  r["plan"] = json::object();  // every report has one (the summaries read a run through its record)
   r["cases"] = json::array();
   r["cases"].push_back({{"scene", "ground_sphere"}, {"technique", "shadowmap"}, {"status", "PASS"}, {"seconds", 0.5}});
   r["cases"].push_back({{"scene", "ground_sphere"}, {"technique", "planar"}, {"status", "FAIL"},
@@ -48,7 +49,9 @@ TEST(CiSummary, ExpectationsOutcomes) {
   r["cases"][3]["expectation"] = {{"outcome", "expected"}, {"status", "ERROR"}, {"line", "fails.txt:4"}};
   r["cases"][0]["expectation"] = {{"outcome", "improvement"}, {"status", "FAIL"}, {"line", "fails.txt:2"}};
   r["expectations"] = {{"counts", {{"expected", 1}, {"new-failure", 1}, {"improvement", 1}}},
-                       {"stale", {{{"line", "fails.txt:9"}, {"text", "gone@planar,FAIL"}}}}};
+                       {"stale", {{{"line", "fails.txt:9"}, {"text", "gone@planar,FAIL"}}}},
+                       {"update", "expectations-update.txt"}};
+  r["shard"] = {{"index", 2}, {"total", 3}, {"source", "--shard"}};
   const std::string x = render_junit(r);
   EXPECT_NE(x.find("failures=\"1\" errors=\"0\" skipped=\"1\""), std::string::npos) << x;
   EXPECT_NE(x.find("<failure message=\"new failure: FAIL"), std::string::npos) << x;
@@ -58,6 +61,9 @@ TEST(CiSummary, ExpectationsOutcomes) {
   EXPECT_NE(m.find("| ground_sphere | PASS (improvement) | **FAIL** (new-failure) |"), std::string::npos) << m;
   EXPECT_NE(m.find("ERROR (expected) |"), std::string::npos) << m;  // not in bold: not a failure of the run
   EXPECT_NE(m.find("- **stale** fails.txt:9: `gone@planar,FAIL`"), std::string::npos) << m;
+  EXPECT_NE(m.find("1 expected, 1 improvement, 1 new-failure, 1 stale line(s); the next file: `expectations-update.txt`"),
+            std::string::npos) << m;
+  EXPECT_NE(m.find("Shard 2/3 (--shard)"), std::string::npos) << m;
 }
 
 }  // namespace

@@ -121,6 +121,8 @@ struct CaseRecord {
   std::optional<std::string> host; // the machine that judged the case
   std::optional<int> shard;        // its shard, in a sharded run (1-based)
   double seconds = 0;              // wall time of the case
+  double frame_ms = 0;             // our renderer's frame time (0: not drawn by us, or not timed)
+  std::vector<std::string> notes;  // what the run noted of the case (a cache miss, a read-through link)
   std::vector<std::string> reasons;  // the verdict's reasons ("comparison"."reasons")
   std::optional<TotalsRecord> totals;  // absent before a verdict
   std::vector<LightRecord> lights;     // empty before a verdict
@@ -152,8 +154,9 @@ bool inside_report_folder(const std::string& rel);
 std::vector<CaseRecord> read_cases(const nlohmann::json& report);
 
 // The keys of `r` written into `k` as read_case reads them back: absent optionals and empty
-// optional texts are not written ("why", "causes" and "seconds" always are). Four fields are not
-// written from here: `environment` lies in "candidate", written whole from the candidate's
+// optional texts are not written ("why", "causes" and "seconds" always are). Six fields are not
+// written from here: `frame_ms` and `notes` are the run's, which `compare --json` has not (the
+// run writes them); `environment` lies in "candidate", written whole from the candidate's
 // declaration; the resolving power carries its probes besides (resolving_power_json); the totals and
 // the reasons lie in "comparison" and the lights carry their metrics, each written whole by the
 // comparison's writer (report/comparison_json.hpp) and the report's, which copies the images.

@@ -13,7 +13,11 @@
 #include <filesystem>
 #include <string>
 
+#include <vector>
+
 #include <nlohmann/json.hpp>
+
+#include "shadowref/record/case_record.hpp"
 
 namespace shadowref::report {
 
@@ -23,7 +27,7 @@ struct BlindCases {
   std::size_t judged = 0, blind = 0;
   std::string kinds;
 };
-BlindCases blind_cases(const nlohmann::json& report);
+BlindCases blind_cases(const std::vector<record::CaseRecord>& cases);
 
 // What a team does about a blind case (the summaries and the HTML say it).
 inline constexpr const char* kHowToSharpen =
