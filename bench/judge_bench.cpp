@@ -1,8 +1,8 @@
 // judge_bench.cpp — what the judge asks of the scene for each wrong pixel of a shadow map, timed
 // alone: the cause model's explain() (reference/causes.hpp: the texel footprint and the depth bias,
 // traced with Embree) over every wrong decided pixel of the reference's own mask shifted by 1 px, and
-// the zigzag check (conform/zigzags.hpp) over a tile of it swapped at the boundary's busiest place
-// (conform::swapped_tile, the resolving power's probe), on a catalogue scene at its own resolution
+// the zigzag check (tolerance/zigzags.hpp) over a tile of it swapped at the boundary's busiest place
+// (tolerance::swapped_tile, the resolving power's probe), on a catalogue scene at its own resolution
 // under a 512-texel own map, where the check certifies grazing_light's tile. The reference is
 // computed once, into a cache beside the binary. No peer: nothing else answers these questions, so
 // the figures are times per pixel and per window, tracked but not judged (README.md).
@@ -27,8 +27,8 @@
 #include "shadowref/compare/thresholds.hpp"
 #include "shadowref/conform/judge.hpp"
 #include "shadowref/conform/reference_cache.hpp"
-#include "shadowref/conform/resolving_power.hpp"
-#include "shadowref/conform/zigzags.hpp"
+#include "shadowref/tolerance/resolving_power.hpp"
+#include "shadowref/tolerance/zigzags.hpp"
 #include "shadowref/outputs/candidate.hpp"
 #include "shadowref/outputs/cause.hpp"
 #include "shadowref/outputs/file_names.hpp"
@@ -57,8 +57,8 @@ struct Case {
     const std::size_t lights = prepared.lights.size();
     reference = outputs::read_image8(dir / outputs::mask_name(0, lights), 1);
     decided = outputs::read_image8(dir / outputs::decided_name(0, lights), 1);
-    shifted = conform::shifted(reference, 1, 0);
-    tile = conform::swapped_tile(reference, 0);
+    shifted = tolerance::shifted(reference, 1, 0);
+    tile = tolerance::swapped_tile(reference, 0);
     shifted_wrong = wrong_of(shifted);
     tile_wrong = wrong_of(tile);
     declared.shadow_map_size = 512;
@@ -105,9 +105,9 @@ void BM_Explain(benchmark::State& state, const std::string& name) {
 void BM_Zigzags(benchmark::State& state, const std::string& name) {
   Case& c = case_of(name);
   reference::CauseModel model(c.prepared);
-  conform::ZigzagFinding found;
+  tolerance::ZigzagFinding found;
   for (auto _ : state) {
-    found = conform::find_zigzags(model, c.prepared, 0, c.declared, c.reference, c.tile, c.tile_wrong);
+    found = tolerance::find_zigzags(model, c.prepared, 0, c.declared, c.reference, c.tile, c.tile_wrong);
     benchmark::DoNotOptimize(found.impossible.data());
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(found.windows));
@@ -132,7 +132,7 @@ struct JudgedCase {
     std::filesystem::create_directories(candidate_dir);
     const std::size_t lights = prepared.lights.size();
     for (std::size_t i = 0; i < lights; ++i)
-      outputs::write_png(conform::shifted(outputs::read_image8(reference_dir / outputs::mask_name(i, lights), 1), 1, 0),
+      outputs::write_png(tolerance::shifted(outputs::read_image8(reference_dir / outputs::mask_name(i, lights), 1), 1, 0),
                          candidate_dir / outputs::mask_name(i, lights));
     outputs::CandidateDeclaration d = outputs::default_declaration("shadowmap");
     d.shadow_map_size = 512;

@@ -30,7 +30,7 @@
 #include "shadowref/conform/case_json.hpp"
 #include "shadowref/conform/expectations.hpp"
 #include "shadowref/conform/judge.hpp"
-#include "shadowref/conform/resolving_power.hpp"
+#include "shadowref/tolerance/resolving_power.hpp"
 #include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/cause.hpp"
 #include "shadowref/outputs/file_names.hpp"

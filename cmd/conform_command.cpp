@@ -100,7 +100,7 @@ void print_case_lines(const conform::ConformResult& r) {
 }
 
 // How many cases could not have seen a blatant error of some kind under their declaration, and how
-// to sharpen them (conform/resolving_power.hpp).
+// to sharpen them (tolerance/resolving_power.hpp).
 void print_resolving_power(const conform::ConformResult& r, const conform::ConformOptions& o) {
   std::size_t judged = 0;
   std::size_t blind = 0;

@@ -1,4 +1,4 @@
-// zigzag_properties_test.cpp — the zigzag certificate (conform/zigzags.hpp, no_grid_gives) never
+// zigzag_properties_test.cpp — the zigzag certificate (tolerance/zigzags.hpp, no_grid_gives) never
 // holds for a correct shadow map's answers: over generated rectangular texel grids (any turn,
 // texel size per axis and phase: every orthographic view of a directional light), generated
 // straight caster edges and the lookups engines use — nearest, a fixed 3 × 3 box at a 1/2
@@ -14,13 +14,13 @@
 
 #include "generators.hpp"
 #include "property_support.hpp"
-#include "shadowref/conform/zigzags.hpp"
+#include "shadowref/tolerance/zigzags.hpp"
 
 namespace shadowref::prop {
 namespace {
 
-using conform::EdgePoint;
-using conform::no_grid_gives;
+using tolerance::EdgePoint;
+using tolerance::no_grid_gives;
 
 enum class Lookup { Nearest, Box3, Bilinear, FixedKernel };
 

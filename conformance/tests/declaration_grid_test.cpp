@@ -44,9 +44,9 @@ std::vector<Mutant> mutants() {
       {"swapped-tile", swapped_tile(0)},
       {"swapped-tile-2nd", swapped_tile(1)},
       {"swapped-tile-3rd", swapped_tile(2)},
-      // Where no tile probe was put: the place farthest from the three (conform::tile_places), one
+      // Where no tile probe was put: the place farthest from the three (tolerance::tile_places), one
       // the resolving power's sweep alone speaks for.
-      {"swapped-tile-held-out", swapped_tile(static_cast<int>(conform::kBusiestTilePlaces))},
+      {"swapped-tile-held-out", swapped_tile(static_cast<int>(tolerance::kBusiestTilePlaces))},
   };
 }
 
@@ -110,9 +110,9 @@ std::vector<std::vector<Declaration>> chains() {
 //   shrunk shadows of nested_256_volumes' plates and a 1- or 2-px shift of alpha_cards' leaves (4
 //   and 9 px left unexplained, each displaced, none in a core) are what such a map may honestly
 //   show (a swapped tile on grazing_light's long edge is not: no texel grid gives its pixels
-//   together, conform/zigzags.hpp, and it FAILs): nothing else is left unexplained, so
+//   together, tolerance/zigzags.hpp, and it FAILs): nothing else is left unexplained, so
 //   nothing is displaced either (the judge checks a declared size against the candidate's
-//   staircases on the pack's grid only: conform/staircases.hpp);
+//   staircases on the pack's grid only: tolerance/staircases.hpp);
 // - camera_at_light, whose camera sits at the light: no cast shadow is visible, and a mutant changes
 //   only slivers along silhouettes (1 to 4 px unexplained), as the engines' correct renders show
 //   them (4 px, OpenSceneGraph SoftShadowMap);
@@ -161,12 +161,12 @@ constexpr KnownGap kKnownGaps[] = {
 };
 
 // The resolving power's probe of a mutant's kind (resolving_power.hpp); none for the all-* masks.
-std::optional<conform::ProbeKind> probe_kind_of(const std::string& mutant) {
-  if (mutant == "shifted-1px") return conform::ProbeKind::Shift1;
-  if (mutant == "shifted-2px") return conform::ProbeKind::Shift2;
-  if (mutant == "grown-1px") return conform::ProbeKind::Grown1;
-  if (mutant == "shrunk-1px" || mutant == "shrunk-2px") return conform::ProbeKind::Shrunk1;
-  if (mutant.rfind("swapped-tile", 0) == 0) return conform::ProbeKind::Tile8;  // the probe tries the three places too
+std::optional<tolerance::ProbeKind> probe_kind_of(const std::string& mutant) {
+  if (mutant == "shifted-1px") return tolerance::ProbeKind::Shift1;
+  if (mutant == "shifted-2px") return tolerance::ProbeKind::Shift2;
+  if (mutant == "grown-1px") return tolerance::ProbeKind::Grown1;
+  if (mutant == "shrunk-1px" || mutant == "shrunk-2px") return tolerance::ProbeKind::Shrunk1;
+  if (mutant.rfind("swapped-tile", 0) == 0) return tolerance::ProbeKind::Tile8;  // the probe tries the three places too
   return std::nullopt;
 }
 
@@ -186,14 +186,14 @@ TEST_P(DeclarationGrid, TheControlPassesAndNoDeclarationLetsAMutantPass) {
   // Under our own honest declaration a case resolves 1-px shifts, but where no cast shadow is in
   // view (then no shift changes a decided pixel).
   ASSERT_TRUE(control.resolving_power);
-  const conform::ResolvingPower& power = *control.resolving_power;
-  EXPECT_FALSE(power.blind_to(conform::ProbeKind::Shift1)) << power.summary();
-  EXPECT_EQ(power.sees_nothing_of(conform::ProbeKind::Shift1), s.scene.name == "camera_at_light") << power.summary();
+  const tolerance::ResolvingPower& power = *control.resolving_power;
+  EXPECT_FALSE(power.blind_to(tolerance::ProbeKind::Shift1)) << power.summary();
+  EXPECT_EQ(power.sees_nothing_of(tolerance::ProbeKind::Shift1), s.scene.name == "camera_at_light") << power.summary();
   // And so under the exact light matrices it was drawn with.
   const conform::CaseJudgement declared = s.judged("control-declared", s.control, kOurMatrices);
   EXPECT_EQ(declared.comparison.decision.verdict, compare::Verdict::Pass) << "the control, its light matrices declared";
   ASSERT_TRUE(declared.resolving_power);
-  EXPECT_FALSE(declared.resolving_power->blind_to(conform::ProbeKind::Shift1)) << declared.resolving_power->summary();
+  EXPECT_FALSE(declared.resolving_power->blind_to(tolerance::ProbeKind::Shift1)) << declared.resolving_power->summary();
   // The reference's decided pixels (255): a mutant is judged where it changes one of them. In a
   // scene of several lights, each light's mask is mutated in turn, the others kept as drawn.
   for (std::size_t light = 0; light < s.masks.size(); ++light) {
@@ -218,10 +218,10 @@ TEST_P(DeclarationGrid, TheControlPassesAndNoDeclarationLetsAMutantPass) {
         // as the case says so. It counts where the local-glitch bound can see it (densest_change).
         if (std::string(m.name) == "swapped-tile-held-out") {
           if (j.comparison.decision.verdict == compare::Verdict::Fail ||
-              conform::densest_change(s.masks[light], mask, decided) <= compare::kLocalGlitch.densest_fail)
+              tolerance::densest_change(s.masks[light], mask, decided) <= compare::kLocalGlitch.densest_fail)
             continue;
           ASSERT_TRUE(j.resolving_power);
-          EXPECT_TRUE(j.resolving_power->blind_to(conform::ProbeKind::Tile8) || j.resolving_power->sees_nothing_of(conform::ProbeKind::Tile8))
+          EXPECT_TRUE(j.resolving_power->blind_to(tolerance::ProbeKind::Tile8) || j.resolving_power->sees_nothing_of(tolerance::ProbeKind::Tile8))
               << name << " declared " << d.name << " passes, but the case says: " << j.resolving_power->summary();
           continue;
         }
@@ -230,7 +230,7 @@ TEST_P(DeclarationGrid, TheControlPassesAndNoDeclarationLetsAMutantPass) {
               << name << " declared " << d.name << " FAILs now: remove it from kKnownGaps";
           // Never silently: the case says it is blind to the kind of error it lets through.
           ASSERT_TRUE(j.resolving_power);
-          if (const std::optional<conform::ProbeKind> kind = probe_kind_of(m.name)) {
+          if (const std::optional<tolerance::ProbeKind> kind = probe_kind_of(m.name)) {
             EXPECT_TRUE(j.resolving_power->blind_to(*kind) || j.resolving_power->sees_nothing_of(*kind))
                 << name << " declared " << d.name << " passes, but the case says: " << j.resolving_power->summary();
           }

@@ -35,17 +35,17 @@ TEST(ResolvingPowerCache, ACascadedTechniqueIsProbedWithItsCascades) {
     EXPECT_EQ(j.comparison.decision.verdict, compare::Verdict::Pass) << technique;
     return j.resolving_power.value();
   };
-  const auto tiles = [](const conform::ResolvingPower& r) {
+  const auto tiles = [](const tolerance::ResolvingPower& r) {
     std::string s;
-    for (const conform::Probe& p : r.probes)
-      if (p.kind == conform::ProbeKind::Tile8) s += p.name + ": " + compare::to_string(p.verdict) + ", " + std::to_string(p.unexplained) + " unexplained\n";
+    for (const tolerance::Probe& p : r.probes)
+      if (p.kind == tolerance::ProbeKind::Tile8) s += p.name + ": " + compare::to_string(p.verdict) + ", " + std::to_string(p.unexplained) + " unexplained\n";
     return s;
   };
   conform::Judge fresh;
-  const conform::ResolvingPower alone = judged_as(fresh, "csm-pcf");
+  const tolerance::ResolvingPower alone = judged_as(fresh, "csm-pcf");
   conform::Judge shared;
-  const conform::ResolvingPower map = judged_as(shared, "shadowmap-pcf");
-  const conform::ResolvingPower after = judged_as(shared, "csm-pcf");
+  const tolerance::ResolvingPower map = judged_as(shared, "shadowmap-pcf");
+  const tolerance::ResolvingPower after = judged_as(shared, "csm-pcf");
   std::printf("shadowmap-pcf's tiles:\n%scsm-pcf's, alone:\n%scsm-pcf's, after shadowmap-pcf:\n%s", tiles(map).c_str(),
               tiles(alone).c_str(), tiles(after).c_str());
   // The two techniques' probes differ here, so that the cache's key is what is being tested.

@@ -27,7 +27,7 @@ namespace {
 using namespace test;  // the grid's scene and mutations (grid_scene.hpp)
 
 // A declared map size on the pack's grid is checked against the mask's own staircases
-// (conform/staircases.hpp). Under grazing_light's sun 8 degrees up a 512-texel map's texel spans
+// (tolerance/staircases.hpp). Under grazing_light's sun 8 degrees up a 512-texel map's texel spans
 // several pixels along the ground. Our render at 512 texels agrees with that declaration and PASSes;
 // our finer render declared as 512 texels is contradicted, judged at the automatic size, and still
 // PASSes (a correct render wrongly declared is still correct); the same render shifted by one pixel
@@ -58,7 +58,7 @@ TEST(Staircases, ADeclaredPackMapSizeIsCheckedAgainstTheMasksOwnStaircases) {
 // A tile swapped across grazing_light's long shadow edge (its busiest place) under a 512-texel map of
 // the candidate's own views: every pixel of it lies within that map's footprint of the true edge
 // (9 px a texel along the swap), but no texel grid gives them together — the edge would zigzag
-// (conform/zigzags.hpp). The tile FAILs, and the pixels counted as zigzags all lie in it. Beside it,
+// (tolerance/zigzags.hpp). The tile FAILs, and the pixels counted as zigzags all lie in it. Beside it,
 // correct renders of that declaration — our map at 512 texels of our own views, turned and moved
 // as an engine's fit turns and moves them, nearest and PCF — PASS with no pixel counted.
 TEST(Zigzags, ASwappedTileFailsWhereEachPixelAloneIsExplained) {

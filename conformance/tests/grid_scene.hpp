@@ -1,6 +1,6 @@
 // grid_scene.hpp — what the declaration-grid tests share: a scene with our correct shadow-map
 // render of it as the control, the judge that judges a mask of it under a declaration, and the
-// blatant mutations of a mask (the resolving power's probes, conform/resolving_power.hpp). The
+// blatant mutations of a mask (the resolving power's probes, tolerance/resolving_power.hpp). The
 // including target defines SHADOWREF_EXE, SHADOWREF_TEST_CACHE and SHADOWREF_TEST_OUT (the folder
 // each judged mask is written to).
 #pragma once
@@ -20,7 +20,7 @@
 #include "catalogue_scene.hpp"
 #include "llvmpipe_renderer.hpp"
 #include "shadowref/conform/judge.hpp"
-#include "shadowref/conform/resolving_power.hpp"
+#include "shadowref/tolerance/resolving_power.hpp"
 #include "shadowref/outputs/candidate.hpp"
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/outputs/image.hpp"
@@ -44,9 +44,9 @@ inline void for_surface(Image8& m, const std::function<void(std::uint8_t&)>& f) 
 }
 
 // Every surface pixel takes the answer of the one `dx` to its left (silhouettes stay put): the
-// resolving power's shift probe, conform::shifted.
+// resolving power's shift probe, tolerance::shifted.
 inline Mutation shifted(int dx) {
-  return [dx](Image8& m) { m = conform::shifted(m, dx, 0); };
+  return [dx](Image8& m) { m = tolerance::shifted(m, dx, 0); };
 }
 
 // The shadow grown (or, with `grow` false, shrunk) by `n` px: a surface pixel takes the answer
@@ -73,9 +73,9 @@ inline Mutation morphed(int n, bool grow) {
 }
 
 // An 8 x 8 tile swapped with the one 8 px to its right, at the `rank`-th busiest place (the
-// resolving power's probe, conform::swapped_tile).
+// resolving power's probe, tolerance::swapped_tile).
 inline Mutation swapped_tile(int rank) {
-  return [rank](Image8& m) { m = conform::swapped_tile(m, rank); };
+  return [rank](Image8& m) { m = tolerance::swapped_tile(m, rank); };
 }
 
 // Stands for our render's own declaration with its light matrices ("light_views": "declared", the

@@ -1,11 +1,11 @@
 // held_out_tiles_test.cpp — a case's resolving power holds for tiles on a render, not only on the
 // reference it probes: on every default scene, our own correct shadow-map render is judged under its
 // own declaration (the one `shadowref conform` judges it with), then with an 8 × 8 tile swapped at
-// each of the places farthest from the tile probes' (conform::tile_places after its
+// each of the places farthest from the tile probes' (tolerance::tile_places after its
 // kBusiestTilePlaces; on a boundary too short for them, the probes' places moved by half a tile).
 // The probes and the sweep swap tiles on the reference's masks; these swap them on the render's,
 // whose own explained errors lie beside them. A held-out tile the local-glitch bound can see (more
-// than 18 decided pixels in one 9 x 9 window, conform::densest_change) may PASS only in a case that
+// than 18 decided pixels in one 9 x 9 window, tolerance::densest_change) may PASS only in a case that
 // says it is blind to 8x8 tiles (or that no tile shows anything): a PASS beside "resolves … 8x8 tiles
 // at every place" claims more than the probes saw. The control (the render itself) must PASS, so
 // that each tile's verdict is the tile's.
@@ -23,7 +23,7 @@
 #include "shadowref/compare/thresholds.hpp"
 #include "shadowref/conform/catalogue.hpp"
 #include "shadowref/conform/judge.hpp"
-#include "shadowref/conform/resolving_power.hpp"
+#include "shadowref/tolerance/resolving_power.hpp"
 #include "shadowref/outputs/candidate.hpp"
 #include "shadowref/outputs/file_names.hpp"
 #include "shadowref/outputs/image.hpp"
@@ -59,8 +59,8 @@ TEST_P(HeldOutTiles, APassBesideResolvedTilesIsOneTheProbesCouldHaveSeen) {
   const conform::CaseJudgement control = judge.judge(&s.prepared, {s.reference, root / "control", "", true, {}});
   ASSERT_EQ(control.comparison.decision.verdict, compare::Verdict::Pass) << "the control: our render, as conform judges it";
   ASSERT_TRUE(control.resolving_power);
-  const conform::ResolvingPower& power = *control.resolving_power;
-  const bool says_blind = power.blind_to(conform::ProbeKind::Tile8) || power.sees_nothing_of(conform::ProbeKind::Tile8);
+  const tolerance::ResolvingPower& power = *control.resolving_power;
+  const bool says_blind = power.blind_to(tolerance::ProbeKind::Tile8) || power.sees_nothing_of(tolerance::ProbeKind::Tile8);
   std::printf("%s: %s\n", s.scene.name.c_str(), power.summary().c_str());
   std::size_t judged = 0;
   for (std::size_t light = 0; light < ours.masks.size(); ++light) {
@@ -68,8 +68,8 @@ TEST_P(HeldOutTiles, APassBesideResolvedTilesIsOneTheProbesCouldHaveSeen) {
     // The places the probes did not use: those of the reference's mask, which the probes swap.
     const Image8 reference = outputs::read_image8(s.reference / outputs::mask_name(light, lights), 1);
     const Image8 decided = outputs::read_image8(s.reference / outputs::decided_name(light, lights), 1);
-    std::vector<conform::TilePlace> places = conform::tile_places(reference, conform::kBusiestTilePlaces + kHeldOut);
-    const std::size_t probed = std::min(places.size(), conform::kBusiestTilePlaces);
+    std::vector<tolerance::TilePlace> places = tolerance::tile_places(reference, tolerance::kBusiestTilePlaces + kHeldOut);
+    const std::size_t probed = std::min(places.size(), tolerance::kBusiestTilePlaces);
     // Where the lattice of places ends before the held-out ones (a short boundary), the places
     // between the probes': each probed place moved by half a tile, overlapping it and not probed.
     if (places.size() == probed) {
@@ -78,9 +78,9 @@ TEST_P(HeldOutTiles, APassBesideResolvedTilesIsOneTheProbesCouldHaveSeen) {
       }
     }
     for (std::size_t k = probed; k < places.size(); ++k) {
-      const Image8 tile = conform::swapped_tile_at(ours.masks[light], places[k]);
+      const Image8 tile = tolerance::swapped_tile_at(ours.masks[light], places[k]);
       // What the local-glitch bound can see of it (resolving_power.hpp): its densest 9 x 9 window.
-      const std::size_t densest = conform::densest_change(ours.masks[light], tile, decided);
+      const std::size_t densest = tolerance::densest_change(ours.masks[light], tile, decided);
       const std::string name = "held-out-" + std::to_string(light) + "-" + std::to_string(k);
       write_candidate(root / name, ours.masks, &tile, light, declaration);
       const conform::CaseJudgement j = judge.judge(&s.prepared, {s.reference, root / name, "", true, {}});

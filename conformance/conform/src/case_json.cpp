@@ -1,7 +1,7 @@
 // case_json.cpp — a judged case's keys, shared by report.json and `compare --json` (case_json.hpp).
 #include "shadowref/conform/case_json.hpp"
 
-#include "shadowref/conform/resolving_power.hpp"
+#include "shadowref/tolerance/resolving_power.hpp"
 #include "shadowref/outputs/candidate.hpp"
 #include "shadowref/report/comparison_json.hpp"
 
@@ -27,7 +27,7 @@ void write_judgement(const CaseJudgement& j, nlohmann::json& k) {
   k[key::kCandidate] = nlohmann::json::parse(outputs::declaration_text(j.declaration));
   k[key::kCandidate]["defaulted"] = j.declaration.defaulted;
   k[key::kComparison] = report::to_json(j.comparison);
-  if (j.resolving_power) k[key::kResolvingPower] = resolving_power_json(*j.resolving_power);
+  if (j.resolving_power) k[key::kResolvingPower] = tolerance::resolving_power_json(*j.resolving_power);
 }
 
 }  // namespace shadowref::conform

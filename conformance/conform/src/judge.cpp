@@ -6,8 +6,8 @@
 #include <utility>
 
 #include "cause_memo.hpp"
-#include "shadowref/conform/staircases.hpp"
-#include "shadowref/conform/zigzags.hpp"
+#include "shadowref/tolerance/staircases.hpp"
+#include "shadowref/tolerance/zigzags.hpp"
 #include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/errors.hpp"
 #include "shadowref/outputs/file_names.hpp"
@@ -50,13 +50,13 @@ compare::CompareOptions options_for(const scene::PreparedScene& prepared, const 
     o.explain = &explainers.mask;
     causes = "texel footprint and depth bias, from the scene and the candidate's declaration";
     bool zigzags = false;
-    for (std::size_t i = 0; i < s.lights.size(); ++i) zigzags = zigzags || zigzags_apply(prepared, i, technique, declared.for_light(i));
+    for (std::size_t i = 0; i < s.lights.size(); ++i) zigzags = zigzags || tolerance::zigzags_apply(prepared, i, technique, declared.for_light(i));
     if (zigzags) {
       explainers.impossible = [model, &prepared, technique, &declared](std::size_t light, const outputs::Image8& reference,
                                                                       const outputs::Image8& candidate, const std::vector<std::size_t>& wrong) {
         const outputs::CandidateDeclaration& d = declared.for_light(light);
-        if (!zigzags_apply(prepared, light, technique, d)) return std::vector<std::size_t>{};
-        return find_zigzags(*model, prepared, light, d, reference, candidate, wrong).impossible;
+        if (!tolerance::zigzags_apply(prepared, light, technique, d)) return std::vector<std::size_t>{};
+        return tolerance::find_zigzags(*model, prepared, light, d, reference, candidate, wrong).impossible;
       };
       o.impossible = &explainers.impossible;
       causes += "; a directional light's shadow edges that zigzag faster than any texel grid allows (unexplained)";
@@ -93,9 +93,9 @@ outputs::CandidateDeclaration checked_against_staircases(const reference::CauseM
   outputs::CandidateDeclaration judged = declared;
   for (std::size_t i = 0; i < s.lights.size() && i < masks.size(); ++i) {
     const outputs::CandidateDeclaration& d = declared.for_light(i);
-    if (!staircases_apply(d)) continue;
-    const StaircaseCheck check = check_staircases(model, masks[i], i, d);
-    said += (said.empty() ? "" : "; ") + describe(check, i, d);
+    if (!tolerance::staircases_apply(d)) continue;
+    const tolerance::StaircaseCheck check = tolerance::check_staircases(model, masks[i], i, d);
+    said += (said.empty() ? "" : "; ") + tolerance::describe(check, i, d);
     if (!check.contradicted) continue;
     if (judged.lights.size() <= i) {  // the lights without an entry take the top level's declaration
       outputs::CandidateDeclaration top = declared;
@@ -239,7 +239,7 @@ CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJud
   if (probe_) {
     const std::string key = c.reference_dir.string() + '\n' + std::string(threshold.name) + '\n' + cause_key;
     auto known = resolving_.find(key);
-    if (known == resolving_.end()) known = resolving_.emplace(key, resolving_power(images.reference, images.decided, threshold, options)).first;
+    if (known == resolving_.end()) known = resolving_.emplace(key, tolerance::resolving_power(images.reference, images.decided, threshold, options)).first;
     j.resolving_power = known->second;
   }
 

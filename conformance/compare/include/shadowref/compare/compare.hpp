@@ -126,7 +126,7 @@ using outputs::Cause;
 using Explainer = std::function<Cause(std::size_t light, int x, int y, bool candidate_lit)>;
 // Asked once per mask, before any pixel is explained, with the reference and candidate masks of
 // light `light` and the wrong pixels' indices (row-major): the wrong pixels that no correct render
-// gives together, whatever each may be explained by alone (conform/zigzags.hpp: a shadow edge
+// gives together, whatever each may be explained by alone (tolerance/zigzags.hpp: a shadow edge
 // that zigzags faster than any texel grid allows). They count as unexplained (`impossible`).
 using ImpossiblePixels = std::function<std::vector<std::size_t>(std::size_t light, const Image8& reference,
                                                                 const Image8& candidate, const std::vector<std::size_t>& wrong)>;

@@ -26,7 +26,7 @@
 #include <string>
 
 #include "shadowref/compare/compare.hpp"
-#include "shadowref/conform/resolving_power.hpp"
+#include "shadowref/tolerance/resolving_power.hpp"
 #include "shadowref/conform/status.hpp"
 #include "shadowref/outputs/candidate.hpp"
 #include "shadowref/scene/prepared_scene.hpp"
@@ -70,7 +70,7 @@ struct CaseJudgement {
   double model_seconds = 0;                    // spent drawing the technique's model (inside the judging)
   // What the verdict could have seen under this declaration (resolving_power.hpp); absent when the
   // scene is not known or the judge was asked not to probe (Judge's `probe`).
-  std::optional<ResolvingPower> resolving_power;
+  std::optional<tolerance::ResolvingPower> resolving_power;
 };
 
 // The judge of a run: the cause model of each prepared scene (its BVH) and the renderer that draws
@@ -100,7 +100,7 @@ class Judge {
   // The cause model's answers per scene and declaration, asked before the model (cause_memo.hpp).
   std::unique_ptr<CauseMemo> memo_;
   // Per reference folder, threshold and declaration as judged: the probes do not depend on the candidate.
-  std::map<std::string, ResolvingPower> resolving_;
+  std::map<std::string, tolerance::ResolvingPower> resolving_;
   std::unique_ptr<renderer::Renderer> model_gl_;
   bool probe_ = true;
 };

@@ -88,7 +88,7 @@ struct ExpectationRecord {
   std::string expected_by() const;
 };
 
-// What the probes of the reference's own masks showed (conform/resolving_power.hpp writes it).
+// What the probes of the reference's own masks showed (tolerance/resolving_power.hpp writes it).
 struct ResolvingPowerRecord {
   std::string summary;                      // "resolves 1-px shifts, ..." or "blind to ..."
   std::vector<std::string> blind_to, unseen;  // the probe kinds' names

@@ -5,7 +5,7 @@
 //     WARN say so in <system-out>), the format Jenkins, GitLab and GitHub test reporters read;
 //   * Markdown: the counts, the scene × technique table, and one line per case that is not PASS
 //     with its why and reasons — suitable for a CI step summary ($GITHUB_STEP_SUMMARY).
-// Both carry each case's resolving power (conform/resolving_power.hpp): a JUnit <property
+// Both carry each case's resolving power (tolerance/resolving_power.hpp): a JUnit <property
 // name="resolving_power">, and in the Markdown the count of blind cases with how to sharpen them.
 #pragma once
 

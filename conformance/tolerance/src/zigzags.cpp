@@ -1,5 +1,5 @@
 // zigzags.cpp — wrong pixels that no texel grid gives together (zigzags.hpp).
-#include "shadowref/conform/zigzags.hpp"
+#include "shadowref/tolerance/zigzags.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 #include "shadowref/outputs/interruption.hpp"
 #include "shadowref/reference/causes.hpp"
 
-namespace shadowref::conform {
+namespace shadowref::tolerance {
 namespace {
 
 using Cell = reference::CauseModel::TexelCell;
@@ -453,4 +453,4 @@ ZigzagFinding find_zigzags(const reference::CauseModel& model, const scene::Prep
   return found;
 }
 
-}  // namespace shadowref::conform
+}  // namespace shadowref::tolerance

@@ -1,4 +1,4 @@
-// shadowref/conform/staircases.hpp — a declared map size checked against the candidate's own
+// shadowref/tolerance/staircases.hpp — a declared map size checked against the candidate's own
 // staircases, where the judge knows the texel grid: the pack's light views, or declared matrices.
 //
 // A hard shadow map answers per texel: every point of one texel reads the same stored depth, so on
@@ -30,7 +30,7 @@ namespace shadowref::reference {
 class CauseModel;
 }
 
-namespace shadowref::conform {
+namespace shadowref::tolerance {
 
 struct StaircaseCheck {
   std::size_t crossings = 0;     // lit/shadowed 4-neighbour pairs on one receiver plane, both facing the light
@@ -52,4 +52,4 @@ StaircaseCheck check_staircases(const reference::CauseModel& model, const output
 // The check in words, for the case's causes: "light 0: ...".
 std::string describe(const StaircaseCheck& check, std::size_t light, const outputs::CandidateDeclaration& light_declaration);
 
-}  // namespace shadowref::conform
+}  // namespace shadowref::tolerance

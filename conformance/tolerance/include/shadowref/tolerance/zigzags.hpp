@@ -1,4 +1,4 @@
-// shadowref/conform/zigzags.hpp — wrong pixels that no texel grid gives together: a shadow edge that
+// shadowref/tolerance/zigzags.hpp — wrong pixels that no texel grid gives together: a shadow edge that
 // zigzags faster than any shadow map's staircase can.
 //
 // Each wrong pixel of a shadow map may be explained alone — a true boundary lies within its texel
@@ -55,7 +55,7 @@ namespace shadowref::reference {
 class CauseModel;
 }
 
-namespace shadowref::conform {
+namespace shadowref::tolerance {
 
 // Windows looked at per mask, the densest first: bounds the cost of a mask wrong all over (which
 // FAILs on its own count anyway).
@@ -94,4 +94,4 @@ ZigzagFinding find_zigzags(const reference::CauseModel& model, const scene::Prep
                            const outputs::CandidateDeclaration& light_declaration, const outputs::Image8& reference,
                            const outputs::Image8& candidate, const std::vector<std::size_t>& wrong);
 
-}  // namespace shadowref::conform
+}  // namespace shadowref::tolerance

@@ -10,11 +10,11 @@
 
 #include "shadowref/compare/compare.hpp"
 #include "shadowref/compare/thresholds.hpp"
-#include "shadowref/conform/resolving_power.hpp"
+#include "shadowref/tolerance/resolving_power.hpp"
 #include "shadowref/outputs/image.hpp"
 #include "tile_sweep.hpp"
 
-namespace shadowref::conform {
+namespace shadowref::tolerance {
 namespace {
 
 using outputs::Image8;
@@ -123,4 +123,4 @@ TEST(TileSweep, AnImageTooSmallForATileHasNoPlace) {
 }
 
 }  // namespace
-}  // namespace shadowref::conform
+}  // namespace shadowref::tolerance

@@ -1,6 +1,6 @@
 // resolving_power.cpp — the probes of resolving_power.hpp: the reference's own masks with one
 // blatant error each, judged as the candidate was.
-#include "shadowref/conform/resolving_power.hpp"
+#include "shadowref/tolerance/resolving_power.hpp"
 
 #include "shadowref/record/case_record.hpp"
 
@@ -19,7 +19,7 @@
 #include "shadowref/outputs/interruption.hpp"
 #include "tile_sweep.hpp"
 
-namespace shadowref::conform {
+namespace shadowref::tolerance {
 namespace {
 
 using outputs::Image8;
@@ -297,4 +297,4 @@ nlohmann::json resolving_power_json(const ResolvingPower& r) {
   return {{key::kSummary, r.summary()}, {key::kBlindTo, blind}, {key::kUnseen, unseen}, {key::kProbes, probes}};
 }
 
-}  // namespace shadowref::conform
+}  // namespace shadowref::tolerance

@@ -1,4 +1,4 @@
-// shadowref/conform/resolving_power.hpp — what a verdict could have seen: the known blatant errors
+// shadowref/tolerance/resolving_power.hpp — what a verdict could have seen: the known blatant errors
 // applied to the reference's own masks, each judged under the candidate's declaration by the same
 // comparison as the candidate.
 //
@@ -11,7 +11,7 @@
 //   the shadows grown and shrunk by 1 px,
 //   an 8 × 8 tile swapped with the one to its right at the three places of the boundary where
 //   that changes most pixels (tile_places below), and then at every other place (the tile sweep,
-//   conform/src/tile_sweep.hpp), since a declaration may explain a tile at one place of a boundary
+//   tolerance/src/tile_sweep.hpp), since a declaration may explain a tile at one place of a boundary
 //   and not at another (a 512-texel map explains more where its texels are long on the ground, and
 //   a tile across a gentle stretch of boundary changes few pixels in any window).
 // A probe that changes decided pixels and does not FAIL is one the case is blind to; where the three
@@ -45,7 +45,7 @@
 #include "shadowref/compare/compare.hpp"
 #include "shadowref/outputs/image.hpp"
 
-namespace shadowref::conform {
+namespace shadowref::tolerance {
 
 // The kinds of blatant error probed, each a group of probes.
 enum class ProbeKind { Shift1, Shift2, Grown1, Shrunk1, Tile8 };
@@ -123,4 +123,4 @@ ResolvingPower resolving_power(const std::vector<outputs::Image8>& masks, const 
 // "blind_to": [kinds], "unseen": [kinds], "probes": [{"probe", "verdict", "wrong", "unexplained"}]}.
 nlohmann::json resolving_power_json(const ResolvingPower& r);
 
-}  // namespace shadowref::conform
+}  // namespace shadowref::tolerance

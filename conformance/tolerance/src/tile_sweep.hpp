@@ -23,10 +23,10 @@
 #include <vector>
 
 #include "shadowref/compare/compare.hpp"
-#include "shadowref/conform/resolving_power.hpp"
+#include "shadowref/tolerance/resolving_power.hpp"
 #include "shadowref/outputs/image.hpp"
 
-namespace shadowref::conform {
+namespace shadowref::tolerance {
 
 // The places of light `light`'s `mask` (its reference's `decided`) where a tile swap changes more
 // decided pixels than the local-glitch bound in one 9 × 9 window (densest_change) and does not FAIL
@@ -35,4 +35,4 @@ namespace shadowref::conform {
 std::vector<TilePlace> tiles_not_failing(const outputs::Image8& mask, const outputs::Image8& decided, std::size_t light,
                                          const compare::Threshold& threshold, const compare::CompareOptions& options);
 
-}  // namespace shadowref::conform
+}  // namespace shadowref::tolerance

@@ -9,7 +9,7 @@
 #include "shadowref/outputs/image.hpp"
 #include "shadowref/outputs/interruption.hpp"
 
-namespace shadowref::conform {
+namespace shadowref::tolerance {
 namespace {
 
 using outputs::Image8;
@@ -138,4 +138,4 @@ std::vector<TilePlace> tiles_not_failing(const Image8& mask, const Image8& decid
   return out;
 }
 
-}  // namespace shadowref::conform
+}  // namespace shadowref::tolerance

@@ -1,6 +1,6 @@
 // staircases.cpp — a declared map size against the candidate's staircases on the pack's grid
 // (staircases.hpp).
-#include "shadowref/conform/staircases.hpp"
+#include "shadowref/tolerance/staircases.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -9,7 +9,7 @@
 
 #include "shadowref/reference/causes.hpp"
 
-namespace shadowref::conform {
+namespace shadowref::tolerance {
 using Cell = reference::CauseModel::TexelCell;
 
 bool staircases_apply(const outputs::CandidateDeclaration& d) {
@@ -66,4 +66,4 @@ std::string describe(const StaircaseCheck& c, std::size_t light, const outputs::
   return buf;
 }
 
-}  // namespace shadowref::conform
+}  // namespace shadowref::tolerance
