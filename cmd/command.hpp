@@ -19,8 +19,10 @@ struct RunConvention;
 namespace shadowref::renderer {
 struct RenderOptions;
 }
-namespace shadowref::conform {
+namespace shadowref::ci {
 struct Expectations;
+}
+namespace shadowref::conform {
 struct ConformResult;
 struct ConformOptions;
 }
@@ -69,8 +71,8 @@ CLI::Validator shadow_map_size_check();
 // files read (BadInput naming the file and line); the terminal's lines for each new failure, new
 // warning, improvement, stale line and skipped case, and the counts.
 void add_expectations_option(CLI::App& cmd, std::vector<std::string>& files);
-conform::Expectations read_expectations_option(const std::vector<std::string>& files);
-void print_expectation_lines(const conform::ConformResult& r, const conform::Expectations& e);
+ci::Expectations read_expectations_option(const std::vector<std::string>& files);
+void print_expectation_lines(const conform::ConformResult& r, const ci::Expectations& e);
 
 // `conform`'s --shard K/N and --shard-weights FILE (shard_option.cpp); applying them sets the
 // options' shard from the flag, else from a CI system's environment, reads the weights (BadInput

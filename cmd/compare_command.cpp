@@ -28,7 +28,7 @@
 #include "command.hpp"
 #include "shadowref/compare/compare.hpp"
 #include "shadowref/conform/case_json.hpp"
-#include "shadowref/conform/expectations.hpp"
+#include "shadowref/ci/expectations.hpp"
 #include "shadowref/conform/judge.hpp"
 #include "shadowref/tolerance/resolving_power.hpp"
 #include "shadowref/outputs/atomic_file.hpp"
@@ -58,20 +58,20 @@ struct CompareArgs {
 // and, with --out, the next file.
 struct CaseAgainstFiles {
   conform::Outcome outcome = conform::Outcome::Green;
-  const conform::ExpectationLine* line = nullptr;
+  const ci::ExpectationLine* line = nullptr;
   std::string name;
 };
 
-CaseAgainstFiles against_files(const conform::Expectations& e, const std::string& scene, const conform::CaseJudgement& j,
+CaseAgainstFiles against_files(const ci::Expectations& e, const std::string& scene, const conform::CaseJudgement& j,
                                const CompareArgs& a) {
   CaseAgainstFiles f;
-  f.name = conform::case_name(scene, j.technique, a.convention);
+  f.name = ci::case_name(scene, j.technique, a.convention);
   f.line = e.line_for(scene, j.technique, a.convention, j.declaration.environment);
-  f.outcome = conform::outcome_of(j.status, j.expectation.warn, f.line, e.flaky(f.name));
+  f.outcome = ci::outcome_of(j.status, j.expectation.warn, f.line, e.flaky(f.name));
   if (!a.out.empty()) {
-    const std::vector<conform::CaseOutcome> cases = {{scene, j.technique, j.status, f.outcome, j.declaration.environment}};
+    const std::vector<ci::CaseOutcome> cases = {{scene, j.technique, j.status, f.outcome, j.declaration.environment}};
     outputs::write_file_atomically(std::filesystem::path(a.out) / "expectations-update.txt",
-                                   conform::expectations_update_text(e, cases, {}, a.convention));
+                                   ci::expectations_update_text(e, cases, {}, a.convention));
   }
   return f;
 }
@@ -119,7 +119,7 @@ struct ScratchFolder {
 };
 
 int run_compare(const CompareArgs& a) {
-  const conform::Expectations expectations = read_expectations_option(a.expectations);
+  const ci::Expectations expectations = read_expectations_option(a.expectations);
   if (!expectations.empty() && a.scene.empty())
     throw BadInput("--expectations needs --scene: a case is named scene@technique[@convention] in the files");
   if (!a.technique.empty() && !outputs::find_technique_name(a.technique)) {
@@ -165,7 +165,7 @@ int run_compare(const CompareArgs& a) {
     if (!a.out.empty()) std::filesystem::create_directories(a.out);
     files = against_files(expectations, scene_name, j, a);
   }
-  const int code = files ? conform::exit_code(std::vector<conform::Outcome>{files->outcome})
+  const int code = files ? ci::exit_code(std::vector<ci::Outcome>{files->outcome})
                    : !a.scene.empty() ? conform::exit_code({j.status}, {j.expectation.warn})
                    : c.decision.verdict == compare::Verdict::Pass             ? kExitPass
                    : c.decision.verdict == compare::Verdict::QualityWarning ? kExitWarnings

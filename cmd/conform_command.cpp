@@ -19,7 +19,7 @@
 #include "numbers.hpp"
 #include "shadowref/conform/catalogue.hpp"
 #include "shadowref/conform/conform.hpp"
-#include "shadowref/conform/expectations.hpp"
+#include "shadowref/ci/expectations.hpp"
 #include "shadowref/outputs/limits.hpp"
 #include "shadowref/report/ci_summary.hpp"
 #include "shadowref/renderer/gl_context.hpp"
@@ -61,7 +61,7 @@ void print_shard(const conform::ConformResult& r, const conform::ConformOptions&
   std::printf("shard %d/%d (%s, by %s): %zu of %zu scenes: %s\n", o.shard->index + 1, o.shard->total, o.shard->source.c_str(),
               r.plan.assignment.c_str(), r.scenes.size(), r.plan.scenes.size(), scenes.empty() ? "none" : scenes.c_str());
   if (r.control)
-    std::printf("control case %s: %s\n", conform::case_name(r.control->scene, r.control->technique, r.convention).c_str(),
+    std::printf("control case %s: %s\n", ci::case_name(r.control->scene, r.control->technique, r.convention).c_str(),
                 conform::to_string(r.control->status));
 }
 

@@ -7,7 +7,7 @@
 
 #include "command.hpp"
 #include "shadowref/conform/conform.hpp"
-#include "shadowref/conform/expectations.hpp"
+#include "shadowref/ci/expectations.hpp"
 
 namespace shadowref::cli {
 
@@ -21,16 +21,16 @@ void add_expectations_option(CLI::App& cmd, std::vector<std::string>& files) {
       ->allow_extra_args(false);
 }
 
-conform::Expectations read_expectations_option(const std::vector<std::string>& files) {
+ci::Expectations read_expectations_option(const std::vector<std::string>& files) {
   std::vector<std::filesystem::path> paths(files.begin(), files.end());
   try {
-    return conform::read_expectations(paths);
+    return ci::read_expectations(paths);
   } catch (const std::invalid_argument& e) {
     throw BadInput(std::string("--expectations ") + e.what());
   }
 }
 
-void print_expectation_lines(const conform::ConformResult& r, const conform::Expectations& e) {
+void print_expectation_lines(const conform::ConformResult& r, const ci::Expectations& e) {
   if (e.empty()) return;
   std::size_t counts[6] = {};
   for (const conform::CaseResult& c : r.cases) {
@@ -40,13 +40,13 @@ void print_expectation_lines(const conform::ConformResult& r, const conform::Exp
                        : c.outcome == conform::Outcome::Improvement ? "IMPROVEMENT"
                                                                     : nullptr;
     if (!what) continue;
-    std::printf("%-11s %s: %s", what, conform::case_name(c.scene, c.technique, r.convention).c_str(), conform::to_string(c.status));
+    std::printf("%-11s %s: %s", what, ci::case_name(c.scene, c.technique, r.convention).c_str(), conform::to_string(c.status));
     if (c.expected_line.empty()) std::printf(", not in the expectations files\n");
     else if (c.outcome == conform::Outcome::Improvement)
       std::printf(" where %s expects %s: remove that line\n", c.expected_line.c_str(), c.expected_status.c_str());
     else std::printf(" where %s expects %s\n", c.expected_line.c_str(), c.expected_status.c_str());
   }
-  for (const conform::ExpectationLine* l : r.stale)
+  for (const ci::ExpectationLine* l : r.stale)
     std::printf("STALE       %s: '%s' names no case of this run\n", l->where.c_str(), l->text.c_str());
   for (const std::string& s : r.skipped) std::printf("SKIP        %s: a [skips] regex\n", s.c_str());
   using conform::Outcome;

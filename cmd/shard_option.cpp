@@ -10,7 +10,7 @@
 
 #include "command.hpp"
 #include "shadowref/conform/conform.hpp"
-#include "shadowref/conform/shard_plan.hpp"
+#include "shadowref/ci/shard_plan.hpp"
 #include "shadowref/outputs/atomic_file.hpp"
 #include "shadowref/outputs/errors.hpp"
 
@@ -27,11 +27,11 @@ void add_shard_options(CLI::App& cmd, ShardArgs& args) {
 
 void apply_shard_options(const ShardArgs& args, conform::ConformOptions& o) {
   try {
-    if (!args.shard.empty()) o.shard = conform::parse_shard_flag(args.shard);
-    else o.shard = conform::shard_from_environment([](const char* name) { return std::getenv(name); });
+    if (!args.shard.empty()) o.shard = ci::parse_shard_flag(args.shard);
+    else o.shard = ci::shard_from_environment([](const char* name) { return std::getenv(name); });
     if (!args.weights.empty()) {
       if (!o.shard) throw std::invalid_argument("--shard-weights " + args.weights + ": needs a split run (--shard or a CI's shard variables)");
-      o.shard_weights = conform::read_shard_weights(args.weights);
+      o.shard_weights = ci::read_shard_weights(args.weights);
       o.shard_weights_file = args.weights;
     }
   } catch (const std::invalid_argument& e) {

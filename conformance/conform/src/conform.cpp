@@ -118,7 +118,7 @@ std::string catalogue_id(const std::vector<scene::Scene>& all) {
     bytes += s.name + '\0' + std::string(std::istreambuf_iterator<char>(in), {}) + '\0';
   }
   char buf[32];
-  std::snprintf(buf, sizeof buf, "fnv1a64:%016llx", static_cast<unsigned long long>(stable_hash(bytes)));
+  std::snprintf(buf, sizeof buf, "fnv1a64:%016llx", static_cast<unsigned long long>(ci::stable_hash(bytes)));
   return buf;
 }
 
@@ -137,7 +137,7 @@ void plan_scenes(Run& run) {
   for (const scene::Scene& s : all) plan.scenes.push_back(s.name);
   plan.shards = o.shard ? o.shard->total : 1;
   plan.assignment = o.shard_weights.empty() ? "hash" : "weights";
-  plan.shard_of = assign_shards(plan.scenes, plan.shards, o.shard_weights);
+  plan.shard_of = ci::assign_shards(plan.scenes, plan.shards, o.shard_weights);
   plan.catalogue_id = catalogue_id(all);
   const scene::Scene* control = nullptr;
   if (o.shard) {
@@ -286,15 +286,15 @@ int ConformResult::exit_code() const {
   std::vector<Outcome> outcomes;
   for (const CaseResult& c : cases) outcomes.push_back(c.outcome);
   if (control) outcomes.push_back(control->outcome);
-  return conform::exit_code(outcomes);
+  return ci::exit_code(outcomes);
 }
 
 namespace {
 
 // A judged case against the team's expectations files (expectations.hpp).
-void classify(CaseResult& c, const Expectations& e, const std::string& convention) {
-  const ExpectationLine* line = e.line_for(c.scene, c.technique, convention, c.environment);
-  c.outcome = outcome_of(c.status, c.expected.warn, line, e.flaky(case_name(c.scene, c.technique, convention)));
+void classify(CaseResult& c, const ci::Expectations& e, const std::string& convention) {
+  const ci::ExpectationLine* line = e.line_for(c.scene, c.technique, convention, c.environment);
+  c.outcome = ci::outcome_of(c.status, c.expected.warn, line, e.flaky(ci::case_name(c.scene, c.technique, convention)));
   if (line) {
     c.expected_status = to_string(line->status);
     c.expected_line = line->where;
@@ -312,7 +312,7 @@ void run_cases(Run& run, const Progress& progress) {
     if (run.control_only == si) continue;
     for (const std::string& technique : result.techniques) {
       outputs::throw_if_interrupted();
-      const std::string name = case_name(run.scenes[si].name, technique, result.convention);
+      const std::string name = ci::case_name(run.scenes[si].name, technique, result.convention);
       if (o.expectations.skipped(name)) {
         result.skipped.push_back(name);
         continue;
@@ -362,7 +362,7 @@ ConformResult run_conform(const ConformOptions& o, const Progress& progress, con
     for (const CaseResult& c : result.cases)
       if (std::find(environments.begin(), environments.end(), c.environment) == environments.end())
         environments.push_back(c.environment);
-    result.stale = stale_lines(o.expectations, result.plan.scenes, result.techniques, result.convention, environments);
+    result.stale = ci::stale_lines(o.expectations, result.plan.scenes, result.techniques, result.convention, environments);
   }
   result.seconds = since(start);
   if (o.write_report && !o.references_only) {
@@ -408,7 +408,7 @@ std::string table_text(const ConformResult& r, bool with_expectations) {
     out += pad(s, name_w);
     for (std::size_t i = 0; i < r.techniques.size(); ++i) {
       const auto it = at.find({s, r.techniques[i]});
-      const bool skipped = std::find(r.skipped.begin(), r.skipped.end(), case_name(s, r.techniques[i], r.convention)) != r.skipped.end();
+      const bool skipped = std::find(r.skipped.begin(), r.skipped.end(), ci::case_name(s, r.techniques[i], r.convention)) != r.skipped.end();
       out += "  " + pad(it != at.end() ? table_cell(it->second->status, it->second->outcome, with_expectations) : skipped ? "SKIP" : "-",
                         col_w[i]);
     }

@@ -144,7 +144,7 @@ std::vector<MergedCase> gather_cases(const std::vector<Shard>& shards, std::vect
     skipped.insert(s.run.skipped.begin(), s.run.skipped.end());
     for (std::size_t i = 0; i < s.run.cases.size(); ++i) {
       MergedCase m{s.report[key::kCases][i], s.run.cases[i], &s};
-      const std::string name = case_name(m.rec.scene, m.rec.technique, convention);
+      const std::string name = ci::case_name(m.rec.scene, m.rec.technique, convention);
       if (const auto it = at.find({m.rec.scene, m.rec.technique}); it != at.end()) {
         problems.push_back("case " + name + " seen twice: in " + it->second.from->dir.string() + " and " + s.dir.string());
         continue;
@@ -166,7 +166,7 @@ std::vector<MergedCase> gather_cases(const std::vector<Shard>& shards, std::vect
         out.push_back(std::move(it->second));
         continue;
       }
-      const std::string name = case_name(p.scene, technique, convention);
+      const std::string name = ci::case_name(p.scene, technique, convention);
       // A missing shard is said once, above, not once per case.
       if (!skipped.count(name) && present_shards.count(p.shard))
         problems.push_back("case " + name + " missing: planned for shard " + std::to_string(p.shard) + ", which does not have it");
@@ -189,7 +189,7 @@ void copy_images(const MergedCase& c, const outputs::StagedFolder& staged) {
 }
 
 // The merged cases as a ConformResult (table and exit code), each classified against `e`.
-ConformResult merged_result(const record::RunRecord& first, std::vector<MergedCase>& cases, const Expectations& e) {
+ConformResult merged_result(const record::RunRecord& first, std::vector<MergedCase>& cases, const ci::Expectations& e) {
   ConformResult r;
   r.convention = first.convention;
   for (const record::PlannedScene& p : first.plan.scenes) r.scenes.push_back(p.scene);
@@ -201,8 +201,8 @@ ConformResult merged_result(const record::RunRecord& first, std::vector<MergedCa
     k.status = c.rec.status;
     k.expected.warn = c.rec.expected == "warn";
     k.environment = c.rec.environment;  // as the shard wrote it
-    const ExpectationLine* line = e.line_for(k.scene, k.technique, r.convention, k.environment);
-    k.outcome = outcome_of(k.status, k.expected.warn, line, e.flaky(case_name(k.scene, k.technique, r.convention)));
+    const ci::ExpectationLine* line = e.line_for(k.scene, k.technique, r.convention, k.environment);
+    k.outcome = ci::outcome_of(k.status, k.expected.warn, line, e.flaky(ci::case_name(k.scene, k.technique, r.convention)));
     c.keys.erase(key::kExpectation);
     c.rec.expectation.reset();
     if (!e.empty()) {
@@ -271,7 +271,7 @@ ConformResult merge_shards(const MergeOptions& o) {
   j["summary"] = summary_json(r.cases.size(), r.count(Status::Pass), r.count(Status::Warn), r.count(Status::Fail),
                               r.count(Status::XFail), r.count(Status::XPass), r.count(Status::Error), r.exit_code());
   j.erase(key::kExpectations);
-  std::vector<CaseOutcome> outcomes;
+  std::vector<ci::CaseOutcome> outcomes;
   for (const CaseResult& c : r.cases) outcomes.push_back({c.scene, c.technique, c.status, c.outcome, c.environment});
   std::string update;
   if (!o.expectations.empty()) {
@@ -279,9 +279,9 @@ ConformResult merge_shards(const MergeOptions& o) {
     for (const CaseResult& c : r.cases)
       if (std::find(environments.begin(), environments.end(), c.environment) == environments.end())
         environments.push_back(c.environment);
-    r.stale = stale_lines(o.expectations, r.scenes, r.techniques, r.convention, environments);
+    r.stale = ci::stale_lines(o.expectations, r.scenes, r.techniques, r.convention, environments);
     j[key::kExpectations] = expectations_json(o.expectations, r.stale, j[key::kCases]);
-    update = expectations_update_text(o.expectations, outcomes, r.stale, r.convention);
+    update = ci::expectations_update_text(o.expectations, outcomes, r.stale, r.convention);
   }
   j[key::kTriage] = triage_json(o.expectations, outcomes, r.stale, r.convention);
   publish_reports(j, staged, r.report_json, update);

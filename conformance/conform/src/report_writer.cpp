@@ -172,7 +172,7 @@ json summary_json(std::size_t cases, std::size_t pass, std::size_t warn, std::si
           {"xfail", xfail}, {"xpass", xpass}, {"error", error}, {"exit_code", exit_code}};
 }
 
-json expectations_json(const Expectations& e, const std::vector<const ExpectationLine*>& stale, const json& cases) {
+json expectations_json(const ci::Expectations& e, const std::vector<const ci::ExpectationLine*>& stale, const json& cases) {
   json files = json::array();
   for (const auto& f : e.files) files.push_back(fs::absolute(f).string());
   json counts = json::object();
@@ -182,17 +182,17 @@ json expectations_json(const Expectations& e, const std::vector<const Expectatio
     counts[to_string(o)] = n;
   }
   json st = json::array();
-  for (const ExpectationLine* l : stale) st.push_back({{key::kLine, l->where}, {key::kText, l->text}});
+  for (const ci::ExpectationLine* l : stale) st.push_back({{key::kLine, l->where}, {key::kText, l->text}});
   return {{key::kFiles, files}, {key::kCounts, counts}, {key::kStale, st}, {key::kUpdate, "expectations-update.txt"}};
 }
 
-json triage_json(const Expectations& e, const std::vector<CaseOutcome>& cases, const std::vector<const ExpectationLine*>& stale,
+json triage_json(const ci::Expectations& e, const std::vector<ci::CaseOutcome>& cases, const std::vector<const ci::ExpectationLine*>& stale,
                  const std::string& convention) {
   json lines = json::array();
-  for (const CaseOutcome& c : cases)
+  for (const ci::CaseOutcome& c : cases)
     if (c.outcome == Outcome::NewFailure || c.outcome == Outcome::NewWarning)
-      lines.push_back({{key::kScene, c.scene}, {key::kTechnique, c.technique}, {key::kLine, known_line(c, convention)}});
-  return {{key::kBase, expectations_update_text(e, cases, stale, convention, false)}, {key::kCases, lines}};
+      lines.push_back({{key::kScene, c.scene}, {key::kTechnique, c.technique}, {key::kLine, ci::known_line(c, convention)}});
+  return {{key::kBase, ci::expectations_update_text(e, cases, stale, convention, false)}, {key::kCases, lines}};
 }
 
 void publish_reports(const json& j, outputs::StagedFolder& staged, const fs::path& report_json, const std::string& update) {
@@ -268,12 +268,12 @@ void write_reports(const ConformResult& r, const ConformOptions& o, const fs::pa
     j[key::kShard] = {{key::kIndex, o.shard->index + 1}, {key::kTotalShards, o.shard->total}, {key::kSource, o.shard->source},
                       {key::kScenes, r.scenes}, {key::kControl, control}};
   }
-  std::vector<CaseOutcome> outcomes;
+  std::vector<ci::CaseOutcome> outcomes;
   for (const CaseResult& c : r.cases) outcomes.push_back({c.scene, c.technique, c.status, c.outcome, c.environment});
   std::string update;
   if (with_expectations) {
     j[key::kExpectations] = expectations_json(o.expectations, r.stale, cases);
-    update = expectations_update_text(o.expectations, outcomes, r.stale, r.convention);
+    update = ci::expectations_update_text(o.expectations, outcomes, r.stale, r.convention);
   }
   j[key::kTriage] = triage_json(o.expectations, outcomes, r.stale, r.convention);
   publish_reports(j, staged, r.report_json, update);

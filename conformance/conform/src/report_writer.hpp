@@ -26,15 +26,15 @@ nlohmann::json summary_json(std::size_t cases, std::size_t pass, std::size_t war
 
 // report.json's "expectations": the files, the count of each outcome over `cases` (report.json's
 // cases, each with its "expectation"), the stale lines and the name of the next file.
-nlohmann::json expectations_json(const Expectations& e, const std::vector<const ExpectationLine*>& stale,
+nlohmann::json expectations_json(const ci::Expectations& e, const std::vector<const ci::ExpectationLine*>& stale,
                                  const nlohmann::json& cases);
 
 // report.json's "triage", from which the page lets a person accept today's failures: "base", the
 // expectations file without the new lines (expectations_update_text's, new_lines false: `e`'s lines
 // still met, its [flakes] and [skips]), and "cases", each new failure and warning as
 // {"scene", "technique", "line"} (known_line, the line the page adds when the case is marked).
-nlohmann::json triage_json(const Expectations& e, const std::vector<CaseOutcome>& cases,
-                           const std::vector<const ExpectationLine*>& stale, const std::string& convention);
+nlohmann::json triage_json(const ci::Expectations& e, const std::vector<ci::CaseOutcome>& cases,
+                           const std::vector<const ci::ExpectationLine*>& stale, const std::string& convention);
 
 // Writes the page for `report` into `staged` (whose img/ is filled) and commits it, then
 // report.junit.xml, summary.md, `update` as expectations-update.txt (when not empty) and report.json

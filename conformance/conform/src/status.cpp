@@ -1,7 +1,7 @@
 // status.cpp — the status rules of a judged case and the run's exit code (status.hpp).
 #include "shadowref/conform/status.hpp"
 
-#include "shadowref/conform/expectations.hpp"
+#include "shadowref/ci/expectations.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -32,8 +32,8 @@ int exit_code(const std::vector<Status>& statuses, const std::vector<bool>& expe
   // failure and an unexpected WARN a new warning.
   std::vector<Outcome> outcomes;
   for (std::size_t i = 0; i < statuses.size(); ++i)
-    outcomes.push_back(outcome_of(statuses[i], i < expected_warnings.size() && expected_warnings[i], nullptr, false));
-  return exit_code(outcomes);
+    outcomes.push_back(ci::outcome_of(statuses[i], i < expected_warnings.size() && expected_warnings[i], nullptr, false));
+  return ci::exit_code(outcomes);
 }
 
 std::string unpredicted_errors(const compare::FolderComparison& c, scene::PredictedErrors predicted, std::string& seen) {

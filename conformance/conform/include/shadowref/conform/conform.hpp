@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "shadowref/compare/compare.hpp"
-#include "shadowref/conform/expectations.hpp"
+#include "shadowref/ci/expectations.hpp"
 #include "shadowref/conform/judge.hpp"
-#include "shadowref/conform/shard_plan.hpp"
+#include "shadowref/ci/shard_plan.hpp"
 #include "shadowref/conform/status.hpp"
 #include "shadowref/convention.hpp"
 #include "shadowref/outputs/candidate.hpp"
@@ -75,11 +75,11 @@ struct ConformOptions {
   std::string command_line;                     // recorded in report.json
   // One shard of a split run (shard_plan.hpp): only the scenes the plan gives it, plus the control
   // case; none: the whole selection. `shard_weights` (scene -> seconds) balances the plan.
-  std::optional<ShardSpec> shard;
+  std::optional<ci::ShardSpec> shard;
   std::map<std::string, double> shard_weights;
   std::filesystem::path shard_weights_file;     // recorded in report.json
   // An engine team's known failures (expectations.hpp); empty: the catalogue's expectations alone.
-  Expectations expectations;
+  ci::Expectations expectations;
 };
 
 struct CaseResult {
@@ -137,7 +137,7 @@ struct ConformResult {
   RunPlan plan;
   std::optional<CaseResult> control;            // split runs: the control case every shard judges
   std::vector<std::string> skipped;             // cases a [skips] regex left out, by case_name()
-  std::vector<const ExpectationLine*> stale;    // expectation lines for no planned case (into options.expectations)
+  std::vector<const ci::ExpectationLine*> stale;  // expectation lines for no planned case (into options.expectations)
   std::string gl_vendor, gl_renderer, gl_version;
   std::string convention;
   double seconds = 0, reference_seconds = 0;

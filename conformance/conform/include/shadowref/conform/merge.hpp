@@ -16,14 +16,14 @@
 #include <vector>
 
 #include "shadowref/conform/conform.hpp"
-#include "shadowref/conform/expectations.hpp"
+#include "shadowref/ci/expectations.hpp"
 
 namespace shadowref::conform {
 
 struct MergeOptions {
   std::vector<std::filesystem::path> shards;  // each a shard's --out folder
   std::filesystem::path out;
-  Expectations expectations;                  // applied to the merged cases; empty: none
+  ci::Expectations expectations;              // applied to the merged cases; empty: none
   std::string command_line;                   // recorded in report.json
 };
 

@@ -18,6 +18,7 @@
 namespace shadowref::conform {
 
 using record::is_failure;
+using record::Outcome;
 using record::Status;
 using record::status_from_string;
 using record::to_string;

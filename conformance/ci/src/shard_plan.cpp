@@ -1,5 +1,5 @@
 // shard_plan.cpp — scene-to-shard assignment and the CI systems' sharding protocols (shard_plan.hpp).
-#include "shadowref/conform/shard_plan.hpp"
+#include "shadowref/ci/shard_plan.hpp"
 
 #include "shadowref/record/case_record.hpp"
 
@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-namespace shadowref::conform {
+namespace shadowref::ci {
 namespace {
 
 std::optional<int> parse_int(std::string_view s) {
@@ -108,4 +108,4 @@ std::map<std::string, double> read_shard_weights(const std::filesystem::path& re
   return out;
 }
 
-}  // namespace shadowref::conform
+}  // namespace shadowref::ci

@@ -1,6 +1,6 @@
 // expectations.cpp — reading an engine team's expectations files, each case's outcome against them,
 // and the next file to check in (expectations.hpp).
-#include "shadowref/conform/expectations.hpp"
+#include "shadowref/ci/expectations.hpp"
 
 #include <algorithm>
 #include <fstream>
@@ -14,7 +14,7 @@
 #include "shadowref/convention.hpp"
 #include "shadowref/scene/identifier.hpp"
 
-namespace shadowref::conform {
+namespace shadowref::ci {
 namespace {
 
 std::string trim(const std::string& s) {
@@ -274,4 +274,4 @@ std::string expectations_update_text(const Expectations& e, const std::vector<Ca
   return t.str();
 }
 
-}  // namespace shadowref::conform
+}  // namespace shadowref::ci

@@ -6,9 +6,9 @@
 #include <map>
 #include <string>
 
-#include "shadowref/conform/shard_plan.hpp"
+#include "shadowref/ci/shard_plan.hpp"
 
-namespace shadowref::conform {
+namespace shadowref::ci {
 namespace {
 
 const std::vector<std::string> kCatalogue = {
@@ -84,4 +84,4 @@ TEST(ShardPlan, Protocols) {
 }
 
 }  // namespace
-}  // namespace shadowref::conform
+}  // namespace shadowref::ci

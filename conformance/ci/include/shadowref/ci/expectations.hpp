@@ -1,4 +1,4 @@
-// shadowref/conform/expectations.hpp — an engine team's known failures (an expectations file), the
+// shadowref/ci/expectations.hpp — an engine team's known failures (an expectations file), the
 // layer above the catalogue's own XFAILs: what each case of a run is against it, the exit code that
 // follows, and the next file to check in (docs/ci.md).
 //
@@ -50,14 +50,16 @@
 #include <string>
 #include <vector>
 
-#include "shadowref/conform/status.hpp"
+#include "shadowref/record/status.hpp"
 #include "shadowref/outputs/candidate.hpp"
 
 namespace re2 {
 class RE2;
 }
 
-namespace shadowref::conform {
+namespace shadowref::ci {
+
+using record::Status;  // the statuses and their names are the record's (record/status.hpp)
 
 // The memory RE2 may give one compiled [flakes] or [skips] pattern: a case-name pattern a person
 // writes compiles to a few kilobytes; 1 MiB refuses only a pattern built to be huge.
@@ -144,4 +146,4 @@ std::string expectations_update_text(const Expectations& e, const std::vector<Ca
                                      const std::vector<const ExpectationLine*>& stale, const std::string& convention,
                                      bool new_lines = true);
 
-}  // namespace shadowref::conform
+}  // namespace shadowref::ci

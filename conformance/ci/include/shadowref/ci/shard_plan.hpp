@@ -1,4 +1,4 @@
-// shadowref/conform/shard_plan.hpp — which shard of a split run judges which scene, and which shard
+// shadowref/ci/shard_plan.hpp — which shard of a split run judges which scene, and which shard
 // this process is, read from the protocols CI systems already speak (docs/ci.md).
 //
 // The unit is the scene: its reference is computed once, in the one shard that has it. A scene goes
@@ -24,7 +24,7 @@
 #include <string_view>
 #include <vector>
 
-namespace shadowref::conform {
+namespace shadowref::ci {
 
 struct ShardSpec {
   int index = 0;                        // 0-based
@@ -55,4 +55,4 @@ std::map<std::string, int> assign_shards(const std::vector<std::string>& scenes,
 // Throws std::invalid_argument naming the file and the JSON path for a file that is not one.
 std::map<std::string, double> read_shard_weights(const std::filesystem::path& report_json);
 
-}  // namespace shadowref::conform
+}  // namespace shadowref::ci
