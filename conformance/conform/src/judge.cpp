@@ -146,6 +146,75 @@ std::string declared_views_problem(const scene::PreparedScene& prepared, std::si
   return "";
 }
 
+// 1. The technique judged (the caller's, else the candidate's, else none: the strictest) and what
+// the candidate declares.
+void read_what_is_judged(const CaseToJudge& c, CaseJudgement& j) {
+  j.technique = c.technique;
+  j.technique_source = "the caller";
+  j.declaration = outputs::read_declaration(c.candidate_dir, c.technique);
+  if (j.technique.empty()) {
+    j.technique = j.declaration.technique;
+    j.technique_source = j.technique.empty() ? "none given: the strictest" : "candidate.json";
+  }
+}
+
+// A declaration the scene cannot bear (more lights than it has, views it refuses) is bad input,
+// named by the candidate's file; then the catalogue's expectation for the technique.
+void check_declaration_against_scene(const scene::PreparedScene& prepared, const CaseToJudge& c, CaseJudgement& j) {
+  const scene::Scene& s = *prepared.scene;
+  if (j.declaration.lights.size() > s.lights.size())
+    throw outputs::InputError(outputs::InputError::Kind::BadInput,
+                              (c.candidate_dir / outputs::kCandidateFile).string() + ": lights: " +
+                                  std::to_string(j.declaration.lights.size()) + " entries, but scene '" + s.name + "' has " +
+                                  std::to_string(s.lights.size()) + " light(s)");
+  for (std::size_t i = 0; i < s.lights.size(); ++i)
+    if (const std::string p = declared_views_problem(prepared, i, j.declaration, j.technique); !p.empty())
+      throw outputs::InputError(outputs::InputError::Kind::BadInput, (c.candidate_dir / outputs::kCandidateFile).string() + ": " + p);
+  if (const auto e = s.expect.find(j.technique); e != s.expect.end()) j.expectation = e->second;
+}
+
+// What the cause model's answers depend on (the memo's key, and with the reference and threshold
+// the probes' verdicts'): not the producer or version, nor the technique's name (the volume
+// techniques and planar share one answer per scene, shadowmap and shadowmap-rgba8 another) but
+// for what the cause model reads of it: whether it is cascaded, its "cascades": 0 then meaning
+// the default count (csm-pcf's declaration text is shadowmap-pcf's otherwise, and a point is
+// looked up in its cascade, not in one map).
+std::string cause_key_of(const outputs::CandidateDeclaration& judged) {
+  const auto cause_relevant = [](const std::string& technique) {
+    const outputs::TechniqueName* t = outputs::find_technique_name(technique);
+    return t && t->cascaded ? std::string("cascaded") : std::string();
+  };
+  outputs::CandidateDeclaration keyed = judged;
+  keyed.producer = keyed.version = "";
+  keyed.technique = cause_relevant(keyed.technique);
+  for (outputs::CandidateDeclaration& l : keyed.lights) l.technique = cause_relevant(l.technique);
+  return outputs::declaration_text(keyed);
+}
+
+// 6. The status under the expectation, the unmet expectation and, for an expected failure that
+// predicts its errors' kind, whether the other kind passes. Returns whether the status is still an
+// XFAIL that the technique's own model may grant.
+bool settle_status(CaseJudgement& j, int height) {
+  j.status = status_of(j.comparison.decision.verdict, j.expectation.pass);
+  // Below the image height an expected failure shows from, its errors may lie within the bounds.
+  if (j.status == Status::XPass && j.comparison.decision.verdict == compare::Verdict::Pass && j.expectation.passes_at(height))
+    j.status = Status::Pass;
+  j.unmet_expectation = unmet_expectation(j.expectation, j.status);
+  if (j.status != Status::XFail) return false;
+  if (j.expectation.errors != scene::PredictedErrors::Any) {
+    // An expected failure that predicts its errors' kind: granted only when the other kind passes.
+    std::string seen;
+    const std::string problem = unpredicted_errors(j.comparison, j.expectation.errors, seen);
+    if (!problem.empty()) {
+      j.status = Status::Fail;
+      j.signature = "expected failure seen, but errors of the kind it does not predict fail on their own: " + problem;
+      return false;
+    }
+    j.signature = "the errors are of the predicted kind: " + seen;
+  }
+  return true;
+}
+
 }  // namespace
 
 Judge::Judge(bool probe) : memo_(std::make_unique<CauseMemo>()), probe_(probe) {}
@@ -173,13 +242,7 @@ std::filesystem::path Judge::draw_model(const scene::PreparedScene& prepared, co
 CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJudge& c) {
   CaseJudgement j;
   // 1. The technique judged and what the candidate declares.
-  j.technique = c.technique;
-  j.technique_source = "the caller";
-  j.declaration = outputs::read_declaration(c.candidate_dir, c.technique);
-  if (j.technique.empty()) {
-    j.technique = j.declaration.technique;
-    j.technique_source = j.technique.empty() ? "none given: the strictest" : "candidate.json";
-  }
+  read_what_is_judged(c, j);
   const outputs::TechniqueName* named = outputs::find_technique_name(j.technique);
   const bool soft = named && named->family == outputs::TechniqueFamily::SoftShadow;
   const compare::Threshold& threshold = compare::threshold_for(j.technique);
@@ -194,15 +257,7 @@ CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJud
     return j;
   }
   const scene::Scene& s = *prepared->scene;
-  if (j.declaration.lights.size() > s.lights.size())
-    throw outputs::InputError(outputs::InputError::Kind::BadInput,
-                              (c.candidate_dir / outputs::kCandidateFile).string() + ": lights: " +
-                                  std::to_string(j.declaration.lights.size()) + " entries, but scene '" + s.name + "' has " +
-                                  std::to_string(s.lights.size()) + " light(s)");
-  for (std::size_t i = 0; i < s.lights.size(); ++i)
-    if (const std::string p = declared_views_problem(*prepared, i, j.declaration, j.technique); !p.empty())
-      throw outputs::InputError(outputs::InputError::Kind::BadInput, (c.candidate_dir / outputs::kCandidateFile).string() + ": " + p);
-  if (const auto e = s.expect.find(j.technique); e != s.expect.end()) j.expectation = e->second;
+  check_declaration_against_scene(*prepared, c, j);
 
   // 2-4. Threshold, causes, lit fraction: the comparison, under the declaration as the pixels bear it
   // out. The masks are read once here, for the staircases, the comparison, the probes and the model.
@@ -213,21 +268,7 @@ CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJud
       model && named && named->family == outputs::TechniqueFamily::ShadowMap
           ? checked_against_staircases(*model, s, images.candidate, j.declaration, staircases)
           : j.declaration;
-  // What the cause model's answers depend on (the memo's key, and with the reference and threshold
-  // the probes' verdicts'): not the producer or version, nor the technique's name (the volume
-  // techniques and planar share one answer per scene, shadowmap and shadowmap-rgba8 another) but
-  // for what the cause model reads of it: whether it is cascaded, its "cascades": 0 then meaning
-  // the default count (csm-pcf's declaration text is shadowmap-pcf's otherwise, and a point is
-  // looked up in its cascade, not in one map).
-  const auto cause_relevant = [](const std::string& technique) {
-    const outputs::TechniqueName* t = outputs::find_technique_name(technique);
-    return t && t->cascaded ? std::string("cascaded") : std::string();
-  };
-  outputs::CandidateDeclaration keyed = judged;
-  keyed.producer = keyed.version = "";
-  keyed.technique = cause_relevant(keyed.technique);
-  for (outputs::CandidateDeclaration& l : keyed.lights) l.technique = cause_relevant(l.technique);
-  const std::string cause_key = outputs::declaration_text(keyed);
+  const std::string cause_key = cause_key_of(judged);
   CauseMemo::Table* memo = model ? &memo_->table(*prepared, cause_key) : nullptr;
   Explainers explainers;
   const compare::CompareOptions options = options_for(*prepared, threshold, named, judged, model, memo, explainers, j.causes);
@@ -244,23 +285,7 @@ CaseJudgement Judge::judge(const scene::PreparedScene* prepared, const CaseToJud
   }
 
   // 6. Status and signature.
-  j.status = status_of(j.comparison.decision.verdict, j.expectation.pass);
-  // Below the image height an expected failure shows from, its errors may lie within the bounds.
-  if (j.status == Status::XPass && j.comparison.decision.verdict == compare::Verdict::Pass && j.expectation.passes_at(s.height))
-    j.status = Status::Pass;
-  j.unmet_expectation = unmet_expectation(j.expectation, j.status);
-  if (j.status != Status::XFail) return j;
-  if (j.expectation.errors != scene::PredictedErrors::Any) {
-    // An expected failure that predicts its errors' kind: granted only when the other kind passes.
-    std::string seen;
-    const std::string problem = unpredicted_errors(j.comparison, j.expectation.errors, seen);
-    if (!problem.empty()) {
-      j.status = Status::Fail;
-      j.signature = "expected failure seen, but errors of the kind it does not predict fail on their own: " + problem;
-      return j;
-    }
-    j.signature = "the errors are of the predicted kind: " + seen;
-  }
+  if (!settle_status(j, s.height)) return j;
   // An engine's expected failure is granted only when its errors are the ones the technique's own
   // model of its failure predicts: our implementation, which shows the limitation exactly. The
   // candidate is judged against the model's masks (on the reference's decided pixels, with the

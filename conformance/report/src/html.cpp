@@ -421,6 +421,46 @@ void legend_section(std::ostringstream& h) {
 
 }
 
+// The candidate's declaration as judged (its producer, map, filter, biases, per-light overrides and
+// engine settings) and the environment it was rendered on.
+void candidate_info(std::ostringstream& h, const record::CaseRecord& rec, const json& d) {
+  // Volumes and planar shadows have no map, filter or bias: their settings would only list
+  // defaults that mean nothing for them.
+  const std::string& technique = rec.technique;
+  const bool map_settings = !(technique.rfind("volume", 0) == 0 || technique == "planar");
+  std::string defaulted;
+  for (const auto& k : d.value("defaulted", json::array())) {
+    const std::string key = k.get<std::string>();
+    if (map_settings || key == "producer" || key == "version" || key == "convention")
+      defaulted += (defaulted.empty() ? "" : ", ") + key;
+  }
+  h << "<div class=\"notes\">candidate: " << escape_html(str(d, "producer")) << " " << escape_html(str(d, "version"))
+    << " · " << escape_html(str(d, "convention"));
+  if (map_settings)
+    h << " · map "
+      << (d.contains("atlas_tile") && d["atlas_tile"].is_object()
+              ? std::to_string(d["atlas_tile"].value("size", 0) - 2 * d["atlas_tile"].value("guard_band", 0)) +
+                    " (an atlas tile of " + escape_html(str(d["atlas_tile"], "size")) + " with a guard band of " +
+                    escape_html(str(d["atlas_tile"], "guard_band")) + ")"
+              : escape_html(str(d, "shadow_map_size")))
+    << " · filter " << escape_html(str(d, "filter_radius_texels")) << " texel · light taps "
+    << escape_html(str(d, "light_taps", "8")) << " (" << escape_html(str(d, "sampling", "grid")) << ") · slope bias "
+    << escape_html(str(d, "slope_bias_texels")) << " · constant bias " << escape_html(str(d, "constant_bias"))
+    << " · normal offset " << escape_html(str(d, "normal_offset", "0")) << " + "
+    << escape_html(str(d, "normal_offset_texels", "0")) << " texel · depth bias " << escape_html(str(d, "depth_bias", "0"))
+    << " · depth faces " << escape_html(str(d, "depth_faces", "back"))
+    << (str(d, "depth", "window") == "distance" ? " · distance maps over " + escape_html(str(d, "depth_range")) : std::string());
+  h << (defaulted.empty() ? std::string() : " (defaulted: " + escape_html(defaulted) + ")") << "</div>";
+  if (!rec.environment.empty())
+    h << "<div class=\"notes environment\">rendered on: " << escape_html(outputs::environment_text(rec.environment)) << "</div>";
+  if (d.contains("lights") && !d["lights"].empty())
+    h << "<div class=\"notes\">per light (overrides of the above, in the pack's light order): <code>"
+      << escape_html(d["lights"].dump()) << "</code></div>";
+  if (d.contains("settings") && !d["settings"].empty())
+    h << "<div class=\"notes\">engine settings (recorded, not judged): <code>" << escape_html(d["settings"].dump())
+      << "</code></div>";
+}
+
 // A case's left cell: status, expectation, signature, declaration, reasons and numbers.
 void case_info(std::ostringstream& h, const record::CaseRecord& rec, const json& c) {
   const char* st = to_string(rec.status);
@@ -456,44 +496,7 @@ void case_info(std::ostringstream& h, const record::CaseRecord& rec, const json&
       << "</div>";
   }
   if (!rec.error.empty()) h << "<p class=\"error\">" << escape_html(rec.error) << "</p>";
-  if (c.contains("candidate")) {
-    const json& d = c["candidate"];
-    // Volumes and planar shadows have no map, filter or bias: their settings would only list
-    // defaults that mean nothing for them.
-    const std::string& technique = rec.technique;
-    const bool map_settings = !(technique.rfind("volume", 0) == 0 || technique == "planar");
-    std::string defaulted;
-    for (const auto& k : d.value("defaulted", json::array())) {
-      const std::string key = k.get<std::string>();
-      if (map_settings || key == "producer" || key == "version" || key == "convention")
-        defaulted += (defaulted.empty() ? "" : ", ") + key;
-    }
-    h << "<div class=\"notes\">candidate: " << escape_html(str(d, "producer")) << " " << escape_html(str(d, "version"))
-      << " · " << escape_html(str(d, "convention"));
-    if (map_settings)
-      h << " · map "
-        << (d.contains("atlas_tile") && d["atlas_tile"].is_object()
-                ? std::to_string(d["atlas_tile"].value("size", 0) - 2 * d["atlas_tile"].value("guard_band", 0)) +
-                      " (an atlas tile of " + escape_html(str(d["atlas_tile"], "size")) + " with a guard band of " +
-                      escape_html(str(d["atlas_tile"], "guard_band")) + ")"
-                : escape_html(str(d, "shadow_map_size")))
-      << " · filter " << escape_html(str(d, "filter_radius_texels")) << " texel · light taps "
-      << escape_html(str(d, "light_taps", "8")) << " (" << escape_html(str(d, "sampling", "grid")) << ") · slope bias "
-      << escape_html(str(d, "slope_bias_texels")) << " · constant bias " << escape_html(str(d, "constant_bias"))
-      << " · normal offset " << escape_html(str(d, "normal_offset", "0")) << " + "
-      << escape_html(str(d, "normal_offset_texels", "0")) << " texel · depth bias " << escape_html(str(d, "depth_bias", "0"))
-      << " · depth faces " << escape_html(str(d, "depth_faces", "back"))
-      << (str(d, "depth", "window") == "distance" ? " · distance maps over " + escape_html(str(d, "depth_range")) : std::string());
-    h << (defaulted.empty() ? std::string() : " (defaulted: " + escape_html(defaulted) + ")") << "</div>";
-    if (!rec.environment.empty())
-      h << "<div class=\"notes environment\">rendered on: " << escape_html(outputs::environment_text(rec.environment)) << "</div>";
-    if (d.contains("lights") && !d["lights"].empty())
-      h << "<div class=\"notes\">per light (overrides of the above, in the pack's light order): <code>"
-        << escape_html(d["lights"].dump()) << "</code></div>";
-    if (d.contains("settings") && !d["settings"].empty())
-      h << "<div class=\"notes\">engine settings (recorded, not judged): <code>" << escape_html(d["settings"].dump())
-        << "</code></div>";
-  }
+  if (c.contains("candidate")) candidate_info(h, rec, c["candidate"]);
   if (!rec.reasons.empty()) {
     h << "<ul class=\"reasons\">";
     for (const std::string& reason : rec.reasons) h << "<li>" << escape_html(reason) << "</li>";
