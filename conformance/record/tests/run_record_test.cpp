@@ -32,6 +32,17 @@ json shard_report() {
   })");
 }
 
+// What read_run says of `j` once `edit` has changed it: its one line, or "accepted".
+std::string refusal(const std::function<void(json&)>& edit, json j) {
+  edit(j);
+  try {
+    read_run(j);
+  } catch (const RecordError& e) {
+    return std::string(e.what());
+  }
+  return std::string("accepted");
+}
+
 TEST(RunRecord, AShardReadsIntoItsPlanShardAndCases) {
   const RunRecord r = read_run(shard_report());
   EXPECT_EQ(r.version, "0.9.0");
@@ -69,16 +80,7 @@ TEST(RunRecord, AnUnsplitRunHasNoShardAndOnePlannedShard) {
 }
 
 TEST(RunRecord, AWrongShapeIsRefusedWithItsPath) {
-  const auto refused = [](const std::function<void(json&)>& edit) {
-    json j = shard_report();
-    edit(j);
-    try {
-      read_run(j);
-    } catch (const RecordError& e) {
-      return std::string(e.what());
-    }
-    return std::string("accepted");
-  };
+  const auto refused = [](const std::function<void(json&)>& edit) { return refusal(edit, shard_report()); };
   EXPECT_EQ(refused([](json& j) { j.erase("plan"); }), "plan: missing or not an object");
   EXPECT_EQ(refused([](json& j) { j["cases"] = json::object(); }), "cases: missing or not an array");
   // A shard number is a whole number from 1: never a float cast out of range, never 0.
@@ -165,16 +167,7 @@ TEST(RunRecord, WhatThePageShowsOfARun) {
 }
 
 TEST(RunRecord, WhatThePageShowsIsReadStrictlyToo) {
-  const auto refused = [](const std::function<void(json&)>& edit) {
-    json j = page_report();
-    edit(j);
-    try {
-      read_run(j);
-    } catch (const RecordError& e) {
-      return std::string(e.what());
-    }
-    return std::string("accepted");
-  };
+  const auto refused = [](const std::function<void(json&)>& edit) { return refusal(edit, page_report()); };
   EXPECT_EQ(refused([](json& j) { j["thresholds"][0]["bands"] = "yes"; }), "thresholds[0].bands: must be true or false, not \"yes\"");
   EXPECT_EQ(refused([](json& j) { j["thresholds"][0]["explained_warn_percent_of_edges"] = "40"; }),
             "thresholds[0].explained_warn_percent_of_edges: must be a number, not \"40\"");
