@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "read_json.hpp"
+#include "shadowref/record/run_record.hpp"  // key::kName, a threshold's name
 
 namespace shadowref::record {
 namespace {
@@ -45,6 +46,19 @@ std::optional<TotalsRecord> read_totals(const json& c, std::size_t index) {
   return TotalsRecord{pixels(*total, key::kWrong, where + "." + key::kTotal), pixels(*total, key::kUnexplained, where + "." + key::kTotal)};
 }
 
+// What the page shows of "comparison": its reasons, its threshold's name, the total counts and the
+// lights' lit fraction together (the totals the runs are compared by are read_totals').
+void read_comparison(const json& cmp, std::size_t index, CaseRecord& r) {
+  const std::string where = path_of(index, key::kComparison);
+  r.reasons = texts_at(cmp, key::kReasons, where);
+  if (const auto t = cmp.find(key::kThreshold); t != cmp.end() && !t->is_null()) {
+    if (!t->is_object()) throw RecordError(where + "." + key::kThreshold + ": must be an object, not " + t->dump());
+    r.threshold = text_at(*t, key::kName, where + "." + key::kThreshold);
+  }
+  if (const auto m = cmp.find(key::kTotal); m != cmp.end()) r.total = detail::read_mask_metrics(*m, where + "." + key::kTotal);
+  if (const auto v = cmp.find(key::kVisibility); v != cmp.end()) r.visibility = detail::read_visibility(*v, where + "." + key::kVisibility);
+}
+
 // l[key]: an image path under report/, "" when absent, null or empty.
 std::string image(const json& l, const char* key, const std::string& where) {
   const auto it = l.find(key);
@@ -77,6 +91,8 @@ std::vector<LightRecord> read_lights(const json& c, std::size_t index) {
     r.error = image(l, key::kErrorImage, at);
     r.candidate_visibility = image(l, key::kCandidateVisibility, at);
     r.visibility_error = image(l, key::kVisibilityError, at);
+    if (const auto m = l.find(key::kMetrics); m != l.end()) r.metrics = detail::read_mask_metrics(*m, at + "." + key::kMetrics);
+    if (const auto v = l.find(key::kVisibility); v != l.end()) r.visibility = detail::read_visibility(*v, at + "." + key::kVisibility);
     out.push_back(std::move(r));
   }
   return out;
@@ -147,11 +163,10 @@ CaseRecord read_case(const json& c, std::size_t index) {
   r.notes = texts_at(c, key::kNotes, where_of(index));
   if (c.contains(key::kShard)) r.shard = count(c, key::kShard, index);
   if (c.contains(key::kExpectedFromHeight)) r.expected_from_height = count(c, key::kExpectedFromHeight, index);
-  if (const auto cmp = c.find(key::kComparison); cmp != c.end() && cmp->is_object())
-    r.reasons = texts_at(*cmp, key::kReasons, path_of(index, key::kComparison));
   if (const auto e = c.find(key::kExpectation); e != c.end()) r.expectation = read_expectation(*e, index);
   if (const auto p = c.find(key::kResolvingPower); p != c.end()) r.resolving_power = read_resolving_power(*p, index);
   r.totals = read_totals(c, index);
+  if (const auto cmp = c.find(key::kComparison); cmp != c.end() && cmp->is_object()) read_comparison(*cmp, index, r);
   r.lights = read_lights(c, index);
   r.shaded = image(c, key::kShaded, where_of(index));
   r.reference_shaded = image(c, key::kReferenceShaded, where_of(index));

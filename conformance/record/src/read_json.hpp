@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "shadowref/record/case_record.hpp"
+#include "shadowref/record/comparison_record.hpp"
 
 namespace shadowref::record::detail {
 
@@ -63,5 +64,10 @@ inline Status status_at(const nlohmann::json& j, const char* key, const std::str
   if (!st) throw RecordError(path_at(where, key) + ": \"" + status + "\" is not a status (" + names_of_statuses() + ")");
   return *st;
 }
+
+// A mask's counts and a lit fraction at `where` (comparison_record.cpp): each value there of the
+// wrong type is a RecordError at its path; an absent one is nullopt.
+MaskMetricsRecord read_mask_metrics(const nlohmann::json& m, const std::string& where);
+VisibilityRecord read_visibility(const nlohmann::json& v, const std::string& where);
 
 }  // namespace shadowref::record::detail

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "shadowref/record/case_record.hpp"
+#include "shadowref/record/run_record.hpp"
 
 namespace shadowref::record {
 namespace {
@@ -44,9 +45,14 @@ TEST(CaseRecord, AWrittenRecordReadsBackEqual) {
   json k;
   write_case(full(), k);
   // What write_case leaves to others, as the writer adds them.
-  k[key::kComparison] = {{key::kReasons, {"1 unexplained core pixel(s)"}}, {key::kTotal, {{key::kWrong, 7}, {key::kUnexplained, 1}}}};
+  k[key::kComparison] = {{key::kReasons, {"1 unexplained core pixel(s)"}},
+                         {key::kThreshold, {{key::kName, "shadow-map"}}},
+                         {key::kTotal, {{key::kWrong, 7}, {key::kUnexplained, 1}, {key::kWrongPercent, 0.25}, {"false_light", 3}}},
+                         {key::kVisibility, {{key::kPenumbra, 90}, {key::kMeanPenumbraError, 0.03},
+                                             {key::kBounds, {{key::kSampling, "random"}, {key::kMeanPenumbraErrorFail, 0.08}}}}}};
   k[key::kLights] = {{{key::kMask, "mask_1.png"}, {key::kReference, "img/two_lights/reference_mask_1.png"}, {key::kDecided, ""},
-                      {key::kCandidate, "img/two_lights/shadowmap-pcf/candidate_mask_1.png"}, {key::kErrorImage, nullptr}}};
+                      {key::kCandidate, "img/two_lights/shadowmap-pcf/candidate_mask_1.png"}, {key::kErrorImage, nullptr},
+                      {key::kMetrics, {{key::kWrong, 7}}}}};
   k[key::kResolvingPower] = {{key::kSummary, "blind to 8x8 tiles"}, {key::kBlindTo, {"8x8 tiles"}}, {key::kUnseen, json::array()}};
   k[key::kCandidate] = {{key::kEnvironment, {{"api", "webgpu"}, {"engine", "three.js"}}}};
   const CaseRecord r = read_case(k, 0);
@@ -79,6 +85,21 @@ TEST(CaseRecord, AWrittenRecordReadsBackEqual) {
   EXPECT_EQ(r.lights[0].decided, "");
   EXPECT_EQ(r.lights[0].candidate, "img/two_lights/shadowmap-pcf/candidate_mask_1.png");
   EXPECT_EQ(r.lights[0].error, "");  // null: none
+  // The numbers the page shows: those there, typed; those not there, absent.
+  EXPECT_EQ(r.threshold, "shadow-map");
+  ASSERT_TRUE(r.total);
+  EXPECT_EQ(r.total->wrong, 7);
+  EXPECT_EQ(r.total->wrong_percent, 0.25);
+  EXPECT_EQ(r.total->false_light, 3);  // under the error class's key (outputs/cause.hpp)
+  EXPECT_FALSE(r.total->edge_pixels);
+  ASSERT_TRUE(r.visibility);
+  EXPECT_EQ(r.visibility->penumbra, 90);
+  EXPECT_EQ(r.visibility->sampling, "random");
+  EXPECT_EQ(r.visibility->mean_penumbra_error_fail, 0.08);
+  EXPECT_FALSE(r.visibility->max_error);
+  ASSERT_TRUE(r.lights[0].metrics);
+  EXPECT_EQ(r.lights[0].metrics->wrong, 7);
+  EXPECT_FALSE(r.lights[0].visibility);
   // Written again from what was read, the keys are the same.
   json again;
   write_case(r, again);
@@ -152,6 +173,18 @@ TEST(CaseRecord, AWrongShapeIsRefusedWithItsPath) {
   EXPECT_EQ(refused(c, 4), "cases[4].comparison.total: missing or not an object");
   c["comparison"]["total"] = {{"wrong", 2.5}, {"unexplained", 0}};
   EXPECT_EQ(refused(c, 4), "cases[4].comparison.total.wrong: missing or not a pixel count, 2.5");
+  c["comparison"]["total"] = {{"wrong", 2}, {"unexplained", 0}, {"false_shadow", "2"}};
+  EXPECT_EQ(refused(c, 4), "cases[4].comparison.total.false_shadow: must be a whole number >= 0, not \"2\"");
+  c["comparison"]["total"] = {{"wrong", 2}, {"unexplained", 0}, {"wrong_percent", "0.1"}};
+  EXPECT_EQ(refused(c, 4), "cases[4].comparison.total.wrong_percent: must be a number, not \"0.1\"");
+  c["comparison"]["total"] = {{"wrong", 2}, {"unexplained", 0}};
+  c["comparison"]["threshold"] = "strict";
+  EXPECT_EQ(refused(c, 4), "cases[4].comparison.threshold: must be an object, not \"strict\"");
+  c["comparison"].erase("threshold");
+  c["comparison"]["visibility"] = {{"bounds", {{"sampling", 3}}}};
+  EXPECT_EQ(refused(c, 4), "cases[4].comparison.visibility.bounds.sampling: must be a string, not 3");
+  c["comparison"]["visibility"] = {{"penumbra", -4}};
+  EXPECT_EQ(refused(c, 4), "cases[4].comparison.visibility.penumbra: must be a whole number >= 0, not -4");
   c = good;
   c["lights"] = {{{"mask", "../mask.png"}}};
   EXPECT_EQ(refused(c, 0), "cases[0].lights[0].mask: '../mask.png' is not a mask file name");
@@ -161,6 +194,10 @@ TEST(CaseRecord, AWrongShapeIsRefusedWithItsPath) {
   EXPECT_EQ(refused(c, 0), "cases[0].lights[0].error: '/etc/passwd' leaves the report folder");
   c["lights"] = {{{"mask", "mask.png"}, {"reference", 3}}};
   EXPECT_EQ(refused(c, 0), "cases[0].lights[0].reference: must be a string, not 3");
+  c["lights"] = {{{"mask", "mask.png"}, {"metrics", {{"wrong", -1}}}}};
+  EXPECT_EQ(refused(c, 0), "cases[0].lights[0].metrics.wrong: must be a whole number >= 0, not -1");
+  c["lights"] = {{{"mask", "mask.png"}, {"visibility", json::array()}}};
+  EXPECT_EQ(refused(c, 0), "cases[0].lights[0].visibility: must be an object, not []");
   c = good;
   c["shard"] = 1e300;  // a float: no cast out of range
   EXPECT_EQ(refused(c, 0), "cases[0].shard: must be a whole number from 0 to 2147483647, not 1e+300");

@@ -7,8 +7,10 @@
 namespace shadowref::report {
 namespace {
 
+namespace key = record::key;
+
 // A count's key, from the one table of error classes (outputs/cause.hpp).
-std::string key(outputs::ErrorClass c) { return std::string(outputs::error_class(c).json_key); }
+std::string class_key(outputs::ErrorClass c) { return std::string(outputs::error_class(c).json_key); }
 
 }  // namespace
 
@@ -16,59 +18,58 @@ nlohmann::json to_json(const compare::MaskMetrics& m) {
   using outputs::ErrorClass;
   return {{"width", m.width},
           {"height", m.height},
-          {"pixels", m.pixels},
+          {key::kPixels, m.pixels},
           {"decided", m.decided},
-          {"decided_surface", m.decided_surface},
-          {"wrong", m.wrong},
-          {"wrong_percent", m.wrong_percent()},
-          {key(ErrorClass::FalseShadow), m.false_shadow},
-          {key(ErrorClass::FalseLight), m.false_light},
-          {key(ErrorClass::Coverage), m.coverage},
+          {key::kDecidedSurface, m.decided_surface},
+          {key::kWrong, m.wrong},
+          {key::kWrongPercent, m.wrong_percent()},
+          {class_key(ErrorClass::FalseShadow), m.false_shadow},
+          {class_key(ErrorClass::FalseLight), m.false_light},
+          {class_key(ErrorClass::Coverage), m.coverage},
           {"off_values", m.off_values},
-          {"regions", m.regions},
-          {"largest_region", m.largest_region},
-          {key(ErrorClass::Texel), m.explained_texel},
-          {key(ErrorClass::Bias), m.explained_bias},
-          {"unexplained", m.unexplained},
+          {key::kRegions, m.regions},
+          {key::kLargestRegion, m.largest_region},
+          {class_key(ErrorClass::Texel), m.explained_texel},
+          {class_key(ErrorClass::Bias), m.explained_bias},
+          {key::kUnexplained, m.unexplained},
           {"unexplained_false_light", m.unexplained_false_light},
-          {key(ErrorClass::Acne), m.unexplained_acne},
+          {class_key(ErrorClass::Acne), m.unexplained_acne},
           {"unexplained_zigzag", m.unexplained_zigzag},
-          {"unexplained_core", m.unexplained_core},
+          {key::kUnexplainedCore, m.unexplained_core},
           {"densest_unexplained", m.densest_unexplained},
-          {"edge_pixels", m.edge_pixels},
-          {"unexplained_percent_of_edges", 100.0 * m.unexplained_ratio()},
-          {"explained_percent_of_edges", 100.0 * m.explained_ratio()},
+          {key::kEdgePixels, m.edge_pixels},
+          {key::kUnexplainedPercentOfEdges, 100.0 * m.unexplained_ratio()},
+          {key::kExplainedPercentOfEdges, 100.0 * m.explained_ratio()},
           {"invariant_pixels", m.invariant_pixels},
-          {"displaced", m.displaced}};
+          {key::kDisplaced, m.displaced}};
 }
 
 nlohmann::json to_json(const compare::VisibilityMetrics& m) {
-  return {{"judged", m.judged},
-          {"penumbra", m.penumbra},
+  return {{key::kJudged, m.judged},
+          {key::kPenumbra, m.penumbra},
           {"beyond_sampling", m.beyond_sampling},
-          {"explained_footprint", m.explained},
-          {"unexplained", m.unexplained},
+          {key::kExplainedFootprint, m.explained},
+          {key::kUnexplained, m.unexplained},
           {"unexplained_too_light", m.unexplained_too_light},
-          {"unexplained_core", m.unexplained_core},
-          {"unexplained_percent_of_penumbra", 100.0 * m.unexplained_ratio()},
-          {"mean_penumbra_error", m.mean_penumbra_error()},
-          {"mean_penumbra_local_error", m.mean_penumbra_local_error()},
+          {key::kUnexplainedCore, m.unexplained_core},
+          {key::kUnexplainedPercentOfPenumbra, 100.0 * m.unexplained_ratio()},
+          {key::kMeanPenumbraError, m.mean_penumbra_error()},
+          {key::kMeanPenumbraLocalError, m.mean_penumbra_local_error()},
           // Asked only where sampling's bound alone is exceeded (visibility.hpp); else 0.
-          {"mean_penumbra_texel_error", m.mean_penumbra_texel_error()},
-          {"max_error", m.max_error},
-          {"bounds",
-           {{"unexplained_fail_percent_of_penumbra", 100.0 * compare::kPenumbra.unexplained_fail},
+          {key::kMeanPenumbraTexelError, m.mean_penumbra_texel_error()},
+          {key::kMaxError, m.max_error},
+          {key::kBounds,
+           {{key::kUnexplainedFailPercentOfPenumbra, 100.0 * compare::kPenumbra.unexplained_fail},
             // A grid: FAIL beyond it (a wrong width). Random taps: WARN beyond it (noise), and FAIL
             // when the local means exceed mean_penumbra_local_error_fail. Each is sampling's bound
             // plus the mean texel shift.
-            {"mean_penumbra_error_fail", m.mean_error_fail()},
-            {"sampling", m.local_mean_error_bound > 0 ? "random" : "grid"},
-            {"mean_penumbra_local_error_fail", m.local_mean_error_bound > 0 ? m.local_mean_error_fail() : 0.0},
+            {key::kMeanPenumbraErrorFail, m.mean_error_fail()},
+            {key::kSampling, m.local_mean_error_bound > 0 ? "random" : "grid"},
+            {key::kMeanPenumbraLocalErrorFail, m.local_mean_error_bound > 0 ? m.local_mean_error_fail() : 0.0},
             {"why", compare::kPenumbra.why}}}};
 }
 
 nlohmann::json to_json(const compare::Threshold& t) {
-  namespace key = record::key;
   return {{key::kName, t.name},
           {key::kBands, t.bands},
           {key::kUnexplainedFailPercent, 100.0 * t.unexplained_fail},
@@ -85,8 +86,8 @@ nlohmann::json to_json(const compare::FolderComparison& c) {
   nlohmann::json masks = nlohmann::json::array();
   for (std::size_t i = 0; i < c.masks.size(); ++i)
   {
-    masks.push_back({{"mask", c.masks[i]}, {"metrics", to_json(c.per_light[i].metrics)}});
-    if (i < c.visibility.size() && c.visibility[i]) masks.back()["visibility"] = to_json(c.visibility[i]->metrics);
+    masks.push_back({{key::kMask, c.masks[i]}, {key::kMetrics, to_json(c.per_light[i].metrics)}});
+    if (i < c.visibility.size() && c.visibility[i]) masks.back()[key::kVisibility] = to_json(c.visibility[i]->metrics);
     const compare::Displacement& d = c.per_light[i].displacement;
     if (d.fixed_unexplained > 0)
       masks.back()["displacement"] = {{"move", compare::describe(d.move)},
@@ -99,11 +100,11 @@ nlohmann::json to_json(const compare::FolderComparison& c) {
   }
   nlohmann::json j;
   j["verdict"] = compare::to_string(c.decision.verdict);
-  j["reasons"] = c.decision.reasons;
-  j["threshold"] = c.threshold ? to_json(*c.threshold) : nlohmann::json();
-  j["total"] = to_json(c.total);
+  j[key::kReasons] = c.decision.reasons;
+  j[key::kThreshold] = c.threshold ? to_json(*c.threshold) : nlohmann::json();
+  j[key::kTotal] = to_json(c.total);
   j["masks"] = masks;
-  if (c.visibility_total) j["visibility"] = to_json(*c.visibility_total);
+  if (c.visibility_total) j[key::kVisibility] = to_json(*c.visibility_total);
   return j;
 }
 

@@ -29,13 +29,6 @@ std::string str(const json& j, const char* key, const std::string& fallback = "-
   return j[key].dump();
 }
 
-std::string num(const json& j, const char* key, const char* format = "%.4g") {
-  if (!j.is_object() || !j.contains(key) || !j[key].is_number()) return "-";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, j[key].get<double>());
-  return buf;
-}
-
 // `v` in `format`; "-" when there is none.
 std::string number_text(std::optional<double> v, const char* format = "%.4g") {
   if (!v) return "-";
@@ -48,10 +41,13 @@ std::string number_text(std::optional<double> v, const char* format = "%.4g") {
 std::string shown(const std::optional<std::string>& s) { return s.value_or("-"); }
 std::string shown(const std::string& s) { return s.empty() ? "-" : s; }
 
+// A count of the record, "-" when the report did not say.
+std::string count_text(std::optional<long long> n) { return n ? std::to_string(*n) : "-"; }
+
 // "0", "0.0021", "2.8", "73", "100": two significant digits without exponents.
-std::string short_percent(const json& total) {
-  if (!total.contains("wrong_percent") || !total["wrong_percent"].is_number()) return "-";
-  const double v = total["wrong_percent"].get<double>();
+std::string short_percent(std::optional<double> percent) {
+  if (!percent) return "-";
+  const double v = *percent;
   char buf[32];
   std::snprintf(buf, sizeof buf, v >= 10 ? "%.0f" : "%.2g", v);
   return buf;
@@ -241,51 +237,47 @@ std::string swatch(const outputs::Rgb& rgb, std::string_view label) {
          std::to_string(rgb[2]) + ")\"></i>" + std::string(label) + "</span>";
 }
 
-// A mask metric's report.json key, from the table.
-const char* key(outputs::ErrorClass c) { return outputs::error_class(c).json_key.data(); }
-
-void metrics_table(std::ostringstream& h, const json& m) {
+void metrics_table(std::ostringstream& h, const record::MaskMetricsRecord& m) {
   h << "<table class=\"metrics\">";
   const auto row = [&](const char* label, const std::string& v) {
     h << "<tr><td>" << label << "</td><td>" << escape_html(v) << "</td></tr>";
   };
-  row("wrong", str(m, "wrong") + " (" + num(m, "wrong_percent") + " %)");
-  row("false shadow", str(m, key(outputs::ErrorClass::FalseShadow)));
-  row("false light", str(m, key(outputs::ErrorClass::FalseLight)));
-  row("coverage", str(m, key(outputs::ErrorClass::Coverage)));
-  row("unexplained", str(m, "unexplained") + " px (" + num(m, "unexplained_percent_of_edges") + " % of " +
-                         str(m, "edge_pixels") + " edge px), core " + str(m, "unexplained_core") + " px, of which " +
-                         str(m, key(outputs::ErrorClass::Acne)) + " self-shadowing (acne) and " + str(m, "displaced") +
-                         " right once the shadows are moved back (displaced)");
-  row("explained", str(m, key(outputs::ErrorClass::Texel)) + " texel footprint + " + str(m, key(outputs::ErrorClass::Bias)) + " depth bias (" +
-                       num(m, "explained_percent_of_edges") + " % of edge px)");
-  row("largest region", str(m, "largest_region") + " px (" + str(m, "regions") + " regions)");
-  row("decided surface px", str(m, "decided_surface") + " of " + str(m, "pixels"));
+  const auto n = count_text;
+  row("wrong", n(m.wrong) + " (" + number_text(m.wrong_percent) + " %)");
+  row("false shadow", n(m.false_shadow));
+  row("false light", n(m.false_light));
+  row("coverage", n(m.coverage));
+  row("unexplained", n(m.unexplained) + " px (" + number_text(m.unexplained_percent_of_edges) + " % of " + n(m.edge_pixels) +
+                         " edge px), core " + n(m.unexplained_core) + " px, of which " + n(m.acne) +
+                         " self-shadowing (acne) and " + n(m.displaced) + " right once the shadows are moved back (displaced)");
+  row("explained", n(m.texel) + " texel footprint + " + n(m.bias) + " depth bias (" + number_text(m.explained_percent_of_edges) +
+                       " % of edge px)");
+  row("largest region", n(m.largest_region) + " px (" + n(m.regions) + " regions)");
+  row("decided surface px", n(m.decided_surface) + " of " + n(m.pixels));
   h << "</table>";
 }
 
 // Soft shadows: the lit fraction's numbers (comparison_json.hpp), in visibility units.
-void visibility_table(std::ostringstream& h, const json& v) {
+void visibility_table(std::ostringstream& h, const record::VisibilityRecord& v) {
   h << "<table class=\"metrics\"><tr><td colspan=\"2\"><b>lit fraction (visibility units)</b></td></tr>";
   const auto row = [&](const char* label, const std::string& value) {
     h << "<tr><td>" << label << "</td><td>" << escape_html(value) << "</td></tr>";
   };
-  const json b = v.value("bounds", json::object());
-  const bool random = str(b, "sampling", "grid") == "random";
-  row("mean error over the penumbra", num(v, "mean_penumbra_error", "%.3f") + (random ? " (noise bound " : " (bound ") +
-                                          num(b, "mean_penumbra_error_fail", "%.3f") + ")");
+  const bool random = v.sampling == "random";
+  row("mean error over the penumbra", number_text(v.mean_penumbra_error, "%.3f") + (random ? " (noise bound " : " (bound ") +
+                                          number_text(v.mean_penumbra_error_fail, "%.3f") + ")");
   if (random)
-    row("mean error of the 3x3 local means", num(v, "mean_penumbra_local_error", "%.3f") + " (bound " +
-                                                 num(b, "mean_penumbra_local_error_fail", "%.3f") + ": the width)");
-  if (v.value("mean_penumbra_texel_error", 0.0) > 0)
-    row("the map's texel error", num(v, "mean_penumbra_texel_error", "%.3f") +
+    row("mean error of the 3x3 local means", number_text(v.mean_penumbra_local_error, "%.3f") + " (bound " +
+                                                 number_text(v.mean_penumbra_local_error_fail, "%.3f") + ": the width)");
+  if (v.mean_penumbra_texel_error.value_or(0.0) > 0)
+    row("the map's texel error", number_text(v.mean_penumbra_texel_error, "%.3f") +
                                      " over the penumbra, in both bounds in quadrature (a penumbra offset within half a texel)");
-  row("unexplained", str(v, "unexplained") + " px (" + num(v, "unexplained_percent_of_penumbra") + " % of " +
-                         str(v, "penumbra") + " penumbra px; bound " + num(b, "unexplained_fail_percent_of_penumbra") +
-                         " %), core " + str(v, "unexplained_core") + " px");
-  row("explained", str(v, "explained_footprint") + " px within the filter footprint's range");
-  row("largest error", num(v, "max_error", "%.3f"));
-  row("judged px", str(v, "judged") + " (covered by one surface)");
+  row("unexplained", count_text(v.unexplained) + " px (" + number_text(v.unexplained_percent_of_penumbra) + " % of " +
+                         count_text(v.penumbra) + " penumbra px; bound " + number_text(v.unexplained_fail_percent_of_penumbra) +
+                         " %), core " + count_text(v.unexplained_core) + " px");
+  row("explained", count_text(v.explained_footprint) + " px within the filter footprint's range");
+  row("largest error", number_text(v.max_error, "%.3f"));
+  row("judged px", count_text(v.judged) + " (covered by one surface)");
   h << "</table>";
 }
 
@@ -323,7 +315,7 @@ void header_section(std::ostringstream& h, const record::RunRecord& run) {
 }
 
 // Counts and the scene × technique table.
-void summary_section(std::ostringstream& h, const record::RunRecord& run, const json& cases) {
+void summary_section(std::ostringstream& h, const record::RunRecord& run) {
   const std::vector<record::CaseRecord>& records = run.cases;
   using record::Status;
   h << "<section><h2>Summary</h2><div class=\"counts\">";
@@ -356,11 +348,10 @@ void summary_section(std::ostringstream& h, const record::RunRecord& run, const 
         continue;
       }
       const record::CaseRecord& c = records[it->second];
-      const json cmp = cases[it->second].value(record::key::kComparison, json::object());
-      const std::string tip = cmp.contains("total") ? "wrong " + num(cmp["total"], "wrong_percent") + " %" : c.error;
+      const std::string tip = c.total ? "wrong " + number_text(c.total->wrong_percent) + " %" : c.error;
       h << "<td class=\"" << status_class(c.status) << "\" title=\"" << escape_html(tip) << "\"><a href=\"#"
         << anchor(s, t) << "\">" << to_string(c.status) << "</a>"
-        << (cmp.contains("total") ? "<small>" + short_percent(cmp["total"]) + " %</small>" : std::string())
+        << (c.total ? "<small>" + short_percent(c.total->wrong_percent) + " %</small>" : std::string())
         << (outcome_word(c).empty() ? std::string() : "<small>" + escape_html(outcome_word(c)) + "</small>")
         << "</td>";
     }
@@ -464,12 +455,11 @@ void candidate_info(std::ostringstream& h, const record::CaseRecord& rec, const 
 // A case's left cell: status, expectation, signature, declaration, reasons and numbers.
 void case_info(std::ostringstream& h, const record::CaseRecord& rec, const json& c) {
   const char* st = to_string(rec.status);
-  const json cmp = c.value(record::key::kComparison, json::object());
   h << "<tr class=\"case\" id=\"" << anchor(rec.scene, rec.technique) << "\" data-status=\""
     << st << "\"><td class=\"info\"><h3>" << escape_html(rec.scene) << " · "
     << escape_html(rec.technique) << "</h3><span class=\"badge " << status_class(rec.status) << "\">"
     << st << "</span> <span class=\"notes\">expected " << escape_html(rec.expected)
-    << (cmp.contains("threshold") ? ", threshold " + escape_html(str(cmp["threshold"], "name")) : std::string())
+    << (rec.threshold.empty() ? std::string() : ", threshold " + escape_html(rec.threshold))
     << "</span>";
   if (!outcome_word(rec).empty())
     h << "<div class=\"why\"><b>expectations file:</b> " << escape_html(outcome_word(rec)) << " (expected "
@@ -502,8 +492,8 @@ void case_info(std::ostringstream& h, const record::CaseRecord& rec, const json&
     for (const std::string& reason : rec.reasons) h << "<li>" << escape_html(reason) << "</li>";
     h << "</ul>";
   }
-  if (cmp.contains("total")) metrics_table(h, cmp["total"]);
-  if (cmp.contains("visibility")) visibility_table(h, cmp["visibility"]);
+  if (rec.total) metrics_table(h, *rec.total);
+  if (rec.visibility) visibility_table(h, *rec.visibility);
   if (!rec.notes.empty()) {
     h << "<div class=\"notes\">";
     for (const std::string& n : rec.notes) h << "note: " << escape_html(n) << "<br>";
@@ -513,32 +503,28 @@ void case_info(std::ostringstream& h, const record::CaseRecord& rec, const json&
 }
 
 // A case's right cell: per light, the reference, the candidate, the error image, the swipe viewer,
-// and a soft technique's lit fraction.
-// The images come from the case's record; each light's metrics stay the comparison's JSON.
-void case_images(std::ostringstream& h, const record::CaseRecord& rec, const json& c) {
-  if (c.contains(record::key::kLights)) {
-    const json& lights = c[record::key::kLights];
-    for (std::size_t i = 0; i < rec.lights.size(); ++i) {
-      const json& l = lights[i];
-      const record::LightRecord& images = rec.lights[i];
-      const std::string suffix = rec.lights.size() > 1 ? " (light " + std::to_string(i) + ")" : "";
-      h << "<div class=\"light\">";
-      figure(h, images.reference, "reference" + suffix);
-      figure(h, images.candidate, "candidate" + suffix);
-      figure(h, images.error, "error" + suffix + ": " + str(l.value("metrics", json::object()), "wrong") + " wrong");
-      viewer(h, images);
-      if (i == 0) figure(h, rec.shaded, "candidate shaded");
-      if (l.contains("visibility")) {
-        const json& v = l["visibility"];
-        figure(h, images.candidate_visibility, "candidate lit fraction" + suffix);
-        figure(h, images.visibility_error,
-               "visibility error" + suffix + ": mean " + num(v, "mean_penumbra_error", "%.3f") + " over the penumbra, " +
-                   str(v, "unexplained") + " px unexplained");
-      }
-      h << "</div>";
-    }
-  } else {
+// and a soft technique's lit fraction, all from the case's record.
+void case_images(std::ostringstream& h, const record::CaseRecord& rec) {
+  if (rec.lights.empty()) {
     h << "<span class=\"notes\">no images: the case could not be compared</span>";
+    return;
+  }
+  for (std::size_t i = 0; i < rec.lights.size(); ++i) {
+    const record::LightRecord& l = rec.lights[i];
+    const std::string suffix = rec.lights.size() > 1 ? " (light " + std::to_string(i) + ")" : "";
+    h << "<div class=\"light\">";
+    figure(h, l.reference, "reference" + suffix);
+    figure(h, l.candidate, "candidate" + suffix);
+    figure(h, l.error, "error" + suffix + ": " + count_text(l.metrics ? l.metrics->wrong : std::nullopt) + " wrong");
+    viewer(h, l);
+    if (i == 0) figure(h, rec.shaded, "candidate shaded");
+    if (l.visibility) {
+      figure(h, l.candidate_visibility, "candidate lit fraction" + suffix);
+      figure(h, l.visibility_error,
+             "visibility error" + suffix + ": mean " + number_text(l.visibility->mean_penumbra_error, "%.3f") +
+                 " over the penumbra, " + count_text(l.visibility->unexplained) + " px unexplained");
+    }
+    h << "</div>";
   }
 }
 
@@ -558,14 +544,14 @@ void thresholds_section(std::ostringstream& h, const record::RunRecord& run) {
 std::string render_html(const json& r) {
   std::ostringstream h;
   const record::RunRecord run = record::read_run(r);
-  const json& cases = r[record::key::kCases];  // their comparisons' metrics and declarations, shown as written
+  const json& cases = r[record::key::kCases];  // their candidates' declarations, shown as written
   h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
     << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
     << "<title>shadowref conformance — " << escape_html(run.backend.value_or("candidate renders")) << "</title><style>"
     << kStyle << "</style></head>\n<body data-checked=\"0\">\n";
 
   header_section(h, run);
-  summary_section(h, run, cases);
+  summary_section(h, run);
   triage_section(h, run.triage);
   legend_section(h);
   // Cases, one row each.
@@ -579,7 +565,7 @@ std::string render_html(const json& r) {
     case_info(h, run.cases[i], c);
     triage_marks(h, run.triage, run.cases[i]);
     h << "</td><td>";
-    case_images(h, run.cases[i], c);
+    case_images(h, run.cases[i]);
     h << "</td></tr>\n";
   }
   h << "</tbody></table></section>\n";

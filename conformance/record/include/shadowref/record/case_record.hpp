@@ -3,10 +3,10 @@
 //
 // report.json (docs/output-contract.md) holds "cases", one object per scene × technique. The record
 // types what the readers of a run act on — who the case is, its status and why, its outcome
-// against the expectations files, its resolving power, where its candidate was rendered; the
-// comparison's metrics and the images stay JSON (comparison_json.hpp writes and the page reads
-// them) and travel beside the record as `json`. A key added to a case is added here (the key, the
-// field, read_case and write_case) and where its value is made (docs/architecture.md).
+// against the expectations files, its resolving power, where its candidate was rendered, and the
+// comparison's counts and lit fraction the page shows (comparison_record.hpp; written whole by
+// report/comparison_json.cpp). A key added to a case is added here (the key, the field, read_case
+// and write_case) and where its value is made (docs/architecture.md).
 #pragma once
 
 #include <cstddef>
@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "shadowref/outputs/candidate.hpp"
+#include "shadowref/record/comparison_record.hpp"
 #include "shadowref/record/status.hpp"
 
 namespace shadowref::record {
@@ -101,6 +102,8 @@ struct LightRecord {
   std::string mask;
   std::string reference, decided, candidate, error;
   std::string candidate_visibility, visibility_error;  // soft shadows' lit fractions ("" none)
+  std::optional<MaskMetricsRecord> metrics;        // the light's counts ("metrics")
+  std::optional<VisibilityRecord> visibility;      // a soft technique's lit fraction of the light
 };
 
 // The comparison's counts over every light ("comparison"."total"), the ones a run is compared by.
@@ -125,6 +128,9 @@ struct CaseRecord {
   std::vector<std::string> notes;  // what the run noted of the case (a cache miss, a read-through link)
   std::vector<std::string> reasons;  // the verdict's reasons ("comparison"."reasons")
   std::optional<TotalsRecord> totals;  // absent before a verdict
+  std::optional<MaskMetricsRecord> total;        // "comparison"."total": every light's counts
+  std::optional<VisibilityRecord> visibility;    // "comparison"."visibility": the lights' lit fraction together
+  std::string threshold;                         // the threshold's name ("comparison"."threshold"."name"; "" none)
   std::vector<LightRecord> lights;     // empty before a verdict
   std::string shaded, reference_shaded;  // the page's shaded views, under report/ ("" none)
   std::optional<ExpectationRecord> expectation;
