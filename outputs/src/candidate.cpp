@@ -267,16 +267,9 @@ const CandidateDeclaration& CandidateDeclaration::for_light(std::size_t light) c
   return light < lights.size() ? lights[light] : *this;
 }
 
-CandidateDeclaration read_declaration(const std::filesystem::path& dir, const std::string& technique) {
-  const std::filesystem::path file = dir / kCandidateFile;
+CandidateDeclaration declaration_from_json(const nlohmann::json& j, const std::string& technique, const std::string& where) {
+  const Bad bad = [&](const std::string& what) { return InputError(InputError::Kind::BadInput, where + ": " + what); };
   CandidateDeclaration d = default_declaration(technique);
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) return d;
-  const Bad bad = [&](const std::string& what) { return InputError(InputError::Kind::BadInput, file.string() + ": " + what); };
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw bad("cannot read");
-  const Json j = Json::parse(in, nullptr, /*allow_exceptions=*/false);
-  if (j.is_discarded()) throw bad("not valid JSON");
   if (!j.is_object()) throw bad("must be a JSON object");
   const std::set<std::string> known(kCandidateKeys.begin(), kCandidateKeys.end());
   for (const auto& item : j.items())
@@ -290,17 +283,17 @@ CandidateDeclaration read_declaration(const std::filesystem::path& dir, const st
     if (lights.size() > kMaxDeclaredLights) throw bad("lights: more than " + std::to_string(kMaxDeclaredLights) + " entries");
     given.insert("lights");
     for (std::size_t i = 0; i < lights.size(); ++i) {
-      const std::string where = "lights[" + std::to_string(i) + "].";
-      if (!lights[i].is_object()) throw bad(where.substr(0, where.size() - 1) + ": must be a JSON object");
+      const std::string at = "lights[" + std::to_string(i) + "].";
+      if (!lights[i].is_object()) throw bad(at.substr(0, at.size() - 1) + ": must be a JSON object");
       for (const auto& item : lights[i].items())
         if (!known.count(item.key()) || !per_light_key(item.key()))
-          throw bad(where + item.key() + (known.count(item.key()) ? ": not a per-light key (give it at the top level)"
-                                                                  : ": unknown key (an engine's own settings go in the "
-                                                                    "top-level \"settings\" object)"));
+          throw bad(at + item.key() + (known.count(item.key()) ? ": not a per-light key (give it at the top level)"
+                                                               : ": unknown key (an engine's own settings go in the "
+                                                                 "top-level \"settings\" object)"));
       CandidateDeclaration light = d;
       light.lights.clear();
       std::set<std::string> light_given;
-      read_keys(lights[i], light, light_given, bad, where, technique);
+      read_keys(lights[i], light, light_given, bad, at, technique);
       d.lights.push_back(std::move(light));
     }
   }
@@ -309,6 +302,18 @@ CandidateDeclaration read_declaration(const std::filesystem::path& dir, const st
     if (!given.count(k)) d.defaulted.push_back(k);
   for (CandidateDeclaration& light : d.lights) light.defaulted = d.defaulted;
   return d;
+}
+
+CandidateDeclaration read_declaration(const std::filesystem::path& dir, const std::string& technique) {
+  const std::filesystem::path file = dir / kCandidateFile;
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) return default_declaration(technique);
+  const auto bad = [&](const std::string& what) { return InputError(InputError::Kind::BadInput, file.string() + ": " + what); };
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw bad("cannot read");
+  const Json j = Json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded()) throw bad("not valid JSON");
+  return declaration_from_json(j, technique, file.string());
 }
 
 std::string declaration_text(const CandidateDeclaration& d) {

@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "read_json.hpp"
+#include "shadowref/outputs/errors.hpp"
 #include "shadowref/record/run_record.hpp"  // key::kName, a threshold's name
 
 namespace shadowref::record {
@@ -117,16 +118,23 @@ ResolvingPowerRecord read_resolving_power(const json& p, std::size_t index) {
   return {text(p, key::kSummary, index), texts_at(p, key::kBlindTo, where), texts_at(p, key::kUnseen, where)};
 }
 
-// The candidate's declared environment, in kEnvironmentKeys' order (empty when none).
-outputs::Environment environment_of(const json& c) {
-  outputs::Environment e;
-  const auto candidate = c.find(key::kCandidate);
-  if (candidate == c.end() || !candidate->is_object()) return e;
-  const auto env = candidate->find(key::kEnvironment);
-  if (env == candidate->end() || !env->is_object()) return e;
-  for (const char* k : outputs::kEnvironmentKeys)
-    if (const auto v = env->find(k); v != env->end() && v->is_string()) e.emplace_back(k, v->get<std::string>());
-  return e;
+// The candidate's declaration as the case recorded it: "candidate" read back as candidate.json is
+// read (outputs::declaration_from_json), its "defaulted" the keys the candidate left out.
+std::optional<outputs::CandidateDeclaration> read_candidate(const json& c, const std::string& technique, std::size_t index) {
+  const auto it = c.find(key::kCandidate);
+  if (it == c.end() || it->is_null()) return std::nullopt;
+  const std::string where = path_of(index, key::kCandidate);
+  if (!it->is_object()) throw RecordError(where + ": must be an object, not " + it->dump());
+  json declared = *it;
+  const std::vector<std::string> defaulted = texts_at(declared, key::kDefaulted, where);
+  declared.erase(key::kDefaulted);
+  try {
+    outputs::CandidateDeclaration d = outputs::declaration_from_json(declared, technique, where);
+    d.defaulted = defaulted;
+    return d;
+  } catch (const outputs::InputError& e) {
+    throw RecordError(e.what());
+  }
 }
 
 }  // namespace
@@ -170,7 +178,8 @@ CaseRecord read_case(const json& c, std::size_t index) {
   r.lights = read_lights(c, index);
   r.shaded = image(c, key::kShaded, where_of(index));
   r.reference_shaded = image(c, key::kReferenceShaded, where_of(index));
-  r.environment = environment_of(c);
+  r.candidate = read_candidate(c, r.technique, index);
+  if (r.candidate) r.environment = r.candidate->environment;
   return r;
 }
 

@@ -76,6 +76,9 @@ TEST(CaseRecord, AWrittenRecordReadsBackEqual) {
   ASSERT_TRUE(r.resolving_power);
   EXPECT_EQ(r.resolving_power->blind_to, std::vector<std::string>{"8x8 tiles"});
   EXPECT_EQ(outputs::environment_text(r.environment), "api webgpu · engine three.js");
+  ASSERT_TRUE(r.candidate);
+  EXPECT_EQ(r.candidate->environment, r.environment);
+  EXPECT_EQ(r.candidate->shadow_map_size, 0);  // not given: the default
   ASSERT_TRUE(r.totals);
   EXPECT_EQ(r.totals->wrong, 7u);
   EXPECT_EQ(r.totals->unexplained, 1u);
@@ -137,6 +140,34 @@ TEST(CaseRecord, OptionalKeysAreLeftOutAndReadAsTheirDefaults) {
 }
 
 // Each wrong shape is refused with the JSON path a person looks at.
+TEST(CaseRecord, TheCandidateReadsBackAsTheDeclarationItWasWrittenFrom) {
+  // As the judge writes it: declaration_text's object and the keys the candidate left out.
+  outputs::CandidateDeclaration d = outputs::default_declaration("shadowmap-pcf");
+  d.producer = "three.js";
+  d.atlas_tile_size = 1024;
+  d.atlas_guard_band = 4;
+  d.shadow_map_size = 1016;
+  d.slope_bias_texels = 0.1 + 0.2;  // a double whose shortest text is long
+  d.settings_json = R"({"type":"PCFSoftShadowMap"})";
+  outputs::CandidateDeclaration second = d;
+  second.depth_faces = outputs::DepthFaces::Both;
+  d.lights = {d, second};
+  d.defaulted = {"version", "views"};
+  json k = {{key::kScene, "two_lights"}, {key::kTechnique, "shadowmap-pcf"}, {key::kStatus, "PASS"}};
+  k[key::kCandidate] = json::parse(outputs::declaration_text(d));
+  k[key::kCandidate][key::kDefaulted] = d.defaulted;
+  const CaseRecord r = read_case(k, 0);
+  ASSERT_TRUE(r.candidate);
+  EXPECT_EQ(outputs::declaration_text(*r.candidate), outputs::declaration_text(d));
+  EXPECT_EQ(r.candidate->defaulted, d.defaulted);
+  EXPECT_EQ(r.candidate->slope_bias_texels, 0.1 + 0.2);
+  ASSERT_EQ(r.candidate->lights.size(), 2u);
+  EXPECT_EQ(r.candidate->lights[1].depth_faces, outputs::DepthFaces::Both);
+  // A case with no "candidate" has none.
+  k.erase(key::kCandidate);
+  EXPECT_FALSE(read_case(k, 0).candidate);
+}
+
 TEST(CaseRecord, AWrongShapeIsRefusedWithItsPath) {
   const json good = {{"scene", "s"}, {"technique", "t"}, {"status", "PASS"}};
   const auto refused = [&](json c, std::size_t index) -> std::string {
@@ -207,6 +238,13 @@ TEST(CaseRecord, AWrongShapeIsRefusedWithItsPath) {
   c = good;
   c["expectation"] = {{"outcome", "maybe"}};
   EXPECT_EQ(refused(c, 2), "cases[2].expectation.outcome: \"maybe\" is not an outcome");
+  c = good;
+  c["candidate"] = {{"shadow_map_size", "big"}};
+  EXPECT_EQ(refused(c, 1), "cases[1].candidate: shadow_map_size: must be an integer");
+  c["candidate"] = {{"defaulted", {"producer"}}, {"lights", {{{"producer", "x"}}}}};
+  EXPECT_EQ(refused(c, 1), "cases[1].candidate: lights[0].producer: not a per-light key (give it at the top level)");
+  c["candidate"] = {{"defaulted", "producer"}};
+  EXPECT_EQ(refused(c, 1), "cases[1].candidate.defaulted: must be an array of strings");
   c = good;
   c["resolving_power"] = {{"blind_to", {1}}};
   EXPECT_EQ(refused(c, 0), "cases[0].resolving_power.blind_to: must be an array of strings, not with 1");

@@ -23,12 +23,6 @@ namespace {
 
 using nlohmann::json;
 
-std::string str(const json& j, const char* key, const std::string& fallback = "-") {
-  if (!j.is_object() || !j.contains(key) || j[key].is_null()) return fallback;
-  if (j[key].is_string()) return j[key].get<std::string>();
-  return j[key].dump();
-}
-
 // `v` in `format`; "-" when there is none.
 std::string number_text(std::optional<double> v, const char* format = "%.4g") {
   if (!v) return "-";
@@ -412,48 +406,47 @@ void legend_section(std::ostringstream& h) {
 
 }
 
+// A declared number as report.json spells it (the shortest text that reads back as the same double).
+std::string declared(double v) { return json(v).dump(); }
+
 // The candidate's declaration as judged (its producer, map, filter, biases, per-light overrides and
 // engine settings) and the environment it was rendered on.
-void candidate_info(std::ostringstream& h, const record::CaseRecord& rec, const json& d) {
+void candidate_info(std::ostringstream& h, const record::CaseRecord& rec, const outputs::CandidateDeclaration& d) {
   // Volumes and planar shadows have no map, filter or bias: their settings would only list
   // defaults that mean nothing for them.
   const std::string& technique = rec.technique;
   const bool map_settings = !(technique.rfind("volume", 0) == 0 || technique == "planar");
   std::string defaulted;
-  for (const auto& k : d.value("defaulted", json::array())) {
-    const std::string key = k.get<std::string>();
+  for (const std::string& key : d.defaulted)
     if (map_settings || key == "producer" || key == "version" || key == "convention")
       defaulted += (defaulted.empty() ? "" : ", ") + key;
-  }
-  h << "<div class=\"notes\">candidate: " << escape_html(str(d, "producer")) << " " << escape_html(str(d, "version"))
-    << " · " << escape_html(str(d, "convention"));
+  h << "<div class=\"notes\">candidate: " << escape_html(d.producer) << " " << escape_html(d.version) << " · "
+    << escape_html(d.convention);
   if (map_settings)
     h << " · map "
-      << (d.contains("atlas_tile") && d["atlas_tile"].is_object()
-              ? std::to_string(d["atlas_tile"].value("size", 0) - 2 * d["atlas_tile"].value("guard_band", 0)) +
-                    " (an atlas tile of " + escape_html(str(d["atlas_tile"], "size")) + " with a guard band of " +
-                    escape_html(str(d["atlas_tile"], "guard_band")) + ")"
-              : escape_html(str(d, "shadow_map_size")))
-    << " · filter " << escape_html(str(d, "filter_radius_texels")) << " texel · light taps "
-    << escape_html(str(d, "light_taps", "8")) << " (" << escape_html(str(d, "sampling", "grid")) << ") · slope bias "
-    << escape_html(str(d, "slope_bias_texels")) << " · constant bias " << escape_html(str(d, "constant_bias"))
-    << " · normal offset " << escape_html(str(d, "normal_offset", "0")) << " + "
-    << escape_html(str(d, "normal_offset_texels", "0")) << " texel · depth bias " << escape_html(str(d, "depth_bias", "0"))
-    << " · depth faces " << escape_html(str(d, "depth_faces", "back"))
-    << (str(d, "depth", "window") == "distance" ? " · distance maps over " + escape_html(str(d, "depth_range")) : std::string());
+      << (d.atlas_tile_size > 0 ? std::to_string(d.atlas_tile_size - 2 * d.atlas_guard_band) + " (an atlas tile of " +
+                                      std::to_string(d.atlas_tile_size) + " with a guard band of " +
+                                      std::to_string(d.atlas_guard_band) + ")"
+                                : std::to_string(d.shadow_map_size))
+      << " · filter " << declared(d.filter_radius_texels) << " texel · light taps " << d.light_taps << " ("
+      << outputs::to_string(d.sampling) << ") · slope bias " << declared(d.slope_bias_texels) << " · constant bias "
+      << declared(d.constant_bias) << " · normal offset " << declared(d.normal_offset) << " + "
+      << declared(d.normal_offset_texels) << " texel · depth bias " << declared(d.depth_bias) << " · depth faces "
+      << outputs::to_string(d.depth_faces)
+      << (d.depth == outputs::StoredDepth::Distance ? " · distance maps over " + declared(d.depth_range) : std::string());
   h << (defaulted.empty() ? std::string() : " (defaulted: " + escape_html(defaulted) + ")") << "</div>";
   if (!rec.environment.empty())
     h << "<div class=\"notes environment\">rendered on: " << escape_html(outputs::environment_text(rec.environment)) << "</div>";
-  if (d.contains("lights") && !d["lights"].empty())
+  // The per-light entries as the one writer spells them: only what differs from the top level.
+  if (!d.lights.empty())
     h << "<div class=\"notes\">per light (overrides of the above, in the pack's light order): <code>"
-      << escape_html(d["lights"].dump()) << "</code></div>";
-  if (d.contains("settings") && !d["settings"].empty())
-    h << "<div class=\"notes\">engine settings (recorded, not judged): <code>" << escape_html(d["settings"].dump())
-      << "</code></div>";
+      << escape_html(json::parse(outputs::declaration_text(d))["lights"].dump()) << "</code></div>";
+  if (const json settings = json::parse(d.settings_json); !settings.empty())
+    h << "<div class=\"notes\">engine settings (recorded, not judged): <code>" << escape_html(settings.dump()) << "</code></div>";
 }
 
 // A case's left cell: status, expectation, signature, declaration, reasons and numbers.
-void case_info(std::ostringstream& h, const record::CaseRecord& rec, const json& c) {
+void case_info(std::ostringstream& h, const record::CaseRecord& rec) {
   const char* st = to_string(rec.status);
   h << "<tr class=\"case\" id=\"" << anchor(rec.scene, rec.technique) << "\" data-status=\""
     << st << "\"><td class=\"info\"><h3>" << escape_html(rec.scene) << " · "
@@ -486,7 +479,7 @@ void case_info(std::ostringstream& h, const record::CaseRecord& rec, const json&
       << "</div>";
   }
   if (!rec.error.empty()) h << "<p class=\"error\">" << escape_html(rec.error) << "</p>";
-  if (c.contains("candidate")) candidate_info(h, rec, c["candidate"]);
+  if (rec.candidate) candidate_info(h, rec, *rec.candidate);
   if (!rec.reasons.empty()) {
     h << "<ul class=\"reasons\">";
     for (const std::string& reason : rec.reasons) h << "<li>" << escape_html(reason) << "</li>";
@@ -544,7 +537,6 @@ void thresholds_section(std::ostringstream& h, const record::RunRecord& run) {
 std::string render_html(const json& r) {
   std::ostringstream h;
   const record::RunRecord run = record::read_run(r);
-  const json& cases = r[record::key::kCases];  // their candidates' declarations, shown as written
   h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
     << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
     << "<title>shadowref conformance — " << escape_html(run.backend.value_or("candidate renders")) << "</title><style>"
@@ -560,9 +552,8 @@ std::string render_html(const json& r) {
     << "<button onclick=\"shadowrefFilter('problems', this)\">FAIL / XPASS / WARN / ERROR</button>"
     << "<button onclick=\"shadowrefFilter('xfail', this)\">XFAIL</button></div>"
     << "<table id=\"cases\"><thead><tr><th>case</th><th>reference · candidate · error · shaded</th></tr></thead><tbody>\n";
-  for (std::size_t i = 0; i < cases.size(); ++i) {
-    const json& c = cases[i];
-    case_info(h, run.cases[i], c);
+  for (std::size_t i = 0; i < run.cases.size(); ++i) {
+    case_info(h, run.cases[i]);
     triage_marks(h, run.triage, run.cases[i]);
     h << "</td><td>";
     case_images(h, run.cases[i]);

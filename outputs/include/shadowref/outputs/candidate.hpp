@@ -93,6 +93,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 namespace shadowref::outputs {
 
 // The most light_taps a declaration may give.
@@ -197,6 +199,12 @@ CandidateDeclaration default_declaration(const std::string& technique);
 // Reads `dir`/candidate.json; a missing file gives default_declaration(technique). Throws
 // InputError(BadInput) for a malformed file.
 CandidateDeclaration read_declaration(const std::filesystem::path& dir, const std::string& technique);
+
+// The declaration that the JSON object `j` (candidate.json's shape) states, read as read_declaration
+// reads a file: the same keys, ranges and per-light rules, `defaulted` the keys `j` lacks. A report's
+// "candidate" (declaration_text's object) reads back as the declaration it was written from. Throws
+// InputError(BadInput) "`where`: what is wrong".
+CandidateDeclaration declaration_from_json(const nlohmann::json& j, const std::string& technique, const std::string& where);
 
 // `declaration` as candidate.json's text (without `defaulted`): every key, the one writer.
 std::string declaration_text(const CandidateDeclaration& declaration);

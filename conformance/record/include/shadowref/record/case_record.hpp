@@ -48,6 +48,7 @@ inline constexpr char kUnmetExpectation[] = "unmet_expectation";
 inline constexpr char kError[] = "error";
 inline constexpr char kReadThroughLinks[] = "read_through_links";
 inline constexpr char kCandidate[] = "candidate";
+inline constexpr char kDefaulted[] = "defaulted";  // inside "candidate": the keys the candidate left out
 inline constexpr char kComparison[] = "comparison";
 inline constexpr char kLights[] = "lights";
 inline constexpr char kShaded[] = "shaded";
@@ -137,6 +138,10 @@ struct CaseRecord {
   std::optional<ResolvingPowerRecord> resolving_power;
   outputs::Environment environment;  // where the candidate was rendered (empty: none declared);
                                      // outputs::environment_text says it in one line
+  // The candidate's declaration ("candidate", read back by outputs::declaration_from_json; its
+  // `defaulted` the keys the candidate left out, as the case recorded them); absent when the case
+  // has none.
+  std::optional<outputs::CandidateDeclaration> candidate;
 };
 
 // A case or report whose JSON is not the shape above: one line naming the JSON path
@@ -160,12 +165,13 @@ bool inside_report_folder(const std::string& rel);
 std::vector<CaseRecord> read_cases(const nlohmann::json& report);
 
 // The keys of `r` written into `k` as read_case reads them back: absent optionals and empty
-// optional texts are not written ("why", "causes" and "seconds" always are). Six fields are not
+// optional texts are not written ("why", "causes" and "seconds" always are). Some fields are not
 // written from here: `frame_ms` and `notes` are the run's, which `compare --json` has not (the
-// run writes them); `environment` lies in "candidate", written whole from the candidate's
-// declaration; the resolving power carries its probes besides (resolving_power_json); the totals and
-// the reasons lie in "comparison" and the lights carry their metrics, each written whole by the
-// comparison's writer (report/comparison_json.hpp) and the report's, which copies the images.
+// run writes them); `candidate` and its `environment` are written whole from the candidate's
+// declaration (outputs::declaration_text); the resolving power carries its probes besides
+// (resolving_power_json); the totals, counts, threshold and reasons lie in "comparison" and the
+// lights carry their counts, each written whole by the comparison's writer
+// (report/comparison_json.hpp) and the report's, which copies the images.
 void write_case(const CaseRecord& r, nlohmann::json& k);
 
 }  // namespace shadowref::record
