@@ -480,6 +480,23 @@ std::vector<Case> make_cases() {
                                 R"({"plan": {}, "cases": [{"scene": "s", "technique": "planar", "status": "MAYBE"}]})");
                    },
                    {"merge", "@/shard-1", "--out", "@/out"}, 4, "@/shard-1/report.json: cases[0].status: \"MAYBE\" is not a status"});
+  // What the page shows of a shard's case is read through its record too: a count of the wrong type,
+  // and a candidate declaration no candidate.json could state, each refused with its path.
+  cases.push_back({"bad_case_count_merge",
+                   [](const fs::path& dir) {
+                     write_text(dir / "shard-1" / "report.json",
+                                R"({"plan": {}, "cases": [{"scene": "s", "technique": "planar", "status": "PASS",
+                                    "comparison": {"total": {"wrong": 1, "unexplained": 0, "false_shadow": -1}}}]})");
+                   },
+                   {"merge", "@/shard-1", "--out", "@/out"}, 4,
+                   "@/shard-1/report.json: cases[0].comparison.total.false_shadow: must be a whole number >= 0, not -1"});
+  cases.push_back({"bad_case_candidate_merge",
+                   [](const fs::path& dir) {
+                     write_text(dir / "shard-1" / "report.json",
+                                R"({"plan": {}, "cases": [{"scene": "s", "technique": "planar", "status": "PASS",
+                                    "candidate": {"lights": "all"}}]})");
+                   },
+                   {"merge", "@/shard-1", "--out", "@/out"}, 4, "@/shard-1/report.json: cases[0].candidate: lights: must be an array"});
   // A shard number is checked before use: a float is never cast out of range.
   cases.push_back({"bad_shard_number_merge",
                    [](const fs::path& dir) {
