@@ -56,9 +56,9 @@ std::vector<CaseKey> read_cases(const RunReport& r, std::map<CaseKey, DiffSide>&
     seen[key] = i;
     DiffSide s;
     s.status = to_string(rec.status);
-    if (rec.totals) {
-      s.wrong = rec.totals->wrong;
-      s.unexplained = rec.totals->unexplained;
+    if (rec.total) {
+      s.wrong = static_cast<std::size_t>(*rec.total->wrong);
+      s.unexplained = static_cast<std::size_t>(*rec.total->unexplained);
     }
     s.lights = lights_of(r, rec);
     out[key] = std::move(s);

@@ -29,35 +29,25 @@ std::string text(const json& c, const char* key, std::size_t index, const std::s
 // c[key], which is there, as a count from 0 (a shard, an image height).
 int count(const json& c, const char* key, std::size_t index) { return detail::whole_at(c, key, where_of(index), 0); }
 
-// j[key] at `where`, which must be there, as a pixel count (a whole number >= 0).
-std::size_t pixels(const json& j, const char* key, const std::string& where) {
-  const auto it = j.find(key);
-  if (it == j.end() || !it->is_number_integer() || (!it->is_number_unsigned() && it->get<std::int64_t>() < 0))
-    throw RecordError(where + "." + key + ": missing or not a pixel count" + (it == j.end() ? "" : ", " + it->dump()));
-  return it->get<std::size_t>();
-}
-
-std::optional<TotalsRecord> read_totals(const json& c, std::size_t index) {
+// What the page shows of "comparison" (absent or null before a verdict): the total counts, which
+// must hold the counts two runs are compared by, its reasons, its threshold's name and the lights'
+// lit fraction together.
+void read_comparison(const json& c, std::size_t index, CaseRecord& r) {
   const auto cmp = c.find(key::kComparison);
-  if (cmp == c.end() || cmp->is_null()) return std::nullopt;
+  if (cmp == c.end() || cmp->is_null()) return;
   const std::string where = path_of(index, key::kComparison);
   const auto total = cmp->is_object() ? cmp->find(key::kTotal) : cmp->end();
   if (!cmp->is_object() || total == cmp->end() || !total->is_object())
     throw RecordError(where + "." + key::kTotal + ": missing or not an object");
-  return TotalsRecord{pixels(*total, key::kWrong, where + "." + key::kTotal), pixels(*total, key::kUnexplained, where + "." + key::kTotal)};
-}
-
-// What the page shows of "comparison": its reasons, its threshold's name, the total counts and the
-// lights' lit fraction together (the totals the runs are compared by are read_totals').
-void read_comparison(const json& cmp, std::size_t index, CaseRecord& r) {
-  const std::string where = path_of(index, key::kComparison);
-  r.reasons = texts_at(cmp, key::kReasons, where);
-  if (const auto t = cmp.find(key::kThreshold); t != cmp.end() && !t->is_null()) {
+  r.total = detail::read_mask_metrics(*total, where + "." + key::kTotal);
+  if (!r.total->wrong) throw RecordError(where + "." + key::kTotal + "." + key::kWrong + ": missing");
+  if (!r.total->unexplained) throw RecordError(where + "." + key::kTotal + "." + key::kUnexplained + ": missing");
+  r.reasons = texts_at(*cmp, key::kReasons, where);
+  if (const auto t = cmp->find(key::kThreshold); t != cmp->end() && !t->is_null()) {
     if (!t->is_object()) throw RecordError(where + "." + key::kThreshold + ": must be an object, not " + t->dump());
     r.threshold = text_at(*t, key::kName, where + "." + key::kThreshold);
   }
-  if (const auto m = cmp.find(key::kTotal); m != cmp.end()) r.total = detail::read_mask_metrics(*m, where + "." + key::kTotal);
-  if (const auto v = cmp.find(key::kVisibility); v != cmp.end()) r.visibility = detail::read_visibility(*v, where + "." + key::kVisibility);
+  if (const auto v = cmp->find(key::kVisibility); v != cmp->end()) r.visibility = detail::read_visibility(*v, where + "." + key::kVisibility);
 }
 
 // l[key]: an image path under report/, "" when absent, null or empty.
@@ -173,8 +163,7 @@ CaseRecord read_case(const json& c, std::size_t index) {
   if (c.contains(key::kExpectedFromHeight)) r.expected_from_height = count(c, key::kExpectedFromHeight, index);
   if (const auto e = c.find(key::kExpectation); e != c.end()) r.expectation = read_expectation(*e, index);
   if (const auto p = c.find(key::kResolvingPower); p != c.end()) r.resolving_power = read_resolving_power(*p, index);
-  r.totals = read_totals(c, index);
-  if (const auto cmp = c.find(key::kComparison); cmp != c.end() && cmp->is_object()) read_comparison(*cmp, index, r);
+  read_comparison(c, index, r);
   r.lights = read_lights(c, index);
   r.shaded = image(c, key::kShaded, where_of(index));
   r.reference_shaded = image(c, key::kReferenceShaded, where_of(index));

@@ -2,7 +2,6 @@
 // (comparison_record.hpp), each value of the wrong type a RecordError at its JSON path.
 #include "shadowref/record/comparison_record.hpp"
 
-#include <cstdint>
 #include <utility>
 
 #include "read_json.hpp"
@@ -12,23 +11,6 @@ namespace shadowref::record::detail {
 namespace {
 
 using nlohmann::json;
-
-// j[key] as a count (a whole number >= 0); nullopt when absent or null.
-std::optional<long long> count_at(const json& j, const char* key, const std::string& where) {
-  const auto it = j.find(key);
-  if (it == j.end() || it->is_null()) return std::nullopt;
-  if (!it->is_number_integer() || (!it->is_number_unsigned() && it->get<std::int64_t>() < 0))
-    throw RecordError(path_at(where, key) + ": must be a whole number >= 0, not " + it->dump());
-  return it->get<long long>();
-}
-
-// j[key] as a number; nullopt when absent or null.
-std::optional<double> number_at(const json& j, const char* key, const std::string& where) {
-  const auto it = j.find(key);
-  if (it == j.end() || it->is_null()) return std::nullopt;
-  if (!it->is_number()) throw RecordError(path_at(where, key) + ": must be a number, not " + it->dump());
-  return it->get<double>();
-}
 
 std::string class_key(outputs::ErrorClass c) { return std::string(outputs::error_class(c).json_key); }
 

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <climits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,23 @@ inline int whole_at(const nlohmann::json& j, const char* key, const std::string&
     throw RecordError(path_at(where, key) + ": must be a whole number from " + std::to_string(least) + " to " +
                       std::to_string(INT_MAX) + ", not " + v.dump());
   return static_cast<int>(v.get<std::int64_t>());
+}
+
+// j[key] as a number; nullopt when absent or null.
+inline std::optional<double> number_at(const nlohmann::json& j, const char* key, const std::string& where) {
+  const auto it = j.find(key);
+  if (it == j.end() || it->is_null()) return std::nullopt;
+  if (!it->is_number()) throw RecordError(path_at(where, key) + ": must be a number, not " + it->dump());
+  return it->get<double>();
+}
+
+// j[key] as a count (a whole number >= 0); nullopt when absent or null.
+inline std::optional<long long> count_at(const nlohmann::json& j, const char* key, const std::string& where) {
+  const auto it = j.find(key);
+  if (it == j.end() || it->is_null()) return std::nullopt;
+  if (!it->is_number_integer() || (!it->is_number_unsigned() && it->get<std::int64_t>() < 0))
+    throw RecordError(path_at(where, key) + ": must be a whole number >= 0, not " + it->dump());
+  return it->get<long long>();
 }
 
 // j[key] as an array of strings (empty when absent).

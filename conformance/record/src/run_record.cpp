@@ -74,13 +74,6 @@ void each_object(const json& j, const char* key, const std::string& where, One o
   }
 }
 
-std::optional<double> number_at(const json& j, const char* key, const std::string& where) {
-  const auto it = j.find(key);
-  if (it == j.end()) return std::nullopt;
-  if (!it->is_number()) throw RecordError(detail::path_at(where, key) + ": must be a number, not " + it->dump());
-  return it->get<double>();
-}
-
 std::vector<ThresholdRecord> read_thresholds(const json& report) {
   std::vector<ThresholdRecord> out;
   each_object(report, key::kThresholds, "", [&](const json& t, const std::string& at) {
@@ -91,8 +84,8 @@ std::vector<ThresholdRecord> read_thresholds(const json& report) {
       if (!b->is_boolean()) throw RecordError(detail::path_at(at, key::kBands) + ": must be true or false, not " + b->dump());
       r.bands = b->get<bool>();
     }
-    r.unexplained_fail_percent = number_at(t, key::kUnexplainedFailPercent, at);
-    r.explained_warn_percent = number_at(t, key::kExplainedWarnPercent, at);
+    r.unexplained_fail_percent = detail::number_at(t, key::kUnexplainedFailPercent, at);
+    r.explained_warn_percent = detail::number_at(t, key::kExplainedWarnPercent, at);
     out.push_back(std::move(r));
   });
   return out;

@@ -107,11 +107,6 @@ struct LightRecord {
   std::optional<VisibilityRecord> visibility;      // a soft technique's lit fraction of the light
 };
 
-// The comparison's counts over every light ("comparison"."total"), the ones a run is compared by.
-struct TotalsRecord {
-  std::size_t wrong = 0, unexplained = 0;
-};
-
 struct CaseRecord {
   std::string scene, technique;
   Status status = Status::Pass;
@@ -128,8 +123,9 @@ struct CaseRecord {
   double frame_ms = 0;             // our renderer's frame time (0: not drawn by us, or not timed)
   std::vector<std::string> notes;  // what the run noted of the case (a cache miss, a read-through link)
   std::vector<std::string> reasons;  // the verdict's reasons ("comparison"."reasons")
-  std::optional<TotalsRecord> totals;  // absent before a verdict
-  std::optional<MaskMetricsRecord> total;        // "comparison"."total": every light's counts
+  // "comparison"."total": every light's counts; absent before a verdict. Its `wrong` and
+  // `unexplained`, the counts two runs are compared by, are always there.
+  std::optional<MaskMetricsRecord> total;
   std::optional<VisibilityRecord> visibility;    // "comparison"."visibility": the lights' lit fraction together
   std::string threshold;                         // the threshold's name ("comparison"."threshold"."name"; "" none)
   std::vector<LightRecord> lights;     // empty before a verdict
