@@ -26,6 +26,18 @@ std::string text(const json& c, const char* key, std::size_t index, const std::s
   return text_at(c, key, where_of(index), fallback);
 }
 
+// c[key] as a number >= 0; `fallback` when absent or null. Another value is a RecordError at its path.
+double number(const json& c, const char* key, std::size_t index, double fallback) {
+  const auto it = c.find(key);
+  if (it == c.end() || it->is_null()) return fallback;
+  if (!it->is_number() || !(it->get<double>() >= 0))
+    throw RecordError(path_of(index, key) + ": must be a number >= 0, not " + it->dump());
+  return it->get<double>();
+}
+
+// Whether write_case writes a key whose row says `w` and whose value is set or not.
+bool writes(Written w, bool set) { return w == Written::Always || (w == Written::WhenSet && set); }
+
 // c[key], which is there, as a count from 0 (a shard, an image height).
 int count(const json& c, const char* key, std::size_t index) { return detail::whole_at(c, key, where_of(index), 0); }
 
@@ -141,23 +153,9 @@ CaseRecord read_case(const json& c, std::size_t index) {
   r.scene = text(c, key::kScene, index);
   r.technique = text(c, key::kTechnique, index);
   r.status = detail::status_at(c, key::kStatus, where_of(index));
-  r.expected = text(c, key::kExpected, index, "pass");
-  r.why = text(c, key::kWhy, index);
-  r.signature = text(c, key::kSignature, index);
-  r.error = text(c, key::kError, index);
-  r.unmet_expectation = text(c, key::kUnmetExpectation, index);
-  r.causes = text(c, key::kCauses, index);
+  for (const TextKey& t : kTextKeys) r.*t.field = text(c, t.name, index, r.*t.field);
+  for (const NumberKey& n : kNumberKeys) r.*n.field = number(c, n.name, index, r.*n.field);
   if (c.contains(key::kHost)) r.host = text(c, key::kHost, index);
-  if (const auto it = c.find(key::kSeconds); it != c.end()) {
-    if (!it->is_number() || !(it->get<double>() >= 0))
-      throw RecordError(path_of(index, key::kSeconds) + ": must be a number >= 0, not " + it->dump());
-    r.seconds = it->get<double>();
-  }
-  if (const auto it = c.find(key::kFrameMs); it != c.end() && !it->is_null()) {
-    if (!it->is_number() || !(it->get<double>() >= 0))
-      throw RecordError(path_of(index, key::kFrameMs) + ": must be a number >= 0, not " + it->dump());
-    r.frame_ms = it->get<double>();
-  }
   r.notes = texts_at(c, key::kNotes, where_of(index));
   if (c.contains(key::kShard)) r.shard = count(c, key::kShard, index);
   if (c.contains(key::kExpectedFromHeight)) r.expected_from_height = count(c, key::kExpectedFromHeight, index);
@@ -192,12 +190,11 @@ void write_case(const CaseRecord& r, json& k) {
   k[key::kScene] = r.scene;
   k[key::kTechnique] = r.technique;
   k[key::kStatus] = to_string(r.status);
-  k[key::kExpected] = r.expected;
-  k[key::kWhy] = r.why;
+  for (const TextKey& t : kTextKeys)
+    if (writes(t.written, !(r.*t.field).empty())) k[t.name] = r.*t.field;
+  for (const NumberKey& n : kNumberKeys)
+    if (writes(n.written, r.*n.field != 0)) k[n.name] = r.*n.field;
   if (r.expected_from_height) k[key::kExpectedFromHeight] = r.expected_from_height;
-  if (!r.signature.empty()) k[key::kSignature] = r.signature;
-  k[key::kSeconds] = r.seconds;
-  k[key::kCauses] = r.causes;
   if (r.host) k[key::kHost] = *r.host;
   if (r.shard) k[key::kShard] = *r.shard;
   if (r.expectation) {
@@ -206,8 +203,6 @@ void write_case(const CaseRecord& r, json& k) {
     if (!r.expectation->line.empty()) e[key::kLine] = r.expectation->line;
     k[key::kExpectation] = e;
   }
-  if (!r.unmet_expectation.empty()) k[key::kUnmetExpectation] = r.unmet_expectation;
-  if (!r.error.empty()) k[key::kError] = r.error;
 }
 
 }  // namespace shadowref::record

@@ -1,6 +1,9 @@
 // case_record_test.cpp — a case of report.json through its record (case_record.hpp): the name
 // tables round-trip, a written record reads back equal, and a case of the wrong shape is refused
 // with its JSON path.
+#include <algorithm>
+#include <fstream>
+
 #include <gtest/gtest.h>
 
 #include "shadowref/record/case_record.hpp"
@@ -21,6 +24,28 @@ TEST(CaseRecord, EveryStatusAndOutcomeNameReadsBackAsItself) {
   EXPECT_EQ(failures, 3);  // FAIL, XPASS, ERROR
   EXPECT_TRUE(is_failure(Status::XPass));
   EXPECT_FALSE(is_failure(Status::XFail));
+}
+
+// Each row of the plain-key tables is a case key the schema names, and the schema requires
+// exactly the rows write_case always writes: a row added without its schema entry, or written
+// sometimes where the schema requires it, fails here before any report is written.
+TEST(CaseRecord, EveryPlainKeyIsInTheSchema) {
+  std::ifstream in(SHADOWREF_REPORT_SCHEMA);
+  ASSERT_TRUE(in) << SHADOWREF_REPORT_SCHEMA;
+  const json c = json::parse(in).at("$defs").at("case");
+  const json& properties = c.at("properties");
+  const json& required = c.at("required");
+  const auto check = [&](const char* name, Written written) {
+    EXPECT_TRUE(properties.contains(name)) << name << " is a row but not in the schema's case";
+    const bool is_required = std::find(required.begin(), required.end(), name) != required.end();
+    EXPECT_EQ(is_required, written == Written::Always) << name;
+  };
+  std::size_t rows = 0;
+  for (const TextKey& t : kTextKeys) check(t.name, t.written), ++rows;
+  for (const NumberKey& n : kNumberKeys) check(n.name, n.written), ++rows;
+  EXPECT_EQ(rows, 8u);
+  // A name the schema does not hold is seen as one (the check can fail).
+  EXPECT_FALSE(properties.contains("not_a_case_key"));
 }
 
 CaseRecord full() {

@@ -5,8 +5,9 @@
 // types what the readers of a run act on — who the case is, its status and why, its outcome
 // against the expectations files, its resolving power, where its candidate was rendered, and the
 // comparison's counts and lit fraction the page shows (comparison_record.hpp; written whole by
-// report/comparison_json.cpp). A key added to a case is added here (the key, the field, read_case
-// and write_case) and where its value is made (docs/architecture.md).
+// report/comparison_json.cpp). A text or number key added to a case is added here (the key, the
+// field and its row in kTextKeys or kNumberKeys), where its value is made, and in the schema
+// (docs/architecture.md, "Where a case key goes").
 #pragma once
 
 #include <cstddef>
@@ -140,6 +141,37 @@ struct CaseRecord {
   std::optional<outputs::CandidateDeclaration> candidate;
 };
 
+// When write_case writes a key of the tables below: always, only when it is set (a text not empty,
+// a number not 0), or never (the run writes it: `compare --json` has no value for it).
+enum class Written { Always, WhenSet, ByTheRun };
+
+// The case's plain keys, one row each. read_case reads each into its field (an absent or null key
+// leaves the field's default above; a text must be a string, a number one >= 0) and write_case
+// writes each back as `written` says, so that a key of this kind is a constant, a field and a row,
+// all in this header. `CaseRecord.EveryPlainKeyIsInTheSchema` holds the rows to report.schema.json.
+struct TextKey {
+  const char* name;
+  std::string CaseRecord::*field;
+  Written written;
+};
+inline constexpr TextKey kTextKeys[] = {
+    {key::kExpected, &CaseRecord::expected, Written::Always},
+    {key::kWhy, &CaseRecord::why, Written::Always},
+    {key::kSignature, &CaseRecord::signature, Written::WhenSet},
+    {key::kError, &CaseRecord::error, Written::WhenSet},
+    {key::kUnmetExpectation, &CaseRecord::unmet_expectation, Written::WhenSet},
+    {key::kCauses, &CaseRecord::causes, Written::Always},
+};
+struct NumberKey {
+  const char* name;
+  double CaseRecord::*field;
+  Written written;
+};
+inline constexpr NumberKey kNumberKeys[] = {
+    {key::kSeconds, &CaseRecord::seconds, Written::Always},
+    {key::kFrameMs, &CaseRecord::frame_ms, Written::ByTheRun},
+};
+
 // A case or report whose JSON is not the shape above: one line naming the JSON path
 // ("cases[3].status: \"MAYBE\" is not a status (PASS, WARN, FAIL, XFAIL, XPASS, ERROR)").
 class RecordError : public std::invalid_argument {
@@ -160,9 +192,9 @@ bool inside_report_folder(const std::string& rel);
 // Every case of `report` (an object whose "cases" is an array; none when it has no "cases").
 std::vector<CaseRecord> read_cases(const nlohmann::json& report);
 
-// The keys of `r` written into `k` as read_case reads them back: absent optionals and empty
-// optional texts are not written ("why", "causes" and "seconds" always are). Some fields are not
-// written from here: `frame_ms` and `notes` are the run's, which `compare --json` has not (the
+// The keys of `r` written into `k` as read_case reads them back: absent optionals are not written,
+// the tables' keys as their rows say. Some fields are not written from here: `frame_ms` and `notes`
+// are the run's, which `compare --json` has not (the
 // run writes them); `candidate` and its `environment` are written whole from the candidate's
 // declaration (outputs::declaration_text); the resolving power carries its probes besides
 // (resolving_power_json); the totals, counts, threshold and reasons lie in "comparison" and the
